@@ -1,0 +1,34 @@
+// Shared e2e helpers: console-error capture and canvas pixel statistics.
+
+/** Collects console errors and uncaught page errors into an array. */
+export function collectErrors(page) {
+  const errors = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') errors.push(msg.text());
+  });
+  page.on('pageerror', (err) => errors.push(err.message));
+  return errors;
+}
+
+/** Mean and standard deviation of the luminance of a canvas (by selector). */
+export async function canvasLuminance(page, selector) {
+  return page.evaluate((sel) => {
+    const src = document.querySelector(sel);
+    const c = document.createElement('canvas');
+    c.width = 128;
+    c.height = 128;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(src, 0, 0, 128, 128);
+    const d = ctx.getImageData(0, 0, 128, 128).data;
+    let sum = 0;
+    let sum2 = 0;
+    const n = d.length / 4;
+    for (let i = 0; i < d.length; i += 4) {
+      const y = 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2];
+      sum += y;
+      sum2 += y * y;
+    }
+    const mean = sum / n;
+    return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)) };
+  }, selector);
+}

@@ -1,0 +1,52 @@
+#!/usr/bin/env node
+// Benchmarks: native (the Rust example) and WASM (the built core in Node), medians of several
+// runs. `npm run bench -- --json` prints one JSON object per line; without --json, a table.
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { loadCore } from '../tests/support/core.js';
+
+const root = fileURLToPath(new URL('..', import.meta.url));
+const json = process.argv.includes('--json');
+const results = [];
+const emit = (name, value, unit) => {
+  const r = { name, value: Math.round(value * 1000) / 1000, unit };
+  results.push(r);
+  if (json) console.log(JSON.stringify(r));
+};
+
+function median(runs, fn) {
+  fn();
+  const t = [];
+  for (let i = 0; i < runs; i++) {
+    const s = performance.now();
+    fn();
+    t.push(performance.now() - s);
+  }
+  t.sort((a, b) => a - b);
+  return t[Math.floor(runs / 2)];
+}
+
+const quiet = { cwd: `${root}wasm-core`, stdio: ['ignore', 'pipe', 'inherit'], encoding: 'utf8' };
+execFileSync('bash', [`${root}scripts/build-wasm.sh`], { stdio: ['ignore', 'ignore', 'inherit'] });
+const native = execFileSync('cargo', ['run', '--quiet', '--release', '--example', 'bench'], quiet);
+for (const line of native.split('\n').filter(Boolean)) {
+  const r = JSON.parse(line);
+  emit(r.name, r.value, r.unit);
+}
+
+const core = await loadCore();
+const field = JSON.stringify({
+  size: [32, 32, 32, 32],
+  spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 },
+  seed: 1,
+});
+emit('field_generate_32x32x32x32_wasm_ms', median(7, () => core.WindField.generate(field).free()), 'ms');
+emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
+
+const nativeMs = results.find((r) => r.name === 'field_generate_32x32x32x32_native_ms')?.value;
+const wasmMs = results.find((r) => r.name === 'field_generate_32x32x32x32_wasm_ms')?.value;
+if (nativeMs && wasmMs) emit('field_generate_wasm_over_native', wasmMs / nativeMs, 'ratio');
+
+if (!json) {
+  for (const r of results) console.log(`${r.name.padEnd(44)} ${String(r.value).padStart(10)} ${r.unit}`);
+}

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The whole suite: lints, Rust tests, the WASM build, JS unit tests, the site build and the
+# Playwright tests in Debian's chromium. Installs what is missing first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+step() { printf '\n== %s\n' "$*"; }
+
+step "setup"
+bash scripts/setup.sh --browser
+step "lint"
+bash scripts/lint.sh
+step "rust tests"
+(cd wasm-core && cargo build --release --bin windfield && cargo test)
+step "wasm build"
+bash scripts/build-wasm.sh
+step "site build"
+npx vite build --config web/vite.config.js --logLevel warn
+step "js unit tests"
+node --test tests/
+step "end-to-end tests (chromium)"
+npx playwright test --config e2e/playwright.config.js

@@ -1,0 +1,31 @@
+// The page's field-parameter checks follow the core's rules and paths.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { DEFAULT_FIELD, maxInertial, validateField, withSize } from '../web/src/field-params.js';
+
+test('the default field is the paper statistics on 32^4 and valid', () => {
+  assert.deepEqual(validateField(DEFAULT_FIELD), []);
+  assert.deepEqual(DEFAULT_FIELD.spectrum, { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 });
+});
+
+test('each bad parameter is named', () => {
+  const cases = [
+    [withSize(DEFAULT_FIELD, [32, 33, 32, 32]), 'field.size[1]'],
+    [withSize(DEFAULT_FIELD, [2, 32, 32, 32]), 'field.size[0]'],
+    [withSize(DEFAULT_FIELD, 128), 'field.size: nx*ny*nz*nt'],
+    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, law: 'x' } }, 'field.spectrum.law'],
+    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, epsilon: 0 } }, 'field.spectrum.epsilon'],
+    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: 16 } }, 'field.spectrum.k_inertial'],
+    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, sigma: -1 } }, 'field.spectrum.sigma'],
+    [{ ...DEFAULT_FIELD, seed: 1.5 }, 'seed'],
+  ];
+  for (const [field, path] of cases) {
+    const errors = validateField(field);
+    assert.equal(errors.length, 1, JSON.stringify(errors));
+    assert.ok(errors[0].startsWith(path), errors[0]);
+  }
+});
+
+test('k_inertial is bounded by the smallest spatial extent', () => {
+  assert.equal(maxInertial([64, 16, 32, 4]), 7);
+});

@@ -1,0 +1,441 @@
+//! The synthesised field against the paper's formulas (DESIGN §6), fixed seeds throughout.
+
+use rustfft::num_complex::Complex64;
+use windfield::field::{hermitian_spectrum, FieldParams, TurbulentField};
+use windfield::lattice::wave_number;
+use windfield::spectrum::{SpectrumLaw, SpectrumParams};
+use windfield::stats::{analyse, FieldStats};
+
+fn params(size: [usize; 4], spectrum: SpectrumParams, seed: u64) -> FieldParams {
+    FieldParams {
+        size,
+        spectrum,
+        seed,
+    }
+}
+
+fn stats_for(p: &FieldParams) -> FieldStats {
+    let f = TurbulentField::generate(p).unwrap();
+    analyse(&f, &p.spectrum)
+}
+
+#[test]
+fn synthesis_equals_naive_inverse_dft_of_its_spectrum() {
+    // Tiny anisotropic lattice: every output value against Σ û exp(+i(k·x + ωt)) in f64.
+    let p = params(
+        [8, 4, 8, 4],
+        SpectrumParams {
+            k_inertial: 1.0,
+            ..Default::default()
+        },
+        7,
+    );
+    let spectrum = hermitian_spectrum(&p).unwrap();
+    let field = TurbulentField::generate(&p).unwrap();
+    let [nx, ny, nz, nt] = p.size;
+    let n = nx * ny * nz * nt;
+    let coords = |i: usize| [i % nx, i / nx % ny, i / (nx * ny) % nz, i / (nx * ny * nz)];
+    let mut max_err = 0.0f64;
+    let mut max_val = 0.0f64;
+    for xi in 0..n {
+        let x = coords(xi);
+        for (c, sc) in spectrum.iter().enumerate() {
+            let mut sum = Complex64::new(0.0, 0.0);
+            for (ki, u) in sc.iter().enumerate() {
+                if u.norm_sqr() == 0.0 {
+                    continue;
+                }
+                let k = coords(ki);
+                let phase: f64 = (0..4)
+                    .map(|a| {
+                        let na = p.size[a];
+                        std::f64::consts::TAU * wave_number(k[a], na) as f64 * x[a] as f64
+                            / na as f64
+                    })
+                    .sum();
+                sum += u * Complex64::from_polar(1.0, phase);
+            }
+            // Hermitian spectrum: the naive sum is real.
+            assert!(sum.im.abs() < 1e-12, "imaginary part {}", sum.im);
+            let got = field.data[3 * xi + c] as f64;
+            max_err = max_err.max((got - sum.re).abs());
+            max_val = max_val.max(sum.re.abs());
+        }
+    }
+    assert!(max_val > 0.1, "field should not be empty");
+    assert!(max_err < 1e-5 * max_val, "max error {max_err} of {max_val}");
+}
+
+#[test]
+fn spectrum_is_hermitian_and_zero_on_nyquist_planes_and_k0() {
+    let p = params(
+        [8, 8, 8, 8],
+        SpectrumParams {
+            k_inertial: 1.0,
+            ..Default::default()
+        },
+        3,
+    );
+    let s = hermitian_spectrum(&p).unwrap();
+    let n = 8usize;
+    for t in 0..n {
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    let i = ((t * n + z) * n + y) * n + x;
+                    let j = ((((n - t) % n) * n + (n - z) % n) * n + (n - y) % n) * n + (n - x) % n;
+                    for c in s.iter() {
+                        assert!((c[i] - c[j].conj()).norm() < 1e-15);
+                        if [x, y, z, t].contains(&(n / 2)) || (x == 0 && y == 0 && z == 0) {
+                            assert_eq!(c[i].norm(), 0.0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn kolmogorov_slope_over_the_inertial_range_averaged_over_seeds() {
+    let mut slopes = Vec::new();
+    for seed in 1..=4 {
+        let st = stats_for(&params([32; 4], SpectrumParams::default(), seed));
+        slopes.push(st.slope.unwrap());
+    }
+    let mean = slopes.iter().sum::<f64>() / slopes.len() as f64;
+    assert!(
+        (mean + 5.0 / 3.0).abs() < 0.1,
+        "mean slope {mean} ({slopes:?})"
+    );
+}
+
+#[test]
+fn paper_literal_law_has_its_own_slope() {
+    let sp = SpectrumParams {
+        law: SpectrumLaw::PaperLiteral,
+        ..Default::default()
+    };
+    let st = stats_for(&params([32; 4], sp, 2));
+    assert!(
+        (st.slope.unwrap() + 2.5).abs() < 0.1,
+        "slope {:?}",
+        st.slope
+    );
+}
+
+#[test]
+fn energy_matches_the_lattice_sum_of_the_law() {
+    for (size, sp) in [
+        ([32; 4], SpectrumParams::default()),
+        (
+            [16, 32, 16, 8],
+            SpectrumParams {
+                epsilon: 3.0,
+                k_inertial: 2.0,
+                sigma: 0.5,
+                ..Default::default()
+            },
+        ),
+        (
+            [32, 32, 32, 16],
+            SpectrumParams {
+                sigma: 0.0,
+                ..Default::default()
+            },
+        ),
+    ] {
+        let st = stats_for(&params(size, sp, 11));
+        // Independent recomputation of Σ E(|k|)/(4π|k|²) over non-Nyquist spatial modes.
+        let mut expected = 0.0;
+        for z in 0..size[2] {
+            for y in 0..size[1] {
+                for x in 0..size[0] {
+                    if x == size[0] / 2 || y == size[1] / 2 || z == size[2] / 2 {
+                        continue;
+                    }
+                    let k2 = [(x, size[0]), (y, size[1]), (z, size[2])]
+                        .iter()
+                        .map(|&(i, n)| (wave_number(i, n) as f64).powi(2))
+                        .sum::<f64>();
+                    if k2 > 0.0 {
+                        expected +=
+                            sp.energy_spectrum(k2.sqrt()) / (4.0 * std::f64::consts::PI * k2);
+                    }
+                }
+            }
+        }
+        assert!((st.energy_expected / expected - 1.0).abs() < 1e-12);
+        assert!(
+            (st.energy_ratio - 1.0).abs() < 0.05,
+            "{size:?}: ratio {}",
+            st.energy_ratio
+        );
+    }
+}
+
+#[test]
+fn divergence_free_to_float_rounding() {
+    let st = stats_for(&params([32, 16, 32, 8], SpectrumParams::default(), 5));
+    assert!(st.divergence_ratio < 1e-10, "ratio {}", st.divergence_ratio);
+}
+
+#[test]
+fn components_carry_equal_energy_and_zero_mean() {
+    let mut comp = [0.0; 3];
+    for seed in 1..=3 {
+        let st = stats_for(&params([32; 4], SpectrumParams::default(), seed));
+        for (total, e) in comp.iter_mut().zip(st.component_energy) {
+            *total += e;
+        }
+        for m in st.mean {
+            assert!(m.abs() < 1e-6 * st.rms_speed, "mean {:?}", st.mean);
+        }
+    }
+    let avg = comp.iter().sum::<f64>() / 3.0;
+    for c in comp {
+        assert!((c / avg - 1.0).abs() < 0.05, "component energies {comp:?}");
+    }
+}
+
+#[test]
+fn temporal_spread_per_shell_follows_k_sigma() {
+    // nt = 64 keeps the Gaussian of std kσ well inside the lattice's ω range.
+    let sp = SpectrumParams {
+        sigma: 0.5,
+        ..Default::default()
+    };
+    let st = stats_for(&params([32, 32, 32, 64], sp, 9));
+    let mut checked = 0;
+    for sh in st.shells.iter().filter(|s| s.k >= 5 && s.k <= 15) {
+        let nominal = sh.mean_k * sp.sigma;
+        assert!(
+            (sh.temporal_spread / nominal - 1.0).abs() < 0.15,
+            "shell {}: spread {} vs kσ {}",
+            sh.k,
+            sh.temporal_spread,
+            nominal
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 11);
+    // With σ = 1 on nt = 32 the Gaussian is cut at the Nyquist ω: the measurement follows
+    // the lattice-normalised G_k in every shell.
+    let st = stats_for(&params([32; 4], SpectrumParams::default(), 9));
+    for sh in st.shells.iter().filter(|s| s.k >= 5 && s.k <= 15) {
+        assert!(
+            (sh.temporal_spread / sh.temporal_spread_expected - 1.0).abs() < 0.15,
+            "shell {}: {} vs {}",
+            sh.k,
+            sh.temporal_spread,
+            sh.temporal_spread_expected
+        );
+    }
+}
+
+#[test]
+fn same_seed_same_bytes_other_seed_other_field() {
+    let p = params([16, 16, 16, 8], SpectrumParams::default(), 42);
+    let a = TurbulentField::generate(&p).unwrap();
+    let b = TurbulentField::generate(&p).unwrap();
+    assert_eq!(
+        a.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+        b.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    );
+    let c = TurbulentField::generate(&FieldParams { seed: 43, ..p }).unwrap();
+    assert_ne!(a.data, c.data);
+}
+
+#[test]
+fn spectrum_parameters_filter_the_same_noise() {
+    // A seed fixes the white noise: ε only rescales, it never re-draws.
+    let p = params(
+        [16; 4],
+        SpectrumParams {
+            k_inertial: 2.0,
+            ..Default::default()
+        },
+        5,
+    );
+    let a = TurbulentField::generate(&p).unwrap();
+    let q = FieldParams {
+        spectrum: SpectrumParams {
+            epsilon: 8.0,
+            ..p.spectrum
+        },
+        ..p
+    };
+    let b = TurbulentField::generate(&q).unwrap();
+    // E scales by ε^(2/3) = 4, so amplitudes by 2.
+    for (x, y) in a.data.iter().zip(&b.data) {
+        assert!((2.0 * x - y).abs() <= 1e-5 * (1.0 + y.abs()));
+    }
+}
+
+#[test]
+fn interpolation_is_exact_at_nodes_and_continuous_across_seams() {
+    let p = params(
+        [8, 16, 8, 4],
+        SpectrumParams {
+            k_inertial: 1.0,
+            ..Default::default()
+        },
+        2,
+    );
+    let f = TurbulentField::generate(&p).unwrap();
+    for &(x, y, z, t) in &[(0, 0, 0, 0), (7, 15, 7, 3), (3, 9, 1, 2)] {
+        let s = f.sample_lattice([x as f64, y as f64, z as f64, t as f64]);
+        assert_eq!(s, f.at(x, y, z, t));
+        // One period away is the same point.
+        let w = f.sample_lattice([
+            x as f64 + 8.0,
+            y as f64 - 16.0,
+            z as f64 + 16.0,
+            t as f64 - 4.0,
+        ]);
+        for c in 0..3 {
+            assert!((w[c] - s[c]).abs() < 1e-6);
+        }
+    }
+    // Approaching the seam x → 8 from below meets the value at x = 0.
+    let near = f.sample_lattice([8.0 - 1e-7, 4.0, 2.0, 1.0]);
+    let at0 = f.at(0, 4, 2, 1);
+    for c in 0..3 {
+        assert!((near[c] - at0[c]).abs() < 1e-5);
+    }
+    // Midway between nodes along t is the mean of the two (linear in each axis).
+    let mid = f.sample_lattice([2.0, 3.0, 4.0, 3.5]);
+    let (a, b) = (f.at(2, 3, 4, 3), f.at(2, 3, 4, 0));
+    for c in 0..3 {
+        assert!((mid[c] - 0.5 * (a[c] + b[c])).abs() < 1e-6);
+    }
+    // Field coordinates (radians): 2π is one period.
+    let r = f.sample(std::f64::consts::TAU * 3.0 / 8.0, 0.0, 0.0, 0.0);
+    assert_eq!(r, f.at(3, 0, 0, 0));
+}
+
+#[test]
+fn every_bad_parameter_is_rejected_with_its_name() {
+    let good = FieldParams::default();
+    let cases: Vec<(FieldParams, &str, &str)> = vec![
+        (
+            FieldParams {
+                size: [32, 33, 32, 32],
+                ..good
+            },
+            "field.size[1]",
+            "power of two between 4 and 128",
+        ),
+        (
+            FieldParams {
+                size: [2, 32, 32, 32],
+                ..good
+            },
+            "field.size[0]",
+            "power of two",
+        ),
+        (
+            FieldParams {
+                size: [32, 32, 256, 32],
+                ..good
+            },
+            "field.size[2]",
+            "power of two",
+        ),
+        (
+            FieldParams {
+                size: [32, 32, 32, 0],
+                ..good
+            },
+            "field.size[3]",
+            "power of two",
+        ),
+        (
+            FieldParams {
+                size: [128, 128, 128, 128],
+                ..good
+            },
+            "field.size",
+            "at most",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    epsilon: 0.0,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.epsilon",
+            "greater than 0",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    epsilon: f64::INFINITY,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.epsilon",
+            "finite",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    k_inertial: -1.0,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.k_inertial",
+            "greater than 0",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    k_inertial: 16.0,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.k_inertial",
+            "at most 15",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    sigma: -0.1,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.sigma",
+            "between 0 and 100",
+        ),
+        (
+            FieldParams {
+                spectrum: SpectrumParams {
+                    sigma: f64::NAN,
+                    ..good.spectrum
+                },
+                ..good
+            },
+            "field.spectrum.sigma",
+            "finite",
+        ),
+        (
+            FieldParams {
+                seed: (1 << 53) + 1,
+                ..good
+            },
+            "seed",
+            "between 0 and",
+        ),
+    ];
+    for (p, path, text) in cases {
+        let e = TurbulentField::generate(&p).unwrap_err();
+        assert_eq!(e.path, path, "{e}");
+        assert!(e.message.contains(text), "{e}");
+    }
+}

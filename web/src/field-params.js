@@ -1,0 +1,63 @@
+// Field parameters as the core takes them (DESIGN §2–3): lattice size, spectrum, seed.
+// Pure functions, shared by the page and the unit tests.
+
+/** The paper's statistics (§6): ε = 1, k_inertial = 4, σ = 1, on a 32⁴ lattice. */
+export const DEFAULT_FIELD = Object.freeze({
+  size: [32, 32, 32, 32],
+  spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 },
+  seed: 1,
+});
+
+export const LAWS = ['kolmogorov', 'paper-literal'];
+const MAX_POINTS = 2 ** 24;
+
+const isPow2 = (n) => Number.isInteger(n) && n > 0 && (n & (n - 1)) === 0;
+
+/**
+ * Checks field parameters with the core's rules and paths; returns a list of
+ * `path: message` strings (empty when valid).
+ */
+export function validateField(field) {
+  const errors = [];
+  const size = field?.size;
+  if (!Array.isArray(size) || size.length !== 4) {
+    errors.push('field.size: must be [nx, ny, nz, nt]');
+  } else {
+    size.forEach((n, i) => {
+      if (!isPow2(n) || n < 4 || n > 128) {
+        errors.push(`field.size[${i}]: must be a power of two between 4 and 128`);
+      }
+    });
+    if (errors.length === 0 && size.reduce((a, b) => a * b, 1) > MAX_POINTS) {
+      errors.push(`field.size: nx*ny*nz*nt must be at most ${MAX_POINTS} lattice points`);
+    }
+  }
+  if (errors.length) return errors; // the spectrum's range depends on a valid lattice
+  const s = field?.spectrum ?? {};
+  if (!LAWS.includes(s.law)) errors.push('field.spectrum.law: must be "kolmogorov" or "paper-literal"');
+  if (!(Number.isFinite(s.epsilon) && s.epsilon > 0 && s.epsilon <= 1e6)) {
+    errors.push('field.spectrum.epsilon: must be greater than 0 and at most 1000000');
+  }
+  const kMax = maxInertial(size);
+  if (!(Number.isFinite(s.k_inertial) && s.k_inertial > 0 && s.k_inertial <= kMax)) {
+    errors.push(`field.spectrum.k_inertial: must be greater than 0 and at most ${kMax}`);
+  }
+  if (!(Number.isFinite(s.sigma) && s.sigma >= 0 && s.sigma <= 100)) {
+    errors.push('field.spectrum.sigma: must be between 0 and 100');
+  }
+  if (!(Number.isInteger(field?.seed) && field.seed >= 0 && field.seed <= 2 ** 53)) {
+    errors.push('seed: must be an integer between 0 and 2^53');
+  }
+  return errors;
+}
+
+/** A deep copy of `field` with the lattice given as one extent or four. */
+export function withSize(field, size) {
+  const s = Array.isArray(size) ? size : [size, size, size, size];
+  return { ...field, size: [...s], spectrum: { ...field.spectrum } };
+}
+
+/** Largest k_inertial that leaves modes on the lattice: half the smallest spatial extent, minus one. */
+export function maxInertial(size) {
+  return Math.min(size[0], size[1], size[2]) / 2 - 1;
+}
