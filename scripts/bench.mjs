@@ -2,6 +2,7 @@
 // Benchmarks: native (the Rust example) and WASM (the built core in Node), medians of several
 // runs. `npm run bench -- --json` prints one JSON object per line; without --json, a table.
 import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
 
@@ -41,6 +42,21 @@ const field = JSON.stringify({
   seed: 1,
 });
 emit('field_generate_32x32x32x32_wasm_ms', median(7, () => core.WindField.generate(field).free()), 'ms');
+
+// One RK2 step of 200,000 blobs in a 32^4 field plus three primitives (as examples/bench.rs).
+const sceneJson = readFileSync(`${root}wasm-core/examples/blob-step-scene.json`, 'utf8');
+const sim = new core.SceneSimulation(sceneJson, undefined);
+const n = 200_000;
+const positions = new Float32Array(3 * n);
+const spread = (i, k) => (((i + 0.5) * k) % 1) * 4 - 2;
+for (let i = 0; i < n; i++) {
+  positions[3 * i] = spread(i, 0.7548777);
+  positions[3 * i + 1] = spread(i, 0.5698403) + 1;
+  positions[3 * i + 2] = spread(i, 0.4301597);
+}
+sim.addBlobs(positions, 0.03, 1);
+emit('blob_step_200k_wasm_ms', median(7, () => sim.step(1)), 'ms');
+sim.free();
 emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
 
 const nativeMs = results.find((r) => r.name === 'field_generate_32x32x32x32_native_ms')?.value;

@@ -2,8 +2,33 @@
 //! Run through `npm run bench` (which adds the WASM figures) or
 //! `cargo run --release --example bench`.
 
+use glam::Vec3;
 use std::time::Instant;
 use windfield::field::{FieldParams, TurbulentField};
+use windfield::gas::Blob;
+use windfield::{Scene, Simulation};
+
+/// The blob-step benchmark scene: a 32^4 field plus uniform, vortex and source primitives.
+pub const BLOB_STEP_SCENE: &str = include_str!("blob-step-scene.json");
+
+/// `n` blobs spread over a 4 m box by a fixed low-discrepancy sequence (the same in
+/// `scripts/bench.mjs`).
+fn seed_blobs(sim: &mut Simulation, n: usize) {
+    for i in 0..n {
+        let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 4.0 - 2.0;
+        let blob = Blob {
+            position: Vec3::new(f(0.754_877_7), f(0.569_840_3) + 1.0, f(0.430_159_7)),
+            sigma0: 0.03,
+            mass0: 1.0,
+            birth: 0.0,
+            albedo: [-1.0; 3],
+            emission: [0.0; 3],
+            velocity0: Vec3::ZERO,
+            velocity_time: 1.0,
+        };
+        sim.gas.blobs.push(&blob, 0.03, 1.0);
+    }
+}
 
 /// Median wall time in milliseconds of `runs` calls after one warm-up call.
 fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
@@ -40,6 +65,12 @@ fn main() {
         std::hint::black_box(TurbulentField::generate(&params).expect("valid"));
     });
     emit("field_generate_32x32x32x32_native_ms", ms, "ms");
+    let mut sim =
+        Simulation::new(Scene::from_json(BLOB_STEP_SCENE).expect("valid")).expect("valid");
+    seed_blobs(&mut sim, 200_000);
+    let ms = median_ms(7, || sim.step());
+    emit("blob_step_200k_native_ms", ms, "ms");
+
     if let Some(mib) = peak_rss_mib() {
         emit("native_peak_rss_mib", mib, "MiB");
     }

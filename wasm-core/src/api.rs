@@ -5,9 +5,18 @@
 //! parameter path; nothing panics across the boundary.
 
 use crate::field::{FieldParams, Synthesis, TurbulentField};
+use crate::gas::Blob;
+use crate::scene::Scene;
+use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
 use crate::stats;
+use glam::Vec3;
+use std::sync::Arc;
 use wasm_bindgen::prelude::*;
+
+fn js_error(e: impl std::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
 
 fn parse<T: serde::de::DeserializeOwned>(json: &str, what: &str) -> Result<T, JsError> {
     serde_json::from_str(json).map_err(|e| JsError::new(&format!("{what}: {e}")))
@@ -45,14 +54,16 @@ impl FieldSynthesis {
             .inner
             .take()
             .ok_or_else(|| JsError::new("synthesis already finished"))?;
-        Ok(WindField { inner: s.finish() })
+        Ok(WindField {
+            inner: Arc::new(s.finish()),
+        })
     }
 }
 
 /// A synthesised small-scale field.
 #[wasm_bindgen]
 pub struct WindField {
-    inner: TurbulentField,
+    inner: Arc<TurbulentField>,
 }
 
 #[wasm_bindgen]
@@ -60,8 +71,10 @@ impl WindField {
     /// Generates a field in one call (see [`FieldSynthesis`] for the staged form).
     pub fn generate(params_json: &str) -> Result<WindField, JsError> {
         let params: FieldParams = parse(params_json, "field")?;
-        let inner = TurbulentField::generate(&params).map_err(|e| JsError::new(&e.to_string()))?;
-        Ok(Self { inner })
+        let inner = TurbulentField::generate(&params).map_err(js_error)?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
     }
 
     /// `[nx, ny, nz, nt]`.
@@ -104,5 +117,137 @@ impl WindField {
         };
         let report = stats::analyse(&self.inner, &spectrum);
         serde_json::to_string(&report).map_err(|e| JsError::new(&e.to_string()))
+    }
+}
+
+/// Checks a scene; returns it normalised (every default filled in) as JSON, or throws an
+/// Error naming the offending path.
+#[wasm_bindgen(js_name = validateScene)]
+pub fn validate_scene(scene_json: &str) -> Result<String, JsError> {
+    Ok(Scene::from_json(scene_json).map_err(js_error)?.to_json())
+}
+
+/// The field parameters (`{size, spectrum, seed}` JSON) a scene needs.
+#[wasm_bindgen(js_name = sceneFieldParams)]
+pub fn scene_field_params(scene_json: &str) -> Result<String, JsError> {
+    let scene = Scene::from_json(scene_json).map_err(js_error)?;
+    serde_json::to_string(&scene.field_params()).map_err(js_error)
+}
+
+/// A running scene: wind and gas advanced in fixed steps. Blob data comes out as whole
+/// `Float32Array`s (copies of the core's structure of arrays).
+#[wasm_bindgen]
+pub struct SceneSimulation {
+    inner: Simulation,
+}
+
+#[wasm_bindgen]
+impl SceneSimulation {
+    /// Builds a simulation; `field` is reused when its parameters match the scene's (and
+    /// ignored when the scene's amplitude is 0), otherwise the field is synthesised here.
+    #[wasm_bindgen(constructor)]
+    pub fn new(scene_json: &str, field: Option<WindField>) -> Result<SceneSimulation, JsError> {
+        let scene = Scene::from_json(scene_json).map_err(js_error)?;
+        let params = scene.field_params();
+        let field = if scene.field.amplitude == 0.0 {
+            None
+        } else {
+            match field {
+                Some(f) if f.inner.params == params => Some(f.inner.clone()),
+                _ => Some(Arc::new(
+                    TurbulentField::generate(&params).map_err(js_error)?,
+                )),
+            }
+        };
+        let inner = Simulation::with_field(scene, field).map_err(js_error)?;
+        Ok(Self { inner })
+    }
+
+    /// Runs `n` fixed steps.
+    pub fn step(&mut self, n: u32) {
+        self.inner.run(n as u64);
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.inner.time()
+    }
+
+    /// Live blob count.
+    pub fn count(&self) -> u32 {
+        self.inner.gas.blobs.len() as u32
+    }
+
+    /// Blob centres, xyz interleaved (m).
+    pub fn positions(&self) -> Vec<f32> {
+        self.inner.gas.blobs.position.clone()
+    }
+
+    /// Blob σ (m).
+    pub fn sigma(&self) -> Vec<f32> {
+        self.inner.gas.blobs.sigma.clone()
+    }
+
+    /// Blob masses.
+    pub fn mass(&self) -> Vec<f32> {
+        self.inner.gas.blobs.mass.clone()
+    }
+
+    /// Blob albedo, rgb interleaved; a negative red channel means the medium's albedo.
+    pub fn albedo(&self) -> Vec<f32> {
+        self.inner.gas.blobs.albedo.clone()
+    }
+
+    /// Blob self-emission, rgb interleaved.
+    pub fn emission(&self) -> Vec<f32> {
+        self.inner.gas.blobs.emission.clone()
+    }
+
+    /// Blob ages (s) at the current time.
+    pub fn age(&self) -> Vec<f32> {
+        let t = self.inner.time();
+        self.inner
+            .gas
+            .blobs
+            .birth
+            .iter()
+            .map(|b| (t - b) as f32)
+            .collect()
+    }
+
+    /// Adds blobs born now at `positions` (xyz interleaved) with σ0 and m0, medium albedo.
+    #[wasm_bindgen(js_name = addBlobs)]
+    pub fn add_blobs(&mut self, positions: &[f32], sigma0: f32, mass0: f32) -> Result<(), JsError> {
+        if positions.len() % 3 != 0 || !(sigma0 > 0.0 && mass0 > 0.0) {
+            return Err(JsError::new(
+                "addBlobs: positions must be xyz triples, sigma0 and mass0 positive",
+            ));
+        }
+        let birth = self.inner.time();
+        for p in positions.chunks_exact(3) {
+            let blob = Blob {
+                position: Vec3::from_slice(p),
+                sigma0,
+                mass0,
+                birth,
+                albedo: [-1.0; 3],
+                emission: [0.0; 3],
+                velocity0: Vec3::ZERO,
+                velocity_time: 1.0,
+            };
+            self.inner.gas.blobs.push(&blob, sigma0, mass0);
+        }
+        Ok(())
+    }
+
+    /// Emitted, split, dissipated and capped counts since the start (JSON).
+    pub fn counts(&self) -> String {
+        serde_json::to_string(&self.inner.gas.counts).unwrap_or_default()
+    }
+
+    /// The blob list of DESIGN §4 for the current state (JSON).
+    #[wasm_bindgen(js_name = blobList)]
+    pub fn blob_list(&self) -> String {
+        serde_json::to_string(&self.inner.blob_list()).unwrap_or_default()
     }
 }

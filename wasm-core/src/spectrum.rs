@@ -10,7 +10,9 @@ use serde::{Deserialize, Serialize};
 pub const KOLMOGOROV_C: f64 = 1.5;
 
 /// Which energy spectrum law to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum SpectrumLaw {
     /// E(k) = 1.5 ε^(2/3) k^(-5/3) for k ≥ k_inertial (the physical Kolmogorov law).
@@ -50,10 +52,9 @@ impl SpectrumLaw {
 }
 
 /// Statistical parameters of the small-scale turbulence (paper §3.2).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
 pub struct SpectrumParams {
-    #[serde(default)]
     pub law: SpectrumLaw,
     /// Energy-cascade rate ε (> 0).
     pub epsilon: f64,

@@ -1,0 +1,54 @@
+//! Range checks that name the offending value by its path in the scene or blob list.
+
+use crate::error::ParamError;
+
+/// A finite number in `[lo, hi]`.
+pub fn range(path: &str, v: f64, lo: f64, hi: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v >= lo && v <= hi {
+        Ok(())
+    } else {
+        Err(ParamError::new(
+            path,
+            format!("must be a finite number between {lo} and {hi} (got {v})"),
+        ))
+    }
+}
+
+/// A finite number in `(0, hi]`.
+pub fn positive(path: &str, v: f64, hi: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v > 0.0 && v <= hi {
+        Ok(())
+    } else {
+        Err(ParamError::new(
+            path,
+            format!("must be a finite number greater than 0 and at most {hi} (got {v})"),
+        ))
+    }
+}
+
+/// Every component finite with magnitude at most `limit`.
+pub fn vector(path: &str, v: [f32; 3], limit: f64) -> Result<(), ParamError> {
+    for (i, &c) in v.iter().enumerate() {
+        range(&format!("{path}[{i}]"), c as f64, -limit, limit)?;
+    }
+    Ok(())
+}
+
+/// A finite vector of non-zero length (a direction).
+pub fn direction(path: &str, v: [f32; 3]) -> Result<(), ParamError> {
+    vector(path, v, 1e6)?;
+    let len2: f32 = v.iter().map(|c| c * c).sum();
+    if len2 > 1e-12 {
+        Ok(())
+    } else {
+        Err(ParamError::new(path, "must be a non-zero direction"))
+    }
+}
+
+/// A colour: each channel finite in `[0, hi]`.
+pub fn colour(path: &str, v: [f32; 3], hi: f64) -> Result<(), ParamError> {
+    for (i, &c) in v.iter().enumerate() {
+        range(&format!("{path}[{i}]"), c as f64, 0.0, hi)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,461 @@
+//! Gas as Gaussian blobs (paper §4, Eqs. 13–16): born by emitters, advected through the wind
+//! (Eq. 14, RK2 midpoint or Euler), diffused (σ² = σ0² + κ·age, Eq. 15), dissipated
+//! (m = m0·exp(−α·age), Eq. 16), and split when too wide.
+//!
+//! Blobs are a structure of arrays, ordered by emission (oldest first), so positions, σ, mass
+//! and colours hand to a renderer as whole buffers.
+
+use crate::emitter::{stream_seed, uniform, EmitterState};
+use crate::scene::{Emitter, GasSettings, Integrator};
+use crate::wind::{Wind, WindFrame};
+use glam::{Quat, Vec3};
+use rand_xoshiro::rand_core::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// Children per split: an octahedron of six blobs.
+pub const SPLIT_CHILDREN: usize = 6;
+/// Child σ over parent σ.
+pub const SPLIT_SIGMA_RATIO: f32 = 0.5;
+/// Child offset from the parent centre, in parent σ: with σ_c = σ/2, an octahedron of radius
+/// 1.5σ keeps the per-axis variance σ_c² + (1.5σ)²/3 = σ² (the second moment).
+pub const SPLIT_OFFSET: f32 = 1.5;
+
+/// The blobs, structure of arrays. Vectors are xyz (or rgb) interleaved.
+#[derive(Debug, Clone, Default)]
+pub struct Blobs {
+    /// Centres (m).
+    pub position: Vec<f32>,
+    /// Current σ (m).
+    pub sigma: Vec<f32>,
+    /// Current mass.
+    pub mass: Vec<f32>,
+    /// Albedo Ω per channel; a negative red channel means "the medium's albedo".
+    pub albedo: Vec<f32>,
+    /// Self-emission Q per channel.
+    pub emission: Vec<f32>,
+    /// σ and mass at birth (emission, or the split that made the blob).
+    pub sigma0: Vec<f32>,
+    pub mass0: Vec<f32>,
+    /// Birth time (s).
+    pub birth: Vec<f64>,
+    /// Own velocity at birth relative to the wind (m/s), relaxing as exp(−age/τ).
+    pub velocity0: Vec<f32>,
+    /// τ (s).
+    pub velocity_time: Vec<f32>,
+}
+
+/// One blob's full state, for building and rebuilding the arrays.
+#[derive(Debug, Clone, Copy)]
+pub struct Blob {
+    pub position: Vec3,
+    pub sigma0: f32,
+    pub mass0: f32,
+    pub birth: f64,
+    pub albedo: [f32; 3],
+    pub emission: [f32; 3],
+    pub velocity0: Vec3,
+    pub velocity_time: f32,
+}
+
+impl Blobs {
+    pub fn len(&self) -> usize {
+        self.sigma.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.sigma.is_empty()
+    }
+
+    pub fn center(&self, i: usize) -> Vec3 {
+        Vec3::from_slice(&self.position[3 * i..3 * i + 3])
+    }
+
+    /// Appends a blob with its current σ and mass.
+    pub fn push(&mut self, b: &Blob, sigma: f32, mass: f32) {
+        self.position.extend_from_slice(&b.position.to_array());
+        self.sigma.push(sigma);
+        self.mass.push(mass);
+        self.albedo.extend_from_slice(&b.albedo);
+        self.emission.extend_from_slice(&b.emission);
+        self.sigma0.push(b.sigma0);
+        self.mass0.push(b.mass0);
+        self.birth.push(b.birth);
+        self.velocity0.extend_from_slice(&b.velocity0.to_array());
+        self.velocity_time.push(b.velocity_time);
+    }
+
+    /// The full state of blob `i`.
+    pub fn get(&self, i: usize) -> Blob {
+        let rgb = |v: &[f32]| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
+        Blob {
+            position: self.center(i),
+            sigma0: self.sigma0[i],
+            mass0: self.mass0[i],
+            birth: self.birth[i],
+            albedo: rgb(&self.albedo),
+            emission: rgb(&self.emission),
+            velocity0: Vec3::from_array(rgb(&self.velocity0)),
+            velocity_time: self.velocity_time[i],
+        }
+    }
+
+    /// Albedo of blob `i`, or none for the medium's.
+    pub fn albedo_of(&self, i: usize) -> Option<[f32; 3]> {
+        let a = [
+            self.albedo[3 * i],
+            self.albedo[3 * i + 1],
+            self.albedo[3 * i + 2],
+        ];
+        (a[0] >= 0.0).then_some(a)
+    }
+
+    /// Total mass.
+    pub fn total_mass(&self) -> f64 {
+        self.mass.iter().map(|&m| m as f64).sum()
+    }
+}
+
+/// Counts since the start, reported with the stats.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct GasCounts {
+    pub emitted: u64,
+    /// Parent blobs replaced by children.
+    pub split: u64,
+    /// Blobs removed below `min_mass`.
+    pub dissipated: u64,
+    /// Blobs removed (oldest first) to keep within `max_blobs`.
+    pub capped: u64,
+}
+
+/// The gas of a scene.
+#[derive(Debug, Clone)]
+pub struct Gas {
+    pub settings: GasSettings,
+    pub blobs: Blobs,
+    pub emitters: Vec<EmitterState>,
+    pub counts: GasCounts,
+    rng: Xoshiro256PlusPlus,
+    /// Mass decay reference: `decayed[i] = m0·exp(−α(epoch − birth))`, so the mass at t is
+    /// `decayed[i]·exp(−α(t − epoch))` with one exponential per step for all blobs.
+    epoch: f64,
+    decayed: Vec<f32>,
+}
+
+/// Re-base the decay epoch once α(t − epoch) exceeds this (keeps factors well inside f32).
+const MAX_DECAY_EXPONENT: f64 = 20.0;
+
+impl Gas {
+    pub fn new(settings: GasSettings, emitters: &[Emitter], seed: u64) -> Self {
+        Self {
+            settings,
+            blobs: Blobs::default(),
+            emitters: emitters
+                .iter()
+                .enumerate()
+                .map(|(i, e)| EmitterState::new(*e, seed, i))
+                .collect(),
+            counts: GasCounts::default(),
+            rng: Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x0053_504C_4954)),
+            epoch: 0.0,
+            decayed: Vec::new(),
+        }
+    }
+
+    /// Advances from `t` to `t + dt`: advect, emit, diffuse, dissipate, split, remove, cap.
+    /// `frames` are scratch frames reused between steps.
+    pub fn step(
+        &mut self,
+        wind: &Wind,
+        t: f64,
+        dt: f64,
+        integrator: Integrator,
+        frames: &mut [WindFrame; 2],
+    ) {
+        let [f0, fh] = frames;
+        let t1 = t + dt;
+        wind.frame_into(t, f0);
+        if integrator == Integrator::Rk2 {
+            wind.frame_into(t + 0.5 * dt, fh);
+        }
+        let factor = self.decay_factor(t1);
+        let old = self.blobs.len();
+        let mut flagged = self.advect_and_age(t, dt, integrator, f0, fh, factor);
+        self.emit(
+            t1,
+            if integrator == Integrator::Rk2 {
+                fh
+            } else {
+                f0
+            },
+        );
+        flagged |= self.age_from(old, t1, factor);
+        if flagged || self.blobs.len() > self.settings.max_blobs {
+            self.split_remove_cap(t1);
+        }
+    }
+
+    /// Eq. 14 over one step for every blob, then σ (Eq. 15) and mass (Eq. 16) at the step's
+    /// end, in one pass. Returns whether any blob needs splitting or removal.
+    fn advect_and_age(
+        &mut self,
+        t: f64,
+        dt: f64,
+        integrator: Integrator,
+        f0: &WindFrame,
+        fh: &WindFrame,
+        factor: f32,
+    ) -> bool {
+        let (kappa, split, min_mass) = self.limits();
+        let b = &mut self.blobs;
+        let own_velocity = b.velocity0.iter().any(|&v| v != 0.0);
+        let dtf = dt as f32;
+        let t1 = t + dt;
+        let mut flagged = false;
+        for i in 0..b.sigma.len() {
+            let x = Vec3::from_slice(&b.position[3 * i..3 * i + 3]);
+            let own = |time: f64| {
+                if own_velocity {
+                    let v0 = Vec3::from_slice(&b.velocity0[3 * i..3 * i + 3]);
+                    v0 * (-((time - b.birth[i]) as f32) / b.velocity_time[i]).exp()
+                } else {
+                    Vec3::ZERO
+                }
+            };
+            let k1 = f0.velocity(x) + own(t);
+            let x1 = match integrator {
+                Integrator::Euler => x + k1 * dtf,
+                Integrator::Rk2 => {
+                    let xm = x + k1 * (0.5 * dtf);
+                    x + (fh.velocity(xm) + own(t + 0.5 * dt)) * dtf
+                }
+            };
+            b.position[3 * i..3 * i + 3].copy_from_slice(&x1.to_array());
+            let s0 = b.sigma0[i];
+            let sigma = (s0 * s0 + (kappa * (t1 - b.birth[i])) as f32).sqrt();
+            let mass = self.decayed[i] * factor;
+            b.sigma[i] = sigma;
+            b.mass[i] = mass;
+            flagged |= sigma > split || mass < min_mass;
+        }
+        flagged
+    }
+
+    /// κ, the split σ (or infinity) and the removal mass, in f32.
+    fn limits(&self) -> (f64, f32, f32) {
+        let s = &self.settings;
+        (
+            s.diffusion,
+            s.split_sigma.map_or(f32::INFINITY, |v| v as f32),
+            s.min_mass as f32,
+        )
+    }
+
+    /// Births in (t1 − dt, t1]: each blob is advanced from its birth time to `t1` by one
+    /// Euler step in `frame`.
+    fn emit(&mut self, t1: f64, frame: &WindFrame) {
+        for e in 0..self.emitters.len() {
+            while self.emitters[e].next_birth() < t1 {
+                let birth = self.emitters[e].next_birth();
+                let state = &mut self.emitters[e];
+                state.births += 1;
+                let em = state.emitter;
+                let x = state.sample_position();
+                let v0 = Vec3::from_array(em.velocity);
+                let age = (t1 - birth) as f32;
+                let blob = Blob {
+                    position: x + (frame.velocity(x) + v0) * age,
+                    sigma0: em.sigma0,
+                    mass0: em.mass0,
+                    birth,
+                    albedo: em.albedo.unwrap_or([-1.0; 3]),
+                    emission: em.emission.unwrap_or([0.0; 3]),
+                    velocity0: v0,
+                    velocity_time: em.velocity_time,
+                };
+                self.blobs.push(&blob, em.sigma0, em.mass0);
+                self.counts.emitted += 1;
+            }
+        }
+    }
+
+    /// The shared decay factor exp(−α(t − epoch)) of Eq. 16 at time `t`, re-basing the epoch
+    /// when it grows large, and the per-blob factors of blobs added from outside a step.
+    fn decay_factor(&mut self, t: f64) -> f32 {
+        let alpha = self.settings.dissipation;
+        if alpha * (t - self.epoch) > MAX_DECAY_EXPONENT {
+            let f = (-alpha * (t - self.epoch)).exp() as f32;
+            self.decayed.iter_mut().for_each(|d| *d *= f);
+            self.epoch = t;
+        }
+        self.sync_decayed();
+        (-alpha * (t - self.epoch)).exp() as f32
+    }
+
+    /// Per-blob decay factors m0·exp(−α(epoch − birth)) for blobs that lack one.
+    fn sync_decayed(&mut self) {
+        let alpha = self.settings.dissipation;
+        for i in self.decayed.len()..self.blobs.len() {
+            let d =
+                self.blobs.mass0[i] as f64 * (-alpha * (self.epoch - self.blobs.birth[i])).exp();
+            self.decayed.push(d as f32);
+        }
+    }
+
+    /// σ and mass at `t` of the blobs from index `first` on (the newly born).
+    fn age_from(&mut self, first: usize, t: f64, factor: f32) -> bool {
+        self.sync_decayed();
+        let (kappa, split, min_mass) = self.limits();
+        let b = &mut self.blobs;
+        let mut flagged = false;
+        for i in first..b.len() {
+            let s0 = b.sigma0[i];
+            b.sigma[i] = (s0 * s0 + (kappa * (t - b.birth[i])) as f32).sqrt();
+            b.mass[i] = self.decayed[i] * factor;
+            flagged |= b.sigma[i] > split || b.mass[i] < min_mass;
+        }
+        flagged
+    }
+
+    /// Splitting levels a blob of σ needs so no child exceeds `split_sigma`.
+    fn split_levels(&self, sigma: f32) -> u32 {
+        match self.settings.split_sigma {
+            Some(limit) => {
+                let mut levels = 0;
+                let mut s = sigma as f64;
+                while s > limit && levels < 32 {
+                    s *= SPLIT_SIGMA_RATIO as f64;
+                    levels += 1;
+                }
+                levels
+            }
+            None => 0,
+        }
+    }
+
+    /// Replaces wide blobs by children, removes light ones, and keeps the newest within
+    /// `max_blobs`. Never holds more than `max_blobs` blobs, whatever the split depth.
+    fn split_remove_cap(&mut self, t: f64) {
+        let n = self.blobs.len();
+        let max = self.settings.max_blobs;
+        let min_mass = self.settings.min_mass;
+        // Pass 1, newest to oldest: how many blobs each becomes; where the budget runs out.
+        let mut counts = vec![0usize; n];
+        let mut total = 0usize;
+        let mut cutoff = 0;
+        let mut changed = false;
+        for i in (0..n).rev() {
+            let levels = self.split_levels(self.blobs.sigma[i]);
+            let children = (SPLIT_CHILDREN as f64).powi(levels as i32);
+            let child_mass = self.blobs.mass[i] as f64 / children;
+            let c = if child_mass < min_mass {
+                0
+            } else if children > max as f64 {
+                max + 1
+            } else {
+                children as usize
+            };
+            if c != 1 {
+                changed = true;
+            }
+            if total + c > max {
+                cutoff = i + 1;
+                changed = true;
+                break;
+            }
+            total += c;
+            counts[i] = c;
+        }
+        if !changed {
+            return;
+        }
+        self.counts.capped += cutoff as u64;
+        let old = std::mem::take(&mut self.blobs);
+        let old_decayed = std::mem::take(&mut self.decayed);
+        // A child's factor is its mass now, carried back to the epoch.
+        let to_epoch = (self.settings.dissipation * (t - self.epoch)).exp() as f32;
+        let mut out = Blobs::default();
+        for (i, &c) in counts.iter().enumerate().skip(cutoff) {
+            match c {
+                0 => self.counts.dissipated += 1,
+                1 => {
+                    out.push(&old.get(i), old.sigma[i], old.mass[i]);
+                    self.decayed.push(old_decayed[i]);
+                }
+                _ => {
+                    self.counts.split += 1;
+                    let levels = self.split_levels(old.sigma[i]);
+                    let first = out.len();
+                    self.split_into(&old.get(i), old.sigma[i], old.mass[i], levels, t, &mut out);
+                    self.decayed
+                        .extend(out.mass[first..].iter().map(|m| m * to_epoch));
+                }
+            }
+        }
+        self.blobs = out;
+    }
+
+    /// Splits a blob of current σ and mass `levels` times (6^levels children), each level an
+    /// octahedron at a random orientation: mass, centre of mass and second moments are kept.
+    fn split_into(
+        &mut self,
+        parent: &Blob,
+        sigma: f32,
+        mass: f32,
+        levels: u32,
+        t: f64,
+        out: &mut Blobs,
+    ) {
+        if levels == 0 {
+            let child = Blob {
+                sigma0: sigma,
+                mass0: mass,
+                birth: t,
+                ..*parent
+            };
+            out.push(&child, sigma, mass);
+            return;
+        }
+        let q = self.random_rotation();
+        let offset = SPLIT_OFFSET * sigma;
+        let axes = [
+            Vec3::X,
+            Vec3::NEG_X,
+            Vec3::Y,
+            Vec3::NEG_Y,
+            Vec3::Z,
+            Vec3::NEG_Z,
+        ];
+        for a in axes {
+            let child = Blob {
+                position: parent.position + q * a * offset,
+                ..*parent
+            };
+            self.split_into(
+                &child,
+                sigma * SPLIT_SIGMA_RATIO,
+                mass / SPLIT_CHILDREN as f32,
+                levels - 1,
+                t,
+                out,
+            );
+        }
+    }
+
+    /// A uniformly distributed rotation (Shoemake's method).
+    fn random_rotation(&mut self) -> Quat {
+        let (u1, u2, u3) = (
+            uniform(&mut self.rng),
+            uniform(&mut self.rng),
+            uniform(&mut self.rng),
+        );
+        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+        let tau = std::f32::consts::TAU;
+        Quat::from_xyzw(
+            a * (tau * u2).sin(),
+            a * (tau * u2).cos(),
+            b * (tau * u3).sin(),
+            b * (tau * u3).cos(),
+        )
+        .normalize()
+    }
+}

@@ -1,0 +1,500 @@
+//! The scene format, version 1 (DESIGN §3): seed, field settings with the world mapping, wind
+//! primitives, emitters, gas constants, simulation and render settings.
+//!
+//! Parsing is strict: unknown keys, wrong types, non-finite or out-of-range numbers, and sizes
+//! over the memory guards are errors that name the JSON path (`field.size[1]: must be a power
+//! of two between 4 and 128`). Every section and most keys have defaults; `version` is required.
+
+use crate::blob_list::{RenderSettings, MAX_COORD};
+use crate::check;
+use crate::error::ParamError;
+use crate::field::{FieldParams, MAX_SEED};
+use crate::spectrum::SpectrumParams;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The scene format version this build writes. Older versions are migrated on load.
+pub const SCENE_VERSION: u32 = 1;
+/// Memory guard on the number of live blobs.
+pub const MAX_BLOBS_LIMIT: usize = 2_000_000;
+
+fn one() -> u64 {
+    1
+}
+fn yes() -> bool {
+    true
+}
+
+/// A complete scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Scene format version (currently 1).
+    pub version: u32,
+    /// Seeds the field's white noise, the emitters and the splitting.
+    #[serde(default = "one")]
+    pub seed: u64,
+    #[serde(default)]
+    pub field: FieldSettings,
+    /// Large-scale wind primitives, superposed on the small-scale field (paper Eq. 3).
+    #[serde(default)]
+    pub wind: Vec<Primitive>,
+    #[serde(default)]
+    pub emitters: Vec<Emitter>,
+    #[serde(default)]
+    pub gas: GasSettings,
+    #[serde(default)]
+    pub simulation: SimulationSettings,
+    #[serde(default)]
+    pub render: RenderSettings,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self {
+            version: SCENE_VERSION,
+            seed: 1,
+            field: FieldSettings::default(),
+            wind: Vec::new(),
+            emitters: Vec::new(),
+            gas: GasSettings::default(),
+            simulation: SimulationSettings::default(),
+            render: RenderSettings::default(),
+        }
+    }
+}
+
+/// The small-scale field and its world mapping.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct FieldSettings {
+    /// Lattice `[nx, ny, nz, nt]`, each a power of two in 4..=128, at most 2^24 points.
+    pub size: [usize; 4],
+    pub spectrum: SpectrumParams,
+    /// World metres per spatial period along x, y, z (the paper's grid spacing control).
+    pub period: [f64; 3],
+    /// Seconds per temporal period.
+    pub time_period: f64,
+    /// Scale of the small-scale velocity; 0 turns the turbulence off.
+    pub amplitude: f64,
+    /// Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
+    /// mean wind (the paper's suggested remedy for its independence assumption, §7).
+    pub carried_by_wind: bool,
+}
+
+impl Default for FieldSettings {
+    fn default() -> Self {
+        Self {
+            size: [32; 4],
+            spectrum: SpectrumParams::default(),
+            period: [4.0; 3],
+            time_period: 8.0,
+            amplitude: 1.0,
+            carried_by_wind: false,
+        }
+    }
+}
+
+/// A large-scale wind primitive. Any primitive may carry `decay` L (m): its velocity is
+/// multiplied by exp(−distance/L), distance from its `position` (for a repulsor, from the
+/// sphere's centre). `enabled: false` keeps it in the scene without effect.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Primitive {
+    /// Directional wind of constant `velocity` (m/s).
+    Uniform {
+        velocity: [f32; 3],
+        /// Where the decay is measured from (m); only used with `decay`.
+        #[serde(default)]
+        position: [f32; 3],
+        #[serde(default)]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// Spherical source (strength > 0) or sink (< 0): volume flux `strength` (m³/s),
+    /// u = s/(4π) · r / (|r|² + a²)^{3/2}, regularised within the core radius a = `radius`.
+    Source {
+        position: [f32; 3],
+        strength: f32,
+        #[serde(default = "default_core")]
+        radius: f32,
+        #[serde(default)]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// Vortex line through `position` along `axis` with circulation `strength` Γ (m²/s) and
+    /// core radius a: azimuthal speed Γ ρ / (2π (ρ² + a²)) at distance ρ from the axis.
+    Vortex {
+        position: [f32; 3],
+        axis: [f32; 3],
+        strength: f32,
+        #[serde(default = "default_core")]
+        radius: f32,
+        #[serde(default)]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// A sphere of `radius` whose centre follows a smooth spline through the keys
+    /// `[t, x, y, z]` of `path`; it pushes gas aside with the potential flow of a moving sphere
+    /// plus a radial repulsion of speed `strength` (m/s) at its surface, falling off as 1/r².
+    Repulsor {
+        radius: f32,
+        strength: f32,
+        path: Vec<[f64; 4]>,
+        /// Colour of the sphere in renders; none keeps it invisible.
+        #[serde(default)]
+        color: Option<[f32; 3]>,
+        #[serde(default)]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+}
+
+fn default_core() -> f32 {
+    0.1
+}
+
+/// Where blobs are born.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum EmitterShape {
+    #[default]
+    Point,
+    /// Uniform on a disk of `radius` about `center`, perpendicular to `normal`.
+    Disk,
+    /// Uniform in a ball of `radius`.
+    Sphere,
+    /// Uniform in an axis-aligned box of full extents `size`.
+    Box,
+}
+
+/// A blob emitter (paper §6: region of birth, birth rate, σ0 and m0 of each blob).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Emitter {
+    pub shape: EmitterShape,
+    pub center: [f32; 3],
+    pub normal: [f32; 3],
+    pub radius: f32,
+    pub size: [f32; 3],
+    /// Birth rate in blobs per second; births are evenly spaced in time.
+    pub rate: f64,
+    /// Initial standard deviation σ0 (m).
+    pub sigma0: f32,
+    /// Initial mass m0.
+    pub mass0: f32,
+    /// Albedo colour; none uses the medium's.
+    pub albedo: Option<[f32; 3]>,
+    /// Self-emission colour Q; none is no emission.
+    pub emission: Option<[f32; 3]>,
+    /// Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
+    /// exp(−age/`velocity_time`).
+    pub velocity: [f32; 3],
+    /// Relaxation time of the initial velocity (s).
+    pub velocity_time: f32,
+    pub enabled: bool,
+}
+
+impl Default for Emitter {
+    fn default() -> Self {
+        Self {
+            shape: EmitterShape::Point,
+            center: [0.0; 3],
+            normal: [0.0, 1.0, 0.0],
+            radius: 0.1,
+            size: [0.2; 3],
+            rate: 30.0,
+            sigma0: 0.05,
+            mass0: 1.0,
+            albedo: None,
+            emission: None,
+            velocity: [0.0; 3],
+            velocity_time: 1.0,
+            enabled: true,
+        }
+    }
+}
+
+/// Gas constants (paper Eqs. 12, 15, 16).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct GasSettings {
+    /// κ (m²/s): σ² = σ0² + κ·age.
+    pub diffusion: f64,
+    /// α (1/s): m = m0·exp(−α·age).
+    pub dissipation: f64,
+    /// Blobs whose σ would exceed this (m) are split into smaller ones; none never splits.
+    pub split_sigma: Option<f64>,
+    /// Most live blobs; the oldest are removed first beyond it.
+    pub max_blobs: usize,
+    /// Blobs lighter than this are removed.
+    pub min_mass: f64,
+}
+
+impl Default for GasSettings {
+    fn default() -> Self {
+        Self {
+            diffusion: 0.01,
+            dissipation: 0.1,
+            split_sigma: None,
+            max_blobs: 20_000,
+            min_mass: 1e-4,
+        }
+    }
+}
+
+/// Time integration of blob centres (Eq. 14).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Integrator {
+    /// Second-order midpoint rule.
+    #[default]
+    Rk2,
+    /// First-order forward Euler.
+    Euler,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimulationSettings {
+    /// Fixed time step (s).
+    pub dt: f64,
+    pub integrator: Integrator,
+}
+
+impl Default for SimulationSettings {
+    fn default() -> Self {
+        Self {
+            dt: 1.0 / 60.0,
+            integrator: Integrator::Rk2,
+        }
+    }
+}
+
+impl Scene {
+    /// Parses and validates a scene from JSON text; errors name the JSON path.
+    pub fn from_json(text: &str) -> Result<Self, ParamError> {
+        let value: serde_json::Value = serde_json::from_str(text)
+            .map_err(|e| ParamError::new("scene", format!("not valid JSON: {e}")))?;
+        Self::from_value(value)
+    }
+
+    /// Validates a parsed JSON value, migrating older versions first.
+    pub fn from_value(value: serde_json::Value) -> Result<Self, ParamError> {
+        let value = migrate(value)?;
+        let scene: Scene = serde_path_to_error::deserialize(value).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." {
+                "scene".to_string()
+            } else {
+                path
+            };
+            ParamError::new(path, e.inner().to_string())
+        })?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// The field parameters for synthesis (lattice, spectrum, the scene's seed).
+    pub fn field_params(&self) -> FieldParams {
+        FieldParams {
+            size: self.field.size,
+            spectrum: self.field.spectrum,
+            seed: self.seed,
+        }
+    }
+
+    /// Checks every value against its range.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        if self.version != SCENE_VERSION {
+            return Err(ParamError::new(
+                "version",
+                format!("must be {SCENE_VERSION} (got {})", self.version),
+            ));
+        }
+        if self.seed > MAX_SEED {
+            return Err(ParamError::new(
+                "seed",
+                format!(
+                    "must be an integer between 0 and {MAX_SEED} (got {})",
+                    self.seed
+                ),
+            ));
+        }
+        self.field_params().validate()?;
+        let f = &self.field;
+        for (i, &l) in f.period.iter().enumerate() {
+            check::positive(&format!("field.period[{i}]"), l, 1e4)?;
+        }
+        check::positive("field.time_period", f.time_period, 1e6)?;
+        check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
+        for (i, w) in self.wind.iter().enumerate() {
+            validate_primitive(&format!("wind[{i}]"), w)?;
+        }
+        for (i, e) in self.emitters.iter().enumerate() {
+            validate_emitter(&format!("emitters[{i}]"), e)?;
+        }
+        let g = &self.gas;
+        check::range("gas.diffusion", g.diffusion, 0.0, 1e3)?;
+        check::range("gas.dissipation", g.dissipation, 0.0, 1e3)?;
+        if let Some(s) = g.split_sigma {
+            check::positive("gas.split_sigma", s, 1e4)?;
+        }
+        if g.max_blobs == 0 || g.max_blobs > MAX_BLOBS_LIMIT {
+            return Err(ParamError::new(
+                "gas.max_blobs",
+                format!(
+                    "must be an integer between 1 and {MAX_BLOBS_LIMIT} (got {})",
+                    g.max_blobs
+                ),
+            ));
+        }
+        check::range("gas.min_mass", g.min_mass, 0.0, 1e12)?;
+        check::positive("simulation.dt", self.simulation.dt, 1.0)?;
+        self.render.validate("render")?;
+        Ok(())
+    }
+
+    /// Serialises to pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("scenes serialise")
+    }
+}
+
+/// Brings an older scene up to the current version (version 1 is the first, so only checks).
+fn migrate(value: serde_json::Value) -> Result<serde_json::Value, ParamError> {
+    let obj = value
+        .as_object()
+        .ok_or_else(|| ParamError::new("scene", "must be a JSON object"))?;
+    match obj.get("version") {
+        None => Err(ParamError::new(
+            "version",
+            format!("missing: a scene names its format version (current: {SCENE_VERSION})"),
+        )),
+        Some(v) if v.as_u64() == Some(SCENE_VERSION as u64) => Ok(value),
+        Some(v) => Err(ParamError::new(
+            "version",
+            format!("unsupported scene version {v}; this build reads version {SCENE_VERSION}"),
+        )),
+    }
+}
+
+fn validate_decay(path: &str, decay: Option<f32>) -> Result<(), ParamError> {
+    match decay {
+        Some(l) => check::positive(&format!("{path}.decay"), l as f64, MAX_COORD),
+        None => Ok(()),
+    }
+}
+
+fn validate_primitive(path: &str, w: &Primitive) -> Result<(), ParamError> {
+    let p = |s: &str| format!("{path}.{s}");
+    match w {
+        Primitive::Uniform {
+            velocity,
+            position,
+            decay,
+            ..
+        } => {
+            check::vector(&p("velocity"), *velocity, 1e4)?;
+            check::vector(&p("position"), *position, MAX_COORD)?;
+            validate_decay(path, *decay)
+        }
+        Primitive::Source {
+            position,
+            strength,
+            radius,
+            decay,
+            ..
+        } => {
+            check::vector(&p("position"), *position, MAX_COORD)?;
+            check::range(&p("strength"), *strength as f64, -1e6, 1e6)?;
+            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            validate_decay(path, *decay)
+        }
+        Primitive::Vortex {
+            position,
+            axis,
+            strength,
+            radius,
+            decay,
+            ..
+        } => {
+            check::vector(&p("position"), *position, MAX_COORD)?;
+            check::direction(&p("axis"), *axis)?;
+            check::range(&p("strength"), *strength as f64, -1e6, 1e6)?;
+            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            validate_decay(path, *decay)
+        }
+        Primitive::Repulsor {
+            radius,
+            strength,
+            path: keys,
+            color,
+            decay,
+            ..
+        } => {
+            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            check::range(&p("strength"), *strength as f64, 0.0, 1e4)?;
+            if keys.is_empty() {
+                return Err(ParamError::new(
+                    p("path"),
+                    "must hold at least one key [t, x, y, z]",
+                ));
+            }
+            for (k, key) in keys.iter().enumerate() {
+                for (c, v) in key.iter().enumerate() {
+                    check::range(&format!("{path}.path[{k}][{c}]"), *v, -MAX_COORD, MAX_COORD)?;
+                }
+                if k > 0 && key[0] <= keys[k - 1][0] {
+                    return Err(ParamError::new(
+                        format!("{path}.path[{k}][0]"),
+                        "key times must increase strictly",
+                    ));
+                }
+            }
+            if let Some(c) = color {
+                check::colour(&p("color"), *c, 1.0)?;
+            }
+            validate_decay(path, *decay)
+        }
+    }
+}
+
+fn validate_emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
+    let p = |s: &str| format!("{path}.{s}");
+    check::vector(&p("center"), e.center, MAX_COORD)?;
+    check::direction(&p("normal"), e.normal)?;
+    check::range(&p("radius"), e.radius as f64, 0.0, MAX_COORD)?;
+    for (i, &s) in e.size.iter().enumerate() {
+        check::range(&format!("{path}.size[{i}]"), s as f64, 0.0, MAX_COORD)?;
+    }
+    check::range(&p("rate"), e.rate, 0.0, 1e6)?;
+    check::positive(&p("sigma0"), e.sigma0 as f64, 1e4)?;
+    check::positive(&p("mass0"), e.mass0 as f64, 1e12)?;
+    if let Some(a) = e.albedo {
+        check::colour(&p("albedo"), a, 1.0)?;
+    }
+    if let Some(q) = e.emission {
+        check::colour(&p("emission"), q, 1e6)?;
+    }
+    check::vector(&p("velocity"), e.velocity, 1e4)?;
+    check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)?;
+    Ok(())
+}
+
+/// The JSON Schema of the scene format (draft 2020-12), as shipped in `public/scene.schema.json`.
+pub fn json_schema() -> String {
+    let mut schema = serde_json::to_value(schemars::schema_for!(Scene)).expect("schema serialises");
+    if let Some(obj) = schema.as_object_mut() {
+        obj.insert(
+            "$id".into(),
+            "https://windfield.dev/scene.schema.json".into(),
+        );
+        obj.insert("title".into(), "windfield scene, version 1".into());
+    }
+    serde_json::to_string_pretty(&schema).expect("schema serialises") + "\n"
+}

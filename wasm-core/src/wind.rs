@@ -1,0 +1,451 @@
+//! The wind u = u_l + u_s (paper Eq. 3): large-scale primitives superposed on the small-scale
+//! field, in world units (m, s, m/s).
+//!
+//! World mapping (DESIGN §2): one spatial period of the field spans `period` metres per axis and
+//! one temporal period `time_period` seconds, so the lattice coordinate of x is x·n/L and world
+//! velocity is `amplitude · u_field · L / time_period` per axis.
+//!
+//! A [`WindFrame`] freezes the wind at one time: repulsor paths are evaluated once and the two
+//! field time slices bracketing t are blended into one 3-D slice, so sampling a blob costs one
+//! trilinear lookup (equal to the quadrilinear sample, since both are linear in t).
+
+use crate::field::TurbulentField;
+use crate::scene::{Primitive, Scene};
+use crate::spline::Path;
+use glam::Vec3;
+use std::f32::consts::PI;
+use std::sync::Arc;
+
+fn v3(a: [f32; 3]) -> Vec3 {
+    Vec3::from_array(a)
+}
+
+/// The small-scale field with its world mapping.
+#[derive(Debug, Clone)]
+pub struct SmallScale {
+    field: Arc<TurbulentField>,
+    /// Lattice points per metre along x, y, z.
+    cells_per_metre: Vec3,
+    /// World velocity per unit field velocity, per axis (m/s).
+    velocity_scale: Vec3,
+    /// Lattice time steps per second.
+    steps_per_second: f64,
+    /// Mean wind that carries the eddies (zero unless `carried_by_wind`).
+    carry: Vec3,
+}
+
+impl SmallScale {
+    pub fn new(field: Arc<TurbulentField>, scene: &Scene) -> Self {
+        let [nx, ny, nz, nt] = field.lattice.size;
+        let fs = &scene.field;
+        let l = Vec3::new(
+            fs.period[0] as f32,
+            fs.period[1] as f32,
+            fs.period[2] as f32,
+        );
+        let carry = if fs.carried_by_wind {
+            scene
+                .wind
+                .iter()
+                .filter_map(|w| match w {
+                    Primitive::Uniform {
+                        velocity,
+                        enabled: true,
+                        ..
+                    } => Some(v3(*velocity)),
+                    _ => None,
+                })
+                .sum()
+        } else {
+            Vec3::ZERO
+        };
+        Self {
+            cells_per_metre: Vec3::new(nx as f32, ny as f32, nz as f32) / l,
+            velocity_scale: l * (fs.amplitude / fs.time_period) as f32,
+            steps_per_second: nt as f64 / fs.time_period,
+            carry,
+            field,
+        }
+    }
+
+    /// Reference sample: quadrilinear in the 4-D lattice, in world units.
+    pub fn velocity(&self, x: Vec3, t: f64) -> Vec3 {
+        let q = (x - self.carry * t as f32) * self.cells_per_metre;
+        let u = self.field.sample_lattice([
+            q.x as f64,
+            q.y as f64,
+            q.z as f64,
+            t * self.steps_per_second,
+        ]);
+        Vec3::from_array(u) * self.velocity_scale
+    }
+
+    /// The field at time `t` as one 3-D slice (world velocities), written into `slice`.
+    pub fn slice_into(&self, t: f64, slice: &mut FieldSlice) {
+        let [nx, ny, nz, nt] = self.field.lattice.size;
+        let per = nx * ny * nz * 3;
+        let tl = t * self.steps_per_second;
+        let fl = tl.floor();
+        let f = (tl - fl) as f32;
+        let i0 = (fl as i64).rem_euclid(nt as i64) as usize;
+        let i1 = (i0 + 1) % nt;
+        let a = &self.field.data[i0 * per..(i0 + 1) * per];
+        let b = &self.field.data[i1 * per..(i1 + 1) * per];
+        let scale = self.velocity_scale.to_array();
+        let (sx, sy, sz) = (nx + 1, ny + 1, nz + 1);
+        slice.data.resize(3 * sx * sy * sz, 0.0);
+        for z in 0..sz {
+            for y in 0..sy {
+                let src = 3 * (((z % nz) * ny + y % ny) * nx);
+                let dst = 3 * ((z * sy + y) * sx);
+                let (ra, rb) = (&a[src..src + 3 * nx], &b[src..src + 3 * nx]);
+                let out = &mut slice.data[dst..dst + 3 * sx];
+                for x in 0..sx {
+                    let j = 3 * (x % nx);
+                    for k in 0..3 {
+                        out[3 * x + k] = (ra[j + k] + f * (rb[j + k] - ra[j + k])) * scale[k];
+                    }
+                }
+            }
+        }
+        slice.size = [nx, ny, nz];
+        slice.cells_per_metre = self.cells_per_metre;
+        slice.offset = self.carry * t as f32;
+    }
+}
+
+/// One time slice of the small-scale field, in world velocities, periodic in x, y, z.
+/// Stored `[z][y][x][component]` with one extra point per axis (a copy of index 0), so the
+/// two x-neighbours of a row are six contiguous floats and no index wraps while sampling.
+#[derive(Debug, Clone, Default)]
+pub struct FieldSlice {
+    size: [usize; 3],
+    data: Vec<f32>,
+    cells_per_metre: Vec3,
+    offset: Vec3,
+}
+
+impl FieldSlice {
+    /// Trilinear, periodic sample at world position `x`.
+    #[inline]
+    pub fn sample(&self, x: Vec3) -> Vec3 {
+        let q = (x - self.offset) * self.cells_per_metre;
+        let (ix, iy, iz) = (floor_i32(q.x), floor_i32(q.y), floor_i32(q.z));
+        let (tx, ty, tz) = (q.x - ix as f32, q.y - iy as f32, q.z - iz as f32);
+        let [nx, ny, nz] = self.size;
+        // Extents are powers of two: masking wraps negative indices too.
+        let x0 = (ix as usize) & (nx - 1);
+        let y0 = (iy as usize) & (ny - 1);
+        let z0 = (iz as usize) & (nz - 1);
+        let (sx, sy) = (nx + 1, ny + 1);
+        let base = (z0 * sy + y0) * sx + x0;
+        let row = |r: usize| -> [f32; 6] {
+            let i = 3 * r;
+            self.data[i..i + 6].try_into().unwrap_or([0.0; 6])
+        };
+        let (r00, r10, r01, r11) = (
+            row(base),
+            row(base + sx),
+            row(base + sx * sy),
+            row(base + sx * sy + sx),
+        );
+        let mut out = [0.0f32; 3];
+        for (k, o) in out.iter_mut().enumerate() {
+            let e = |r: &[f32; 6]| r[k] + (r[k + 3] - r[k]) * tx;
+            let (e00, e10, e01, e11) = (e(&r00), e(&r10), e(&r01), e(&r11));
+            let lo = e00 + (e10 - e00) * ty;
+            let hi = e01 + (e11 - e01) * ty;
+            *o = lo + (hi - lo) * tz;
+        }
+        Vec3::from_array(out)
+    }
+}
+
+/// ⌊v⌋ as an integer, without a libm call (|v| < 2^31).
+#[inline]
+fn floor_i32(v: f32) -> i32 {
+    let i = v as i32;
+    i - ((v < i as f32) as i32)
+}
+
+/// A primitive frozen at one time, with its constants folded.
+#[derive(Debug, Clone, Copy)]
+enum Frozen {
+    Uniform {
+        velocity: Vec3,
+    },
+    /// k = s/(4π), a² the squared core radius.
+    Source {
+        position: Vec3,
+        k: f32,
+        a2: f32,
+    },
+    /// g = Γ/(2π).
+    Vortex {
+        position: Vec3,
+        axis: Vec3,
+        g: f32,
+        a2: f32,
+    },
+    Repulsor {
+        center: Vec3,
+        velocity: Vec3,
+        radius: f32,
+        strength: f32,
+    },
+}
+
+#[derive(Debug, Clone, Copy)]
+struct FrozenPrimitive {
+    kind: Frozen,
+    /// Where decay is measured from, and 1/L (0 for no decay).
+    origin: Vec3,
+    inv_decay: f32,
+}
+
+impl FrozenPrimitive {
+    #[inline]
+    fn velocity(&self, x: Vec3) -> Vec3 {
+        let u = match self.kind {
+            Frozen::Uniform { velocity } => velocity,
+            Frozen::Source { position, k, a2 } => {
+                let r = x - position;
+                let d2 = r.length_squared() + a2;
+                r * (k / (d2 * d2.sqrt()))
+            }
+            Frozen::Vortex {
+                position,
+                axis,
+                g,
+                a2,
+            } => {
+                let d = x - position;
+                let perp = d - axis * d.dot(axis);
+                axis.cross(perp) * (g / (perp.length_squared() + a2))
+            }
+            Frozen::Repulsor {
+                center,
+                velocity,
+                radius,
+                strength,
+            } => repulsor_velocity(x - center, velocity, radius, strength),
+        };
+        if self.inv_decay > 0.0 {
+            u * (-(x - self.origin).length() * self.inv_decay).exp()
+        } else {
+            u
+        }
+    }
+}
+
+/// Flow around a sphere of `radius` moving at `v`, at offset `r` from its centre: the potential
+/// flow of a moving sphere (a dipole; normal velocity v·n at the surface) plus a radial push of
+/// speed `s` at the surface, falling as 1/r². Inside, the sphere carries and expels gas.
+#[inline]
+pub fn repulsor_velocity(r: Vec3, v: Vec3, radius: f32, s: f32) -> Vec3 {
+    let d = r.length();
+    let n = if d > 1e-6 { r / d } else { Vec3::Y };
+    if d < radius {
+        return v + n * s;
+    }
+    let q = radius / d;
+    (n * (3.0 * v.dot(n)) - v) * (0.5 * q * q * q) + n * (s * q * q)
+}
+
+/// A primitive with its path resolved.
+#[derive(Debug, Clone)]
+struct Large {
+    primitive: Primitive,
+    path: Option<Path>,
+}
+
+/// The whole wind of a scene.
+#[derive(Debug, Clone)]
+pub struct Wind {
+    small: Option<SmallScale>,
+    large: Vec<Large>,
+}
+
+impl Wind {
+    /// The wind of `scene`; `field` is its small-scale field (none when the amplitude is 0).
+    pub fn new(scene: &Scene, field: Option<Arc<TurbulentField>>) -> Self {
+        let small = field
+            .filter(|_| scene.field.amplitude > 0.0)
+            .map(|f| SmallScale::new(f, scene));
+        let large = scene
+            .wind
+            .iter()
+            .filter(|w| is_enabled(w))
+            .map(|w| Large {
+                path: match w {
+                    Primitive::Repulsor { path, .. } => Some(Path::new(path)),
+                    _ => None,
+                },
+                primitive: w.clone(),
+            })
+            .collect();
+        Self { small, large }
+    }
+
+    pub fn small_scale(&self) -> Option<&SmallScale> {
+        self.small.as_ref()
+    }
+
+    /// Freezes the wind at time `t` into `frame` (reusing its allocations). Uniform winds
+    /// without decay fold into one constant.
+    pub fn frame_into(&self, t: f64, frame: &mut WindFrame) {
+        frame.time = t;
+        frame.has_slice = false;
+        if let Some(s) = &self.small {
+            s.slice_into(t, &mut frame.slice);
+            frame.has_slice = true;
+        }
+        frame.constant = Vec3::ZERO;
+        frame.primitives.clear();
+        for p in self.large.iter().map(|l| freeze(l, t)) {
+            match p.kind {
+                Frozen::Uniform { velocity } if p.inv_decay == 0.0 => frame.constant += velocity,
+                _ => frame.primitives.push(p),
+            }
+        }
+    }
+
+    /// A new frame at time `t`.
+    pub fn frame(&self, t: f64) -> WindFrame {
+        let mut f = WindFrame::default();
+        self.frame_into(t, &mut f);
+        f
+    }
+
+    /// Reference evaluation without a frame (quadrilinear field sample), for tests and probes.
+    pub fn velocity(&self, x: Vec3, t: f64) -> Vec3 {
+        let small = self.small.as_ref().map_or(Vec3::ZERO, |s| s.velocity(x, t));
+        small
+            + self
+                .large
+                .iter()
+                .map(|l| freeze(l, t).velocity(x))
+                .sum::<Vec3>()
+    }
+
+    /// Centres, radii and colours of the visible repulsor spheres at time `t`.
+    pub fn visible_spheres(&self, t: f64) -> Vec<(Vec3, f32, [f32; 3])> {
+        self.large
+            .iter()
+            .filter_map(|l| match (&l.primitive, &l.path) {
+                (
+                    Primitive::Repulsor {
+                        radius,
+                        color: Some(c),
+                        ..
+                    },
+                    Some(path),
+                ) => Some((path.at(t).0.as_vec3(), *radius, *c)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+fn is_enabled(w: &Primitive) -> bool {
+    match w {
+        Primitive::Uniform { enabled, .. }
+        | Primitive::Source { enabled, .. }
+        | Primitive::Vortex { enabled, .. }
+        | Primitive::Repulsor { enabled, .. } => *enabled,
+    }
+}
+
+fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
+    let inv = |d: &Option<f32>| d.map_or(0.0, |l| 1.0 / l);
+    match &l.primitive {
+        Primitive::Uniform {
+            velocity,
+            position,
+            decay,
+            ..
+        } => FrozenPrimitive {
+            kind: Frozen::Uniform {
+                velocity: v3(*velocity),
+            },
+            origin: v3(*position),
+            inv_decay: inv(decay),
+        },
+        Primitive::Source {
+            position,
+            strength,
+            radius,
+            decay,
+            ..
+        } => FrozenPrimitive {
+            kind: Frozen::Source {
+                position: v3(*position),
+                k: strength / (4.0 * PI),
+                a2: radius * radius,
+            },
+            origin: v3(*position),
+            inv_decay: inv(decay),
+        },
+        Primitive::Vortex {
+            position,
+            axis,
+            strength,
+            radius,
+            decay,
+            ..
+        } => FrozenPrimitive {
+            kind: Frozen::Vortex {
+                position: v3(*position),
+                axis: v3(*axis).normalize(),
+                g: strength / (2.0 * PI),
+                a2: radius * radius,
+            },
+            origin: v3(*position),
+            inv_decay: inv(decay),
+        },
+        Primitive::Repulsor {
+            radius,
+            strength,
+            decay,
+            ..
+        } => {
+            let (c, v) = l.path.as_ref().expect("repulsors have paths").at(t);
+            FrozenPrimitive {
+                kind: Frozen::Repulsor {
+                    center: c.as_vec3(),
+                    velocity: v.as_vec3(),
+                    radius: *radius,
+                    strength: *strength,
+                },
+                origin: c.as_vec3(),
+                inv_decay: inv(decay),
+            }
+        }
+    }
+}
+
+/// The wind frozen at one time.
+#[derive(Debug, Clone, Default)]
+pub struct WindFrame {
+    pub time: f64,
+    /// Sum of the uniform winds without decay (m/s).
+    constant: Vec3,
+    has_slice: bool,
+    slice: FieldSlice,
+    primitives: Vec<FrozenPrimitive>,
+}
+
+impl WindFrame {
+    /// u(x) = u_s(x) + Σ primitives (m/s).
+    #[inline]
+    pub fn velocity(&self, x: Vec3) -> Vec3 {
+        let mut u = self.constant;
+        if self.has_slice {
+            u += self.slice.sample(x);
+        }
+        for p in &self.primitives {
+            u += p.velocity(x);
+        }
+        u
+    }
+}

@@ -1,0 +1,343 @@
+//! The scene format (DESIGN §3): strict parsing with path-naming errors, defaults, versions,
+//! and the shipped JSON Schema.
+
+use windfield::scene::{json_schema, Scene};
+
+const GOOD: &str = r#"{
+  "version": 1, "seed": 1,
+  "field": {"size": [32, 32, 32, 32], "spectrum": {"law": "kolmogorov", "epsilon": 1, "k_inertial": 4, "sigma": 1},
+            "period": [4, 4, 4], "time_period": 8, "amplitude": 1},
+  "wind": [{"type": "uniform", "velocity": [0, 0.5, 0]},
+           {"type": "source", "position": [0, 1, 0], "strength": -0.3},
+           {"type": "vortex", "position": [0, 1, 0], "axis": [0, 1, 0], "strength": 0.5, "radius": 0.2, "decay": 1.5},
+           {"type": "repulsor", "radius": 0.3, "strength": 1, "path": [[0, 0, 1, 0], [2, 1, 1, 0]], "enabled": false}],
+  "emitters": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 0.1, "size": [0.1, 0.1, 0.1],
+                "rate": 30, "sigma0": 0.05, "mass0": 1, "albedo": [1, 1, 1], "emission": [0, 0, 0], "velocity": [0, 0.2, 0]}],
+  "gas": {"diffusion": 0.01, "dissipation": 0.1, "split_sigma": null, "max_blobs": 20000, "min_mass": 0.0001},
+  "simulation": {"dt": 0.016666, "integrator": "rk2"},
+  "render": {"camera": {"position": [0, 1, 4], "target": [0, 1, 0], "up": [0, 1, 0], "fov_y_deg": 40},
+             "image": {"width": 640, "height": 480, "encoding": "srgb"},
+             "medium": {"extinction": [1, 1, 1], "albedo": [0.9, 0.9, 0.9], "phase": {"type": "henyey-greenstein", "g": 0.4}},
+             "lights": [{"type": "point", "position": [2, 3, 2], "color": [1, 1, 1]},
+                        {"type": "directional", "direction": [0, -1, 0], "color": [0.5, 0.5, 0.5]}],
+             "shadows": true, "background": [0, 0, 0],
+             "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5, "color": [0.8, 0.8, 0.8]},
+                         {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "color": [0.5, 0.5, 0.5]},
+                         {"type": "cylinder", "base": [0, 0, 0], "axis": [0, 1, 0], "radius": 0.2, "height": 0.3, "color": [1, 1, 1]}]}
+}"#;
+
+/// Applies `edit` to the good scene, parses it, and returns the error text.
+fn error_of(edit: impl Fn(&mut serde_json::Value)) -> String {
+    let mut v: serde_json::Value = serde_json::from_str(GOOD).unwrap();
+    edit(&mut v);
+    match Scene::from_value(v) {
+        Ok(_) => "accepted".into(),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn the_full_example_parses_and_round_trips() {
+    let s = Scene::from_json(GOOD).unwrap();
+    assert_eq!(s.wind.len(), 4);
+    let again = Scene::from_json(&s.to_json()).unwrap();
+    assert_eq!(s, again);
+}
+
+#[test]
+fn a_minimal_scene_takes_the_paper_defaults() {
+    let s = Scene::from_json(r#"{"version": 1}"#).unwrap();
+    assert_eq!(s.field.size, [32; 4]);
+    assert_eq!(s.field.spectrum.epsilon, 1.0);
+    assert_eq!(s.field.spectrum.k_inertial, 4.0);
+    assert_eq!(s.field.spectrum.sigma, 1.0);
+    assert_eq!(s.seed, 1);
+    let partial =
+        Scene::from_json(r#"{"version": 1, "field": {"spectrum": {"sigma": 0.5}}}"#).unwrap();
+    assert_eq!(partial.field.spectrum.k_inertial, 4.0);
+    assert_eq!(partial.field.spectrum.sigma, 0.5);
+}
+
+type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+
+fn set(pointer: &'static str, value: serde_json::Value) -> Edit {
+    Box::new(move |v| {
+        *v.pointer_mut(pointer)
+            .unwrap_or_else(|| panic!("{pointer}")) = value.clone()
+    })
+}
+
+fn insert(pointer: &'static str, key: &'static str, value: serde_json::Value) -> Edit {
+    Box::new(move |v| {
+        v.pointer_mut(pointer)
+            .unwrap()
+            .as_object_mut()
+            .unwrap()
+            .insert(key.into(), value.clone());
+    })
+}
+
+fn remove(key: &'static str) -> Edit {
+    Box::new(move |v| {
+        v.as_object_mut().unwrap().remove(key);
+    })
+}
+
+#[test]
+fn malformed_scenes_are_rejected_with_their_path() {
+    use serde_json::json;
+    let cases: Vec<(Edit, &str, &str)> = vec![
+        (remove("version"), "version", "missing"),
+        (set("/version", json!(2)), "version", "unsupported"),
+        (set("/version", json!("one")), "version", "unsupported"),
+        (insert("", "colour", json!(1)), "colour", "unknown field"),
+        (set("/seed", json!(-1)), "seed", "invalid value"),
+        (
+            set("/seed", json!(9007199254740993u64)),
+            "seed",
+            "between 0 and",
+        ),
+        (
+            set("/field/size/1", json!(33)),
+            "field.size[1]",
+            "power of two between 4 and 128",
+        ),
+        (
+            set("/field/size/3", json!(256)),
+            "field.size[3]",
+            "power of two",
+        ),
+        (
+            set("/field/size", json!([128, 128, 128, 128])),
+            "field.size",
+            "at most",
+        ),
+        (
+            set("/field/size", json!([32, 32, 32])),
+            "field.size",
+            "invalid length",
+        ),
+        (
+            set("/field/size/0", json!("32")),
+            "field.size[0]",
+            "invalid type",
+        ),
+        (
+            set("/field/spectrum/law", json!("kolmogoroff")),
+            "field.spectrum.law",
+            "unknown variant",
+        ),
+        (
+            set("/field/spectrum/epsilon", json!(-1)),
+            "field.spectrum.epsilon",
+            "greater than 0",
+        ),
+        (
+            set("/field/spectrum/k_inertial", json!(40)),
+            "field.spectrum.k_inertial",
+            "at most 15",
+        ),
+        (
+            set("/field/spectrum/sigma", json!(-0.5)),
+            "field.spectrum.sigma",
+            "between 0 and 100",
+        ),
+        (
+            insert("/field/spectrum", "c", json!(1.5)),
+            "field.spectrum.c",
+            "unknown field",
+        ),
+        (
+            set("/field/period/2", json!(0)),
+            "field.period[2]",
+            "greater than 0",
+        ),
+        (
+            set("/field/time_period", json!(-8)),
+            "field.time_period",
+            "greater than 0",
+        ),
+        (
+            set("/field/amplitude", json!(-1)),
+            "field.amplitude",
+            "between 0",
+        ),
+        (
+            set("/wind/0/type", json!("tornado")),
+            "wind[0].type",
+            "unknown variant",
+        ),
+        (
+            insert("/wind/0", "speed", json!(1)),
+            "wind[0]",
+            "unknown field `speed`",
+        ),
+        (
+            set("/wind/0/velocity", json!([0, 1])),
+            "wind[0]",
+            "invalid length",
+        ),
+        (
+            insert("/wind/1", "radius", json!(0)),
+            "wind[1].radius",
+            "greater than 0",
+        ),
+        (
+            set("/wind/2/axis", json!([0, 0, 0])),
+            "wind[2].axis",
+            "non-zero direction",
+        ),
+        (
+            set("/wind/2/decay", json!(-1)),
+            "wind[2].decay",
+            "greater than 0",
+        ),
+        (
+            set("/wind/3/path", json!([])),
+            "wind[3].path",
+            "at least one key",
+        ),
+        (
+            set("/wind/3/path/1/0", json!(0)),
+            "wind[3].path[1][0]",
+            "increase strictly",
+        ),
+        (
+            set("/wind/3/strength", json!(-1)),
+            "wind[3].strength",
+            "between 0",
+        ),
+        (
+            set("/emitters/0/shape", json!("cone")),
+            "emitters[0].shape",
+            "unknown variant",
+        ),
+        (
+            set("/emitters/0/rate", json!(-3)),
+            "emitters[0].rate",
+            "between 0",
+        ),
+        (
+            set("/emitters/0/sigma0", json!(0)),
+            "emitters[0].sigma0",
+            "greater than 0",
+        ),
+        (
+            set("/emitters/0/albedo/1", json!(1.5)),
+            "emitters[0].albedo[1]",
+            "between 0 and 1",
+        ),
+        (
+            set("/emitters/0/normal", json!([0, 0, 0])),
+            "emitters[0].normal",
+            "non-zero",
+        ),
+        (
+            set("/gas/max_blobs", json!(0)),
+            "gas.max_blobs",
+            "between 1 and",
+        ),
+        (
+            set("/gas/max_blobs", json!(5_000_000)),
+            "gas.max_blobs",
+            "between 1 and",
+        ),
+        (
+            set("/gas/split_sigma", json!(0)),
+            "gas.split_sigma",
+            "greater than 0",
+        ),
+        (
+            set("/gas/diffusion", json!(1e300)),
+            "gas.diffusion",
+            "between 0",
+        ),
+        (
+            set("/simulation/dt", json!(0)),
+            "simulation.dt",
+            "greater than 0",
+        ),
+        (
+            set("/simulation/integrator", json!("rk4")),
+            "simulation.integrator",
+            "unknown variant",
+        ),
+        (
+            set("/render/camera/fov_y_deg", json!(180)),
+            "render.camera.fov_y_deg",
+            "between",
+        ),
+        (
+            set("/render/camera/target", json!([0, 1, 4])),
+            "render.camera.target",
+            "must differ",
+        ),
+        (
+            set("/render/image/width", json!(0)),
+            "render.image.width",
+            "between 1 and",
+        ),
+        (
+            set("/render/image/encoding", json!("gamma")),
+            "render.image.encoding",
+            "unknown variant",
+        ),
+        (
+            set("/render/medium/phase/g", json!(1)),
+            "render.medium.phase.g",
+            "strictly between -1 and 1",
+        ),
+        (
+            set("/render/medium/albedo/0", json!(2)),
+            "render.medium.albedo[0]",
+            "between 0 and 1",
+        ),
+        (
+            set("/render/lights/1/direction", json!([0, 0, 0])),
+            "render.lights[1].direction",
+            "non-zero",
+        ),
+        (
+            set("/render/objects/0/radius", json!(-1)),
+            "render.objects[0].radius",
+            "greater than 0",
+        ),
+        (
+            set("/render/shadows", json!("yes")),
+            "render.shadows",
+            "invalid type",
+        ),
+    ];
+    assert!(cases.len() >= 20);
+    for (edit, path, text) in cases {
+        let e = error_of(edit);
+        assert!(
+            e.starts_with(&format!("{path}: ")),
+            "expected path {path}, got: {e}"
+        );
+        assert!(e.contains(text), "expected '{text}' in: {e}");
+    }
+    // Not JSON at all, and not an object.
+    assert!(Scene::from_json("{")
+        .unwrap_err()
+        .to_string()
+        .starts_with("scene: not valid JSON"));
+    assert!(Scene::from_json("[1]")
+        .unwrap_err()
+        .to_string()
+        .starts_with("scene: must be a JSON object"));
+}
+
+#[test]
+fn the_shipped_schema_is_the_generated_one() {
+    let shipped = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../public/scene.schema.json"))
+        .expect("public/scene.schema.json exists: regenerate with `windfield schema > public/scene.schema.json`");
+    assert_eq!(
+        shipped,
+        json_schema(),
+        "regenerate with `windfield schema > public/scene.schema.json`"
+    );
+    let v: serde_json::Value = serde_json::from_str(&shipped).unwrap();
+    assert_eq!(v["required"], serde_json::json!(["version"]));
+    assert_eq!(v["additionalProperties"], serde_json::json!(false));
+}
