@@ -16,17 +16,16 @@ pub const BLOB_STEP_SCENE: &str = include_str!("blob-step-scene.json");
 fn seed_blobs(sim: &mut Simulation, n: usize) {
     for i in 0..n {
         let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 4.0 - 2.0;
-        let blob = Blob {
-            position: Vec3::new(f(0.754_877_7), f(0.569_840_3) + 1.0, f(0.430_159_7)),
-            sigma0: 0.03,
-            mass0: 1.0,
-            birth: 0.0,
-            albedo: [-1.0; 3],
-            emission: [0.0; 3],
-            velocity0: Vec3::ZERO,
-            velocity_time: 1.0,
-        };
-        sim.gas.blobs.push(&blob, 0.03, 1.0);
+        sim.gas.blobs.push(
+            &Blob::new(
+                Vec3::new(f(0.754_877_7), f(0.569_840_3) + 1.0, f(0.430_159_7)),
+                0.03,
+                1.0,
+                0.0,
+            ),
+            0.03,
+            1.0,
+        );
     }
 }
 

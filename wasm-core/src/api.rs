@@ -225,16 +225,7 @@ impl SceneSimulation {
         }
         let birth = self.inner.time();
         for p in positions.chunks_exact(3) {
-            let blob = Blob {
-                position: Vec3::from_slice(p),
-                sigma0,
-                mass0,
-                birth,
-                albedo: [-1.0; 3],
-                emission: [0.0; 3],
-                velocity0: Vec3::ZERO,
-                velocity_time: 1.0,
-            };
+            let blob = Blob::new(Vec3::from_slice(p), sigma0, mass0, birth);
             self.inner.gas.blobs.push(&blob, sigma0, mass0);
         }
         Ok(())

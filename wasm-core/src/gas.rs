@@ -57,6 +57,23 @@ pub struct Blob {
     pub velocity_time: f32,
 }
 
+impl Blob {
+    /// A blob at `position` born at `birth` with σ0 and m0, the medium's albedo, no emission
+    /// and no velocity of its own.
+    pub fn new(position: Vec3, sigma0: f32, mass0: f32, birth: f64) -> Self {
+        Self {
+            position,
+            sigma0,
+            mass0,
+            birth,
+            albedo: [-1.0; 3],
+            emission: [0.0; 3],
+            velocity0: Vec3::ZERO,
+            velocity_time: 1.0,
+        }
+    }
+}
+
 impl Blobs {
     pub fn len(&self) -> usize {
         self.sigma.len()

@@ -154,6 +154,18 @@ pub enum Primitive {
     },
 }
 
+impl Primitive {
+    /// Whether the primitive acts on the wind.
+    pub fn enabled(&self) -> bool {
+        match self {
+            Self::Uniform { enabled, .. }
+            | Self::Source { enabled, .. }
+            | Self::Vortex { enabled, .. }
+            | Self::Repulsor { enabled, .. } => *enabled,
+        }
+    }
+}
+
 fn default_core() -> f32 {
     0.1
 }

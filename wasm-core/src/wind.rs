@@ -275,7 +275,7 @@ impl Wind {
         let large = scene
             .wind
             .iter()
-            .filter(|w| is_enabled(w))
+            .filter(|w| w.enabled())
             .map(|w| Large {
                 path: match w {
                     Primitive::Repulsor { path, .. } => Some(Path::new(path)),
@@ -344,15 +344,6 @@ impl Wind {
                 _ => None,
             })
             .collect()
-    }
-}
-
-fn is_enabled(w: &Primitive) -> bool {
-    match w {
-        Primitive::Uniform { enabled, .. }
-        | Primitive::Source { enabled, .. }
-        | Primitive::Vortex { enabled, .. }
-        | Primitive::Repulsor { enabled, .. } => *enabled,
     }
 }
 

@@ -118,16 +118,7 @@ fn rk2_orbits_in_a_vortex_keep_their_radius() {
 }
 
 fn blob(p: Vec3) -> Blob {
-    Blob {
-        position: p,
-        sigma0: 0.05,
-        mass0: 1.0,
-        birth: 0.0,
-        albedo: [-1.0; 3],
-        emission: [0.0; 3],
-        velocity0: Vec3::ZERO,
-        velocity_time: 1.0,
-    }
+    Blob::new(p, 0.05, 1.0, 0.0)
 }
 
 #[test]
