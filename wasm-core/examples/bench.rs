@@ -6,6 +6,7 @@ use glam::Vec3;
 use std::time::Instant;
 use windfield::field::{FieldParams, TurbulentField};
 use windfield::gas::Blob;
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// The blob-step benchmark scene: a 32^4 field plus uniform, vortex and source primitives.
@@ -69,6 +70,29 @@ fn main() {
     seed_blobs(&mut sim, 200_000);
     let ms = median_ms(7, || sim.step());
     emit("blob_step_200k_native_ms", ms, "ms");
+
+    // The reference renderer: a simulated plume of 10,000 blobs, one point light, shadows.
+    let plume = Scene::from_json(include_str!("render-plume-scene.json")).expect("valid");
+    let mut sim = Simulation::new(plume).expect("valid");
+    sim.run(sim.steps_for(10.0));
+    let list = sim.blob_list();
+    assert_eq!(list.blobs.len(), 10_000);
+    let render = |size: Option<(u32, u32)>, use_tree: bool| {
+        let options = RenderOptions {
+            use_tree,
+            ..Default::default()
+        };
+        std::hint::black_box(Renderer::new(&list, size, options).expect("valid").render());
+    };
+    emit(
+        "render_reference_640x480_10k_ms",
+        median_ms(3, || render(None, true)),
+        "ms",
+    );
+    let small = Some((64, 48));
+    let tree_ms = median_ms(3, || render(small, true));
+    let brute_ms = median_ms(1, || render(small, false));
+    emit("render_reference_tree_speedup", brute_ms / tree_ms, "ratio");
 
     if let Some(mib) = peak_rss_mib() {
         emit("native_peak_rss_mib", mib, "MiB");

@@ -4,8 +4,10 @@
 //! as whole `Float32Array`s. Bad input becomes a thrown `Error` whose message names the
 //! parameter path; nothing panics across the boundary.
 
+use crate::blob_list::{BlobList, Encoding};
 use crate::field::{FieldParams, Synthesis, TurbulentField};
 use crate::gas::Blob;
+use crate::render::{decode_png, encode_png, LinearImage, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
@@ -241,4 +243,90 @@ impl SceneSimulation {
     pub fn blob_list(&self) -> String {
         serde_json::to_string(&self.inner.blob_list()).unwrap_or_default()
     }
+}
+
+/// A reference still in progress: the CPU renderer of DESIGN §4, a band of rows at a time so a
+/// worker can report progress.
+#[wasm_bindgen]
+pub struct ReferenceRender {
+    renderer: Renderer,
+    encoding: Encoding,
+    data: Vec<f32>,
+    next_row: u32,
+}
+
+#[wasm_bindgen]
+impl ReferenceRender {
+    /// `blob_list_json`: a blob list (DESIGN §4); `width`/`height` of 0 keep the list's size.
+    #[wasm_bindgen(constructor)]
+    pub fn new(blob_list_json: &str, width: u32, height: u32) -> Result<ReferenceRender, JsError> {
+        let value: serde_json::Value = serde_json::from_str(blob_list_json)
+            .map_err(|e| JsError::new(&format!("blob list: {e}")))?;
+        let list = BlobList::from_value(value).map_err(js_error)?;
+        let size = (width > 0 && height > 0).then_some((width, height));
+        let renderer = Renderer::new(&list, size, RenderOptions::default()).map_err(js_error)?;
+        let data = vec![0.0; 3 * (renderer.width * renderer.height) as usize];
+        Ok(Self {
+            renderer,
+            encoding: list.image.encoding,
+            data,
+            next_row: 0,
+        })
+    }
+
+    /// Renders up to `rows` more rows; false once the image is complete.
+    pub fn step(&mut self, rows: u32) -> bool {
+        let row_len = 3 * self.renderer.width as usize;
+        let end = (self.next_row + rows).min(self.renderer.height);
+        for j in self.next_row..end {
+            let start = j as usize * row_len;
+            self.renderer
+                .render_row(j, &mut self.data[start..start + row_len]);
+        }
+        self.next_row = end;
+        self.next_row < self.renderer.height
+    }
+
+    /// Fraction of rows done, 0..1.
+    pub fn progress(&self) -> f64 {
+        self.next_row as f64 / self.renderer.height.max(1) as f64
+    }
+
+    pub fn width(&self) -> u32 {
+        self.renderer.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.renderer.height
+    }
+
+    /// The finished image as 8-bit RGB in the list's encoding (rows rendered so far).
+    pub fn rgb(&self) -> Vec<u8> {
+        self.image().to_rgb8(self.encoding)
+    }
+
+    /// The finished image as PNG bytes.
+    pub fn png(&self) -> Result<Vec<u8>, JsError> {
+        encode_png(self.renderer.width, self.renderer.height, &self.rgb()).map_err(js_error)
+    }
+
+    fn image(&self) -> LinearImage {
+        LinearImage {
+            width: self.renderer.width,
+            height: self.renderer.height,
+            data: self.data.clone(),
+        }
+    }
+}
+
+/// Decodes an 8-bit PNG to RGB bytes (`[width, height]` are the first two u32s of the result's
+/// header: eight little-endian bytes, then the pixels).
+#[wasm_bindgen(js_name = decodePng)]
+pub fn decode_png_rgb(bytes: &[u8]) -> Result<Vec<u8>, JsError> {
+    let (w, h, rgb) = decode_png(bytes).map_err(|e| JsError::new(&e))?;
+    let mut out = Vec::with_capacity(8 + rgb.len());
+    out.extend_from_slice(&w.to_le_bytes());
+    out.extend_from_slice(&h.to_le_bytes());
+    out.extend_from_slice(&rgb);
+    Ok(out)
 }

@@ -373,6 +373,21 @@ impl BlobList {
         }
     }
 
+    /// Parses and validates a blob list from a JSON value; errors name the JSON path.
+    pub fn from_value(value: serde_json::Value) -> Result<Self, ParamError> {
+        let list: BlobList = serde_path_to_error::deserialize(value).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." {
+                "blob_list".to_string()
+            } else {
+                path
+            };
+            ParamError::new(path, e.inner().to_string())
+        })?;
+        list.validate()?;
+        Ok(list)
+    }
+
     /// Checks the settings and every blob; paths are those of the blob list's JSON.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.settings().validate("")?;

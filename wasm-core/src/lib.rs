@@ -5,7 +5,7 @@
 //! [`lattice`] from an energy [`spectrum`]; [`stats`] measures it against the paper's formulas.
 //! [`scene`] reads the scene format; [`wind`] superposes the large-scale primitives on the field
 //! (Eq. 3); [`gas`] animates Gaussian blobs born by [`emitter`]s (§4); [`simulation`] drives
-//! them and exports the [`blob_list`] a renderer takes. [`api`] is the one module that speaks
+//! them and exports the [`blob_list`] that [`render`] turns into verified stills. [`api`] is the one module that speaks
 //! to JavaScript.
 
 pub mod api;
@@ -18,6 +18,7 @@ pub mod field;
 pub mod gas;
 pub mod lattice;
 pub mod npy;
+pub mod render;
 pub mod scene;
 pub mod simulation;
 pub mod spectrum;

@@ -10,7 +10,9 @@ use std::fs;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use windfield::blob_list::BlobList;
 use windfield::field::{FieldParams, TurbulentField};
+use windfield::render::{encode_png, RenderOptions, Renderer};
 use windfield::spectrum::{SpectrumLaw, SpectrumParams};
 use windfield::{npy, stats, ParamError, Scene, Simulation};
 
@@ -34,8 +36,28 @@ enum Command {
     Stats(StatsArgs),
     /// Simulate a scene and write the blob list (camera, lights, medium and blobs).
     Simulate(SimulateArgs),
+    /// Render a still with the CPU reference renderer: a blob list, or a scene simulated first.
+    Render(RenderArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// A blob list (JSON), or a scene (JSON with "version").
+    input: PathBuf,
+    /// Output PNG (8-bit RGB, in the input's image encoding).
+    #[arg(long)]
+    out: PathBuf,
+    /// Image width in pixels (overrides the input's).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the input's).
+    #[arg(long)]
+    height: Option<u32>,
+    /// For a scene: seconds to simulate before rendering (default 0).
+    #[arg(long)]
+    seconds: Option<f64>,
 }
 
 #[derive(Args)]
@@ -279,12 +301,75 @@ fn simulate(args: SimulateArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// The blob list to render: read directly, or simulated from a scene.
+fn blob_list_for(args: &RenderArgs) -> Result<BlobList, Failure> {
+    let path = &args.input;
+    let text =
+        fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
+    let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| Failure::Input(format!("{}: not valid JSON: {e}", path.display())))?;
+    if value.get("version").is_some() {
+        let seconds = args.seconds.unwrap_or(0.0);
+        check_seconds(seconds)?;
+        let scene = Scene::from_value(value).map_err(bad)?;
+        let mut sim = Simulation::new(scene).map_err(bad)?;
+        sim.run(sim.steps_for(seconds));
+        Ok(sim.blob_list())
+    } else {
+        if args.seconds.is_some() {
+            return Err(Failure::Input(
+                "--seconds: applies to scenes only; this input is a blob list".into(),
+            ));
+        }
+        BlobList::from_value(value).map_err(bad)
+    }
+}
+
+fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
+    let list = blob_list_for(&args)?;
+    let size = match (args.width, args.height) {
+        (None, None) => None,
+        (w, h) => Some((
+            w.unwrap_or(list.image.width),
+            h.unwrap_or(list.image.height),
+        )),
+    };
+    let start = std::time::Instant::now();
+    let renderer = Renderer::new(&list, size, RenderOptions::default()).map_err(|e| {
+        let flag = match e.path.as_str() {
+            "image.width" => "--width: ".to_string(),
+            "image.height" => "--height: ".to_string(),
+            _ => format!("{}: ", args.input.display()),
+        };
+        Failure::Input(format!("{flag}{e}"))
+    })?;
+    let image = renderer.render();
+    let png = encode_png(
+        image.width,
+        image.height,
+        &image.to_rgb8(list.image.encoding),
+    )
+    .map_err(|e| Failure::Io(e.to_string()))?;
+    write_atomically(&args.out, |w| std::io::Write::write_all(w, &png))?;
+    eprintln!(
+        "rendered {}x{} from {} blobs in {:.0} ms -> {}",
+        image.width,
+        image.height,
+        list.blobs.len(),
+        start.elapsed().as_secs_f64() * 1e3,
+        args.out.display()
+    );
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Generate(a) => generate(a),
         Command::Stats(a) => stats_cmd(a),
         Command::Simulate(a) => simulate(a),
+        Command::Render(a) => render_cmd(a),
         Command::Schema => {
             print!("{}", windfield::scene::json_schema());
             Ok(())
