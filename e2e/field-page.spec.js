@@ -1,10 +1,10 @@
-// The field page: loads with no errors, generates a field in the worker, shows it, animates it.
+// The field explorer (field.html): loads with no errors, generates a field in the worker, shows it, animates it.
 import { test, expect } from '@playwright/test';
 import { canvasLuminance, collectErrors } from './helpers.js';
 
 test('loads without errors and shows a generated field', async ({ page }) => {
   const errors = collectErrors(page);
-  await page.goto('./');
+  await page.goto('./field.html');
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
   const stats = await page.evaluate(() => window.windfield.stats());
@@ -19,7 +19,7 @@ test('loads without errors and shows a generated field', async ({ page }) => {
 });
 
 test('the slice changes as time runs', async ({ page }) => {
-  await page.goto('./');
+  await page.goto('./field.html');
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
   await page.evaluate(() => window.windfield.pause());
@@ -33,7 +33,7 @@ test('the slice changes as time runs', async ({ page }) => {
 });
 
 test('the field in the page is the WASM synthesis, sampled exactly at nodes', async ({ page }) => {
-  await page.goto('./');
+  await page.goto('./field.html');
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
   const report = await page.evaluate(() => window.windfield.fieldStats());
@@ -49,7 +49,7 @@ test('the field in the page is the WASM synthesis, sampled exactly at nodes', as
 });
 
 test('bad field parameters are refused with a message naming them', async ({ page }) => {
-  await page.goto('./');
+  await page.goto('./field.html');
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
   const message = await page.evaluate(async () => {

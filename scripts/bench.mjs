@@ -1,10 +1,12 @@
 #!/usr/bin/env node
-// Benchmarks: native (the Rust example) and WASM (the built core in Node), medians of several
-// runs. `npm run bench -- --json` prints one JSON object per line; without --json, a table.
+// Benchmarks: native (the Rust example), WASM (the built core in Node) and the browser (the
+// built site in chromium), medians of several runs. `npm run bench -- --json` prints one JSON
+// object per line; without --json, a table. `--no-browser` skips the browser part.
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
+import { benchBrowser } from './bench-browser.mjs';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const json = process.argv.includes('--json');
@@ -45,7 +47,7 @@ emit('field_generate_32x32x32x32_wasm_ms', median(7, () => core.WindField.genera
 
 // One RK2 step of 200,000 blobs in a 32^4 field plus three primitives (as examples/bench.rs).
 const sceneJson = readFileSync(`${root}wasm-core/examples/blob-step-scene.json`, 'utf8');
-const sim = new core.SceneSimulation(sceneJson, undefined);
+const sim = new core.SceneSimulation(sceneJson);
 const n = 200_000;
 const positions = new Float32Array(3 * n);
 const spread = (i, k) => (((i + 0.5) * k) % 1) * 4 - 2;
@@ -62,6 +64,13 @@ emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
 const nativeMs = results.find((r) => r.name === 'field_generate_32x32x32x32_native_ms')?.value;
 const wasmMs = results.find((r) => r.name === 'field_generate_32x32x32x32_wasm_ms')?.value;
 if (nativeMs && wasmMs) emit('field_generate_wasm_over_native', wasmMs / nativeMs, 'ratio');
+
+// The browser: the built site (`npm run build` first), skipped with --no-browser.
+if (!process.argv.includes('--no-browser')) {
+  execFileSync('npx', ['vite', 'build', '--config', 'web/vite.config.js', '--logLevel', 'error'], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  execFileSync('npx', ['vite', 'build', '--config', 'web/vite.embed.config.js', '--logLevel', 'error'], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  for (const r of await benchBrowser()) emit(r.name, r.value, r.unit);
+}
 
 if (!json) {
   for (const r of results) console.log(`${r.name.padEnd(44)} ${String(r.value).padStart(10)} ${r.unit}`);

@@ -16,6 +16,7 @@ step "wasm build"
 bash scripts/build-wasm.sh
 step "site build"
 npx vite build --config web/vite.config.js --logLevel warn
+npx vite build --config web/vite.embed.config.js --logLevel warn
 step "js unit tests"
 node --test tests/
 step "end-to-end tests (chromium)"

@@ -48,7 +48,7 @@ test('a scene simulated then rendered agrees too', () => {
   const out = join(dir, 'plume.png');
   cli(['render', input, '--seconds', '2', '--width', '96', '--height', '72', '--out', out]);
   const native = decode(readFileSync(out));
-  const sim = new core.SceneSimulation(readFileSync(input, 'utf8'), undefined);
+  const sim = new core.SceneSimulation(readFileSync(input, 'utf8'));
   sim.step(120);
   const wasm = wasmStill(sim.blobList(), 96, 72);
   sim.free();

@@ -57,7 +57,7 @@ test('the WASM simulation matches the native one', async () => {
   const out = join(dir, 'native.json');
   cli(['simulate', scenePath, '--seconds', '2', '--out', out]);
   const native = JSON.parse(readFileSync(out, 'utf8'));
-  const sim = new core.SceneSimulation(readFileSync(scenePath, 'utf8'), undefined);
+  const sim = new core.SceneSimulation(readFileSync(scenePath, 'utf8'));
   sim.step(120);
   const wasm = JSON.parse(sim.blobList());
   sim.free();

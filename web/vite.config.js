@@ -12,6 +12,9 @@ export default defineConfig({
     outDir: here('../dist'),
     emptyOutDir: true,
     target: 'es2022',
+    rollupOptions: {
+      input: { main: here('index.html'), field: here('field.html'), embed: here('embed.html') },
+    },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

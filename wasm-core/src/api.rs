@@ -145,22 +145,19 @@ pub struct SceneSimulation {
 
 #[wasm_bindgen]
 impl SceneSimulation {
-    /// Builds a simulation; `field` is reused when its parameters match the scene's (and
-    /// ignored when the scene's amplitude is 0), otherwise the field is synthesised here.
+    /// Builds a simulation, synthesising the scene's field (skipped when its amplitude is 0).
     #[wasm_bindgen(constructor)]
-    pub fn new(scene_json: &str, field: Option<WindField>) -> Result<SceneSimulation, JsError> {
+    pub fn new(scene_json: &str) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
-        let params = scene.field_params();
-        let field = if scene.field.amplitude == 0.0 {
-            None
-        } else {
-            match field {
-                Some(f) if f.inner.params == params => Some(f.inner.clone()),
-                _ => Some(Arc::new(
-                    TurbulentField::generate(&params).map_err(js_error)?,
-                )),
-            }
-        };
+        let inner = Simulation::new(scene).map_err(js_error)?;
+        Ok(Self { inner })
+    }
+
+    /// Builds a simulation on an existing field, which must have the scene's field parameters.
+    #[wasm_bindgen(js_name = withField)]
+    pub fn with_field(scene_json: &str, field: &WindField) -> Result<SceneSimulation, JsError> {
+        let scene = Scene::from_json(scene_json).map_err(js_error)?;
+        let field = (scene.field.amplitude > 0.0).then(|| field.inner.clone());
         let inner = Simulation::with_field(scene, field).map_err(js_error)?;
         Ok(Self { inner })
     }
@@ -317,6 +314,48 @@ impl ReferenceRender {
             data: self.data.clone(),
         }
     }
+}
+
+/// Shadow columns ∫ρ ds towards each light on a `res³` grid over the gas's bounds (padded by a
+/// cell), for the GPU ray march to interpolate: `[min.xyz, max.xyz, res, lights]` then
+/// `lights × res³` columns (x fastest). Empty (8 zeros) without blobs, lights or shadows.
+#[wasm_bindgen(js_name = shadowGrid)]
+pub fn shadow_grid(blob_list_json: &str, res: u32) -> Result<Vec<f32>, JsError> {
+    let value: serde_json::Value = serde_json::from_str(blob_list_json)
+        .map_err(|e| JsError::new(&format!("blob list: {e}")))?;
+    let list = BlobList::from_value(value).map_err(js_error)?;
+    let renderer = Renderer::new(&list, None, RenderOptions::default()).map_err(js_error)?;
+    let res = res.clamp(2, 96) as usize;
+    let lights = renderer.light_count();
+    let bounds = renderer.gas_bounds().filter(|_| list.shadows && lights > 0);
+    let Some((lo, hi)) = bounds else {
+        return Ok(vec![0.0; 8]);
+    };
+    let pad = (hi - lo) / (res - 1) as f32;
+    let (lo, hi) = (lo - pad, hi + pad);
+    let cell = (hi - lo) / (res - 1) as f32;
+    let mut out = vec![
+        lo.x,
+        lo.y,
+        lo.z,
+        hi.x,
+        hi.y,
+        hi.z,
+        res as f32,
+        lights as f32,
+    ];
+    out.reserve(lights * res * res * res);
+    for k in 0..lights {
+        for z in 0..res {
+            for y in 0..res {
+                for x in 0..res {
+                    let p = lo + cell * Vec3::new(x as f32, y as f32, z as f32);
+                    out.push(renderer.column_to_light(p, k));
+                }
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Decodes an 8-bit PNG to RGB bytes (`[width, height]` are the first two u32s of the result's

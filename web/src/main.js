@@ -1,26 +1,13 @@
-// The playground page: generates the small-scale field in the engine worker (with progress),
-// animates one slice of it over time, and lets the spectrum be edited.
+// The playground: a Player runs the scene; this page adds the controls, keeps the scene in the
+// URL hash, imports and exports, and exposes `window.windfield` (DESIGN §5).
 
 import GUI from 'lil-gui';
-import { Engine } from './engine/client.js';
-import { SliceView } from './views/slice-view.js';
-import { DEFAULT_FIELD, LAWS, maxInertial, validateField } from './field-params.js';
-
-/** Samples per side of the displayed slice. */
-const SLICE_RES = 64;
-/** Seconds of animation per temporal period of the field (at speed 1). */
-const SECONDS_PER_PERIOD = 8;
-
-const LATTICES = {
-  '16⁴': [16, 16, 16, 16],
-  '32⁴': [32, 32, 32, 32],
-  '32³ × 64': [32, 32, 32, 64],
-  '64³ × 16': [64, 64, 64, 16],
-  '64³ × 32': [64, 64, 64, 32],
-};
+import { Player } from './player.js';
+import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
+const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).href;
 
 let messageTimer = 0;
 function showMessage(text) {
@@ -35,151 +22,159 @@ function showProgress(progress, stage) {
   const box = $('#progress');
   box.hidden = progress >= 1;
   box.querySelector('.bar').style.width = `${Math.round(progress * 100)}%`;
-  box.querySelector('.label').textContent = `Generating field: ${stage} (${Math.round(progress * 100)} %)`;
+  box.querySelector('.label').textContent = `${stage} (${Math.round(progress * 100)} %)`;
 }
 
-const state = {
-  field: structuredClone(DEFAULT_FIELD),
-  lattice: '32⁴',
-  sliceZ: 0,
+const player = new Player($('#canvas'), {
   playing: !reduceMotion,
-  speed: 1,
-  t: 0,
-};
-const stats = { fieldMs: 0, frameMs: 0, fps: 0, energy: null };
-let info = null;
-let speedScale = 1;
-let generation = Promise.resolve();
-let sliceBusy = false;
-
-const engine = new Engine({
-  onError: (message) => showMessage(message),
-  onRestart: () => { regenerate(); },
-});
-const view = new SliceView($('#canvas'));
-
-function describe(report) {
-  const [nx, ny, nz, nt] = info.size;
-  const lines = [
-    `${nx}×${ny}×${nz}×${nt} field generated in ${info.fieldMs.toFixed(0)} ms`,
-    `energy ½⟨|u|²⟩ ${report.energy.toFixed(4)} (law ${report.energy_expected.toFixed(4)})`,
-  ];
-  if (report.slope !== null) {
-    lines.push(`inertial slope ${report.slope.toFixed(3)} (law ${report.slope_expected.toFixed(3)})`);
-  }
-  lines.push(`divergence ratio ${report.divergence_ratio.toExponential(1)}`);
-  $('#status').textContent = lines.join('\n');
-}
-
-/** Generates the field for `state.field`; resolves once it is shown. */
-function regenerate() {
-  const errors = validateField(state.field);
-  if (errors.length) {
-    showMessage(errors.join('\n'));
-    return generation;
-  }
-  const params = structuredClone(state.field);
-  generation = generation
-    .catch(() => {})
-    .then(async () => {
-      info = await engine.request('generate', { params }, {
-        onProgress: (p) => showProgress(p.progress, p.stage),
-      });
-      stats.fieldMs = info.fieldMs;
-      const report = await engine.request('stats');
-      stats.energy = report.energy;
-      speedScale = 2.5 * report.rms_speed / Math.sqrt(3);
-      describe(report);
-      await drawSlice();
-    })
-    .catch((err) => {
-      showProgress(1, 'failed');
-      showMessage(err.message);
-    });
-  return generation;
-}
-
-async function drawSlice() {
-  if (!info || sliceBusy) return;
-  sliceBusy = true;
-  try {
-    const slice = await engine.request('slice', {
-      z: state.sliceZ, t: state.t, width: SLICE_RES, height: SLICE_RES,
-    });
-    view.update(slice.data, slice.width, slice.height, speedScale);
-    view.render();
-  } finally {
-    sliceBusy = false;
-  }
-}
-
-function resize() {
-  const canvas = $('#canvas');
-  view.resize(canvas.clientWidth, canvas.clientHeight);
-  view.render();
-}
-
-let last = performance.now();
-function frame(now) {
-  const dt = Math.min((now - last) / 1000, 0.1);
-  last = now;
-  if (state.playing && info) {
-    state.t = (state.t + (dt * state.speed * info.size[3]) / SECONDS_PER_PERIOD) % info.size[3];
-    const start = performance.now();
-    drawSlice().then(() => {
-      stats.frameMs = performance.now() - start;
-    });
-    stats.fps = stats.fps * 0.9 + (dt > 0 ? 0.1 / dt : 0);
-  }
-  requestAnimationFrame(frame);
-}
-
-function buildControls() {
-  const gui = new GUI({ container: $('#panel'), title: 'Small-scale turbulence' });
-  const spectrum = gui.addFolder('Spectrum (paper §3.2)');
-  const s = state.field.spectrum;
-  spectrum.add(s, 'law', LAWS).name('law').onFinishChange(regenerate);
-  spectrum.add(s, 'epsilon', 0.01, 10, 0.01).name('ε (cascade rate)').onFinishChange(regenerate);
-  const kController = spectrum.add(s, 'k_inertial', 0.5, 15, 0.5).name('k inertial').onFinishChange(regenerate);
-  spectrum.add(s, 'sigma', 0, 4, 0.05).name('σ (temporal spread)').onFinishChange(regenerate);
-  const lattice = gui.addFolder('Lattice');
-  lattice.add(state, 'lattice', Object.keys(LATTICES)).name('size').onFinishChange((name) => {
-    state.field.size = [...LATTICES[name]];
-    const kMax = maxInertial(state.field.size);
-    kController.max(kMax);
-    if (s.k_inertial > kMax) s.k_inertial = kMax;
-    kController.updateDisplay();
-    state.sliceZ = Math.min(state.sliceZ, state.field.size[2] - 1);
-    regenerate();
-  });
-  lattice.add(state.field, 'seed', 0, 100000, 1).name('seed').onFinishChange(regenerate);
-  const viewFolder = gui.addFolder('View');
-  viewFolder.add(state, 'sliceZ', 0, 63, 0.25).name('slice z (lattice)').onChange(() => drawSlice());
-  viewFolder.add(state, 'playing').name('play');
-  viewFolder.add(state, 'speed', 0, 4, 0.05).name('time speed');
-  $('#panel').append($('#status'));
-  return gui;
-}
-
-buildControls();
-window.addEventListener('resize', resize);
-resize();
-const ready = regenerate();
-requestAnimationFrame(frame);
-
-/** Scripting handle for tests and the console; grows into DESIGN §5's API. */
-window.windfield = {
-  ready,
-  getField: () => structuredClone(state.field),
-  setField: (field) => {
-    const errors = validateField(field);
-    if (errors.length) return Promise.reject(new Error(errors.join('\n')));
-    state.field = structuredClone(field);
-    return regenerate();
+  onProgress: showProgress,
+  onMessage: showMessage,
+  onFrame: (frame) => {
+    const st = player.stats;
+    $('#status').textContent = `t = ${frame.time.toFixed(2)} s · ${frame.count} blobs · field ${st.fieldMs.toFixed(0)} ms · step ${st.stepMs.toFixed(2)} ms`;
   },
-  pause: () => { state.playing = false; },
-  play: () => { state.playing = true; },
-  stats: () => ({ ...stats, size: info?.size ?? null }),
-  fieldStats: (spectrum) => engine.request('stats', { spectrum }),
-  sample: (x, y, z, t) => engine.request('sample', { x, y, z, t }),
+  onScene: async (scene) => {
+    history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
+    controls?.refresh();
+  },
+});
+const state = player.state;
+const loadScene = (scene) => player.load(scene);
+const advance = (n) => player.advance(n);
+const draw = () => player.draw();
+
+function download(name, href) {
+  const a = document.createElement('a');
+  a.href = href;
+  a.download = name;
+  a.click();
+}
+
+let controls = null;
+function buildControls() {
+  const gui = new GUI({ container: $('#panel'), title: 'windfield' });
+  const actions = {
+    play: () => { state.playing = true; },
+    pause: () => { state.playing = false; },
+    step: () => advance(1),
+    reset: () => player.engine.request('reset').then(() => advance(0)),
+    copyLink: () => navigator.clipboard?.writeText(location.href).then(() => showMessage('Link copied')),
+    exportScene: () => download('scene.json', URL.createObjectURL(new Blob([JSON.stringify(state.scene, null, 2)], { type: 'application/json' }))),
+    importScene: () => $('#import').click(),
+    still: async () => {
+      const url = await player.renderReference({ width: 480, height: 360 });
+      $('#still').src = url;
+      $('#still').hidden = false;
+    },
+    png: () => download('windfield.png', $('#canvas').toDataURL('image/png')),
+  };
+  const sim = gui.addFolder('Simulation');
+  sim.add(actions, 'play');
+  sim.add(actions, 'pause');
+  sim.add(actions, 'step').name('step once');
+  sim.add(actions, 'reset');
+  sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
+  sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
+  const edit = (fn) => async () => {
+    const next = structuredClone(state.scene);
+    fn(next);
+    try {
+      await loadScene(next);
+    } catch (e) {
+      showMessage(e.message);
+      controls.refresh();
+    }
+  };
+  const proxy = {};
+  const field = gui.addFolder('Small-scale field (§3)');
+  const scene = () => state.scene;
+  const bind = (folder, label, get, set, ...range) => {
+    proxy[label] = get(scene());
+    return folder.add(proxy, label, ...range).onFinishChange(edit((s) => set(s, proxy[label])));
+  };
+  bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01, 10, 0.01);
+  bind(field, 'k inertial', (s) => s.field.spectrum.k_inertial, (s, v) => { s.field.spectrum.k_inertial = v; }, 0.5, 15, 0.5);
+  bind(field, 'σ', (s) => s.field.spectrum.sigma, (s, v) => { s.field.spectrum.sigma = v; }, 0, 4, 0.05);
+  bind(field, 'amplitude', (s) => s.field.amplitude, (s, v) => { s.field.amplitude = v; }, 0, 5, 0.05);
+  bind(field, 'seed', (s) => s.seed, (s, v) => { s.seed = v; }, 0, 10000, 1);
+  const gas = gui.addFolder('Gas (§4)');
+  bind(gas, 'diffusion κ', (s) => s.gas.diffusion, (s, v) => { s.gas.diffusion = v; }, 0, 0.05, 0.0005);
+  bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; }, 0, 2, 0.01);
+  bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100, 50000, 100);
+  const look = gui.addFolder('Rendering (§5)');
+  bind(look, 'extinction', (s) => (Array.isArray(s.render.medium.extinction) ? s.render.medium.extinction[0] : s.render.medium.extinction),
+    (s, v) => { s.render.medium.extinction = v; }, 0, 100, 0.5);
+  bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
+  const share = gui.addFolder('Share and export');
+  share.add(actions, 'copyLink').name('copy link');
+  share.add(actions, 'exportScene').name('export scene JSON');
+  share.add(actions, 'importScene').name('import scene JSON');
+  share.add(actions, 'still').name('render still (CPU)');
+  share.add(actions, 'png').name('export PNG of view');
+  $('#panel').append($('#status'), $('#still'));
+  return {
+    refresh: () => {
+      for (const c of gui.controllersRecursive()) {
+        if (c.object === proxy) c.updateDisplay();
+      }
+    },
+    gui,
+  };
+}
+
+function wireImport() {
+  $('#import').addEventListener('change', async (event) => {
+    const file = event.target.files?.[0];
+    if (!file) return;
+    try {
+      await loadScene(JSON.parse(await file.text()));
+    } catch (e) {
+      showMessage(`Could not import ${file.name}: ${e.message}`);
+    }
+    event.target.value = '';
+  });
+}
+
+function wireKeys() {
+  window.addEventListener('keydown', (e) => {
+    if (e.target.closest?.('input, textarea, select')) return;
+    if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); }
+    if (e.key === '.') advance(1);
+    if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; draw(); }
+  });
+}
+
+async function initialScene() {
+  const fromHash = await decodeScene(location.hash).catch((e) => {
+    showMessage(`The link's scene could not be read (${e.message}); showing the default scene.`);
+    return null;
+  });
+  if (fromHash) {
+    try {
+      return await loadScene(fromHash);
+    } catch (e) {
+      showMessage(`The link's scene is invalid (${e.message}); showing the default scene.`);
+    }
+  }
+  const preset = new URLSearchParams(location.search).get('preset');
+  const url = preset ? new URL(`./scenes/${encodeURIComponent(preset)}.json`, document.baseURI).href : DEFAULT_SCENE_URL;
+  let scene = await fetch(url).then((r) => (r.ok ? r.json() : null)).catch(() => null);
+  if (!scene) {
+    showMessage(`No preset named "${preset}"; showing the default scene.`);
+    scene = await fetch(DEFAULT_SCENE_URL).then((r) => r.json());
+  }
+  return loadScene(scene);
+}
+
+window.addEventListener('resize', () => player.resize());
+const ready = initialScene().then(() => {
+  controls = buildControls();
+  wireImport();
+  wireKeys();
+});
+
+window.windfield = {
+  ...player.api(ready),
+  fieldStats: (spectrum) => player.engine.request('fieldStats', { spectrum }),
+  sample: (x, y, z, t) => player.engine.request('sample', { x, y, z, t }),
 };

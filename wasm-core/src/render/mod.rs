@@ -226,6 +226,32 @@ impl Renderer {
         sum
     }
 
+    /// The column ∫ρ ds from `x` towards light `k` (to the light, or to infinity).
+    pub fn column_to_light(&self, x: Vec3, k: usize) -> f32 {
+        let (to_light, s_max) = match self.lights[k] {
+            PreparedLight::Point { position, .. } => {
+                let d = position - x;
+                (d.normalize_or_zero(), d.length())
+            }
+            PreparedLight::Directional { to_light, .. } => (to_light, f32::INFINITY),
+        };
+        self.column(x, to_light, s_max)
+    }
+
+    /// Number of lights.
+    pub fn light_count(&self) -> usize {
+        self.lights.len()
+    }
+
+    /// Axis-aligned bounds of the truncated blobs, if any.
+    pub fn gas_bounds(&self) -> Option<(Vec3, Vec3)> {
+        self.blobs.iter().fold(None, |acc, b| {
+            let r = Vec3::splat(b.radius());
+            let (lo, hi) = (b.center - r, b.center + r);
+            Some(acc.map_or((lo, hi), |(a, c): (Vec3, Vec3)| (a.min(lo), c.max(hi))))
+        })
+    }
+
     /// Σ_k p(D·l_k) S_k(x) L_k (Eq. 25); with `lambert`, max(0, n·l_k) replaces the phase.
     fn in_scattered(&self, x: Vec3, dir: Vec3, lambert: Option<Vec3>) -> Vec3 {
         let mut total = Vec3::ZERO;

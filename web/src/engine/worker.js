@@ -1,4 +1,5 @@
-// The engine's Web Worker: owns the WASM core and answers requests from the page.
+// The engine's Web Worker: owns the WASM core (field, simulation, reference renderer) and
+// answers requests from the page.
 //
 // Protocol (page → worker): { id, type, ...args }.
 // Replies (worker → page): { id, ok: true, result } | { id, ok: false, error },
@@ -7,7 +8,9 @@
 // Requests that arrive before the core is ready wait for it, in order.
 // Typed arrays in results are transferred, never copied through JSON.
 
-import init, { FieldSynthesis } from '../../pkg/windfield.js';
+import init, {
+  FieldSynthesis, ReferenceRender, SceneSimulation, sceneFieldParams, shadowGrid, validateScene,
+} from '../../pkg/windfield.js';
 
 const STAGES = [
   'filtering white noise', 'x transform (u₁, u₂)', 'y transform (u₁, u₂)', 'z transform (u₁, u₂)',
@@ -15,53 +18,129 @@ const STAGES = [
   't transform (u₃)', 'interleaving',
 ];
 
+/** The current field, its parameters (JSON) and synthesis time. */
 let field = null;
-let fieldInfo = null;
+let fieldKey = '';
+let fieldMs = 0;
+/** The running simulation and its scene. */
+let sim = null;
+let sceneJson = '';
 
 const ready = init().catch((err) => {
   self.postMessage({ type: 'fatal', error: `could not start the WASM core: ${err?.message ?? err}` });
   throw err;
 });
 
-function generate(id, params) {
+function progress(id, value, stage) {
+  self.postMessage({ id, type: 'progress', progress: value, stage });
+}
+
+/** Synthesises the field for `paramsJson` unless the current one already matches. */
+function ensureField(id, paramsJson) {
+  if (field && fieldKey === paramsJson) return;
   const t0 = performance.now();
-  const synthesis = new FieldSynthesis(JSON.stringify(params));
+  const synthesis = new FieldSynthesis(paramsJson);
   let stage = 0;
-  self.postMessage({ id, type: 'progress', progress: 0, stage: STAGES[0] });
+  progress(id, 0, STAGES[0]);
   while (synthesis.step()) {
     stage += 1;
-    self.postMessage({ id, type: 'progress', progress: synthesis.progress(), stage: STAGES[stage] });
+    progress(id, synthesis.progress() * 0.95, STAGES[stage]);
   }
   const next = synthesis.finish();
   synthesis.free();
   field?.free();
   field = next;
-  const fieldMs = performance.now() - t0;
-  fieldInfo = { size: Array.from(field.size()), fieldMs, params };
-  self.postMessage({ id, type: 'progress', progress: 1, stage: 'done' });
-  return { result: fieldInfo };
+  fieldKey = paramsJson;
+  fieldMs = performance.now() - t0;
 }
 
-function requireField() {
-  if (!field) throw new Error('no field generated yet');
-  return field;
+function load(id, scene) {
+  const normal = validateScene(JSON.stringify(scene));
+  const parsed = JSON.parse(normal);
+  if (parsed.field.amplitude > 0) ensureField(id, sceneFieldParams(normal));
+  const next = parsed.field.amplitude > 0 ? SceneSimulation.withField(normal, field) : new SceneSimulation(normal);
+  sim?.free();
+  sim = next;
+  sceneJson = normal;
+  progress(id, 1, 'done');
+  return { scene: parsed, fieldMs, size: field ? Array.from(field.size()) : null };
+}
+
+function requireSim() {
+  if (!sim) throw new Error('no scene loaded yet');
+  return sim;
+}
+
+/** The blobs of the current state as flat arrays (transferred). */
+function frame() {
+  const s = requireSim();
+  const result = {
+    count: s.count(),
+    time: s.time(),
+    positions: s.positions(),
+    sigma: s.sigma(),
+    mass: s.mass(),
+    albedo: s.albedo(),
+    emission: s.emission(),
+    age: s.age(),
+    counts: JSON.parse(s.counts()),
+  };
+  const transfer = ['positions', 'sigma', 'mass', 'albedo', 'emission', 'age'].map((k) => result[k].buffer);
+  return { result, transfer };
 }
 
 const handlers = {
-  generate: ({ id, params }) => generate(id, params),
+  load: ({ id, scene }) => ({ result: load(id, scene) }),
+  validate: ({ scene }) => ({ result: JSON.parse(validateScene(JSON.stringify(scene))) }),
+  reset: () => {
+    const next = field && JSON.parse(sceneJson).field.amplitude > 0
+      ? SceneSimulation.withField(sceneJson, field)
+      : new SceneSimulation(sceneJson);
+    sim?.free();
+    sim = next;
+    return frame();
+  },
+  advance: ({ steps }) => {
+    const t0 = performance.now();
+    if (steps > 0) requireSim().step(steps);
+    const stepMs = steps > 0 ? (performance.now() - t0) / steps : 0;
+    const out = frame();
+    out.result.stepMs = stepMs;
+    return out;
+  },
+  blobList: ({ camera, image }) => {
+    const list = JSON.parse(requireSim().blobList());
+    if (camera) list.camera = camera;
+    if (image) list.image = { ...list.image, ...image };
+    return { result: list };
+  },
+  shadowGrid: ({ list, res }) => {
+    const data = shadowGrid(JSON.stringify(list), res);
+    return { result: data, transfer: [data.buffer] };
+  },
+  reference: ({ id, list, width, height }) => {
+    const render = new ReferenceRender(JSON.stringify(list), width, height);
+    progress(id, 0, 'rendering');
+    const band = Math.max(1, Math.ceil(render.height() / 40));
+    while (render.step(band)) progress(id, render.progress(), 'rendering');
+    const png = render.png();
+    const rgb = render.rgb();
+    render.free();
+    return { result: { png, rgb, width, height }, transfer: [png.buffer, rgb.buffer] };
+  },
   slice: ({ z, t, width, height }) => {
-    const data = requireField().slice_xy(z, t, width, height);
+    if (!field) throw new Error('this scene has no small-scale field');
+    const data = field.slice_xy(z, t, width, height);
     return { result: { data, width, height }, transfer: [data.buffer] };
   },
-  sample: ({ x, y, z, t }) => ({ result: Array.from(requireField().sample(x, y, z, t)) }),
-  data: () => {
-    const data = requireField().data();
-    return { result: { data, size: fieldInfo.size }, transfer: [data.buffer] };
+  sample: ({ x, y, z, t }) => {
+    if (!field) throw new Error('this scene has no small-scale field');
+    return { result: Array.from(field.sample(x, y, z, t)) };
   },
-  stats: ({ spectrum }) => ({
-    result: JSON.parse(requireField().stats(spectrum ? JSON.stringify(spectrum) : '')),
-  }),
-  info: () => ({ result: fieldInfo }),
+  fieldStats: ({ spectrum }) => {
+    if (!field) throw new Error('this scene has no small-scale field');
+    return { result: JSON.parse(field.stats(spectrum ? JSON.stringify(spectrum) : '')) };
+  },
 };
 
 self.onmessage = async (event) => {

@@ -1,0 +1,175 @@
+// The playground (index.html): DESIGN §5's window.windfield, the scene in the URL, fallbacks.
+import { test, expect } from '@playwright/test';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { canvasLuminance, collectErrors } from './helpers.js';
+import { cliPath, loadCore } from '../tests/support/core.js';
+import { psnr } from '../web/src/image-metrics.js';
+
+async function open(page, url = './') {
+  await page.goto(url);
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+}
+
+function dataUrlBytes(url) {
+  return Buffer.from(url.split(',')[1], 'base64');
+}
+
+test('loads without errors; blobs appear and move', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const before = await page.evaluate(() => window.windfield.exportBlobs({ width: 64, height: 48 }));
+  await page.evaluate(() => window.windfield.step(60));
+  const after = await page.evaluate(() => window.windfield.exportBlobs({ width: 64, height: 48 }));
+  expect(after.blobs.length).toBeGreaterThan(before.blobs.length);
+  expect(after.blobs[0].center).not.toEqual(before.blobs[0].center);
+  const s = await page.evaluate(() => window.windfield.stats());
+  for (const key of ['blobs', 'fieldMs', 'stepMs', 'frameMs', 'fps']) expect(typeof s[key]).toBe('number');
+  expect(s.blobs).toBe(after.blobs.length);
+  expect((await canvasLuminance(page, '#canvas')).std).toBeGreaterThan(3);
+  expect(errors).toEqual([]);
+});
+
+test('step(n) is deterministic: same scene, same blobs', async ({ page }) => {
+  await open(page);
+  const run = () => page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    await w.setScene(w.getScene());
+    await w.step(45);
+    return w.exportBlobs({ width: 32, height: 24 });
+  });
+  const a = await run();
+  const b = await run();
+  expect(a.blobs.length).toBeGreaterThan(10);
+  expect(b).toEqual(a);
+});
+
+test('both GPU views draw something', async ({ page }) => {
+  await open(page);
+  await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(120); });
+  for (const mode of ['points', 'raymarch']) {
+    const url = await page.evaluate((m) => window.windfield.captureGPU({ mode: m, width: 160, height: 120 }), mode);
+    expect(url.startsWith('data:image/png;base64,')).toBe(true);
+    const core = await loadCore();
+    const raw = core.decodePng(dataUrlBytes(url));
+    const rgb = raw.subarray(8);
+    let min = 255;
+    let max = 0;
+    for (const v of rgb) { min = Math.min(min, v); max = Math.max(max, v); }
+    expect(max - min, `${mode} view is blank`).toBeGreaterThan(30);
+  }
+});
+
+test('the GPU ray march matches the WASM reference still (≥ 30 dB)', async ({ page }) => {
+  await open(page);
+  const core = await loadCore();
+  const decode = (url) => core.decodePng(dataUrlBytes(url)).subarray(8);
+  const colourful = await page.evaluate(() => {
+    const s = window.windfield.getScene();
+    s.emitters = [
+      { ...s.emitters[0], center: [-0.25, 0, 0], albedo: [0.9, 0.5, 0.2] },
+      { ...s.emitters[0], center: [0.25, 0, 0], albedo: [0, 0, 0], emission: [0.3, 0.6, 1.2] },
+    ];
+    s.render.medium.phase = { type: 'henyey-greenstein', g: 0.5 };
+    s.render.lights = [
+      { type: 'point', position: [2, 3, 2], color: [1.5, 1.4, 1.3] },
+      { type: 'directional', direction: [0.5, -1, -0.3], color: [0.3, 0.35, 0.5] },
+    ];
+    return s;
+  });
+  for (const scene of [null, colourful]) {
+    const { gpu, ref } = await page.evaluate(async (sc) => {
+      const w = window.windfield;
+      w.pause();
+      if (sc) await w.setScene(sc);
+      await w.step(150);
+      return {
+        gpu: await w.captureGPU({ mode: 'raymarch', width: 160, height: 120 }),
+        ref: await w.renderReference({ width: 160, height: 120 }),
+      };
+    }, scene);
+    const p = psnr(decode(gpu), decode(ref));
+    expect(p, scene ? 'coloured scene' : 'default scene').toBeGreaterThanOrEqual(30);
+  }
+});
+
+test('the reference still in the browser equals the native CLI (≥ 45 dB)', async ({ page }) => {
+  await open(page);
+  const { list, still } = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    await w.step(90);
+    return { list: await w.exportBlobs({ width: 120, height: 90 }), still: await w.renderReference({ width: 120, height: 90 }) };
+  });
+  const dir = mkdtempSync(join(tmpdir(), 'windfield-e2e-'));
+  try {
+    writeFileSync(join(dir, 'list.json'), JSON.stringify(list));
+    execFileSync(cliPath, ['render', join(dir, 'list.json'), '--out', join(dir, 'native.png')]);
+    const core = await loadCore();
+    const native = core.decodePng(readFileSync(join(dir, 'native.png'))).subarray(8);
+    const browser = core.decodePng(dataUrlBytes(still)).subarray(8);
+    const p = psnr(native, browser);
+    expect(p).toBeGreaterThanOrEqual(45);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('a shared URL reproduces the scene exactly', async ({ page, context }) => {
+  await open(page);
+  const scene = await page.evaluate(async () => {
+    const s = window.windfield.getScene();
+    s.seed = 4242;
+    s.gas.dissipation = 0.33;
+    s.wind.push({ type: 'vortex', position: [0, 1, 0], axis: [0, 1, 0], strength: 0.4, radius: 0.15 });
+    await window.windfield.setScene(s);
+    return window.windfield.getScene();
+  });
+  const url = page.url();
+  expect(url).toContain('#scene=1.');
+  const other = await context.newPage();
+  await open(other, url);
+  expect(await other.evaluate(() => window.windfield.getScene())).toEqual(scene);
+});
+
+test('garbage in the hash: a message and the default scene runs', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page, './#scene=1.garbage!!');
+  await expect(page.locator('#message')).toContainText('could not be read');
+  const scene = await page.evaluate(() => window.windfield.getScene());
+  expect(scene.version).toBe(1);
+  expect(errors).toEqual([]);
+});
+
+test('invalid scenes are rejected with the path; the last good scene keeps running', async ({ page }) => {
+  await open(page);
+  const result = await page.evaluate(async () => {
+    const w = window.windfield;
+    const good = w.getScene();
+    const bad = structuredClone(good);
+    bad.field.size[1] = 33;
+    let message = 'accepted';
+    try {
+      await w.setScene(bad);
+    } catch (e) {
+      message = e.message;
+    }
+    return { message, same: JSON.stringify(w.getScene()) === JSON.stringify(good) };
+  });
+  expect(result.message).toContain('field.size[1]');
+  expect(result.same).toBe(true);
+  await page.evaluate(() => window.windfield.step(5));
+});
+
+test('controls change the scene', async ({ page }) => {
+  await open(page);
+  const input = page.locator('.lil-controller', { hasText: 'dissipation' }).locator('input').first();
+  await input.fill('0.75');
+  await input.press('Enter');
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene().gas.dissipation)).toBe(0.75);
+});

@@ -1,0 +1,187 @@
+// The field explorer (field.html): generates the small-scale field in the engine worker (with
+// progress), animates one slice of it over time, and lets the spectrum be edited.
+
+import GUI from 'lil-gui';
+import { Engine } from './engine/client.js';
+import { SliceView } from './views/slice-view.js';
+import { DEFAULT_FIELD, LAWS, maxInertial, validateField } from './field-params.js';
+
+/** Samples per side of the displayed slice. */
+const SLICE_RES = 64;
+/** Seconds of animation per temporal period of the field (at speed 1). */
+const SECONDS_PER_PERIOD = 8;
+
+const LATTICES = {
+  '16⁴': [16, 16, 16, 16],
+  '32⁴': [32, 32, 32, 32],
+  '32³ × 64': [32, 32, 32, 64],
+  '64³ × 16': [64, 64, 64, 16],
+  '64³ × 32': [64, 64, 64, 32],
+};
+
+const $ = (selector) => document.querySelector(selector);
+const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
+
+let messageTimer = 0;
+function showMessage(text) {
+  const box = $('#message');
+  box.textContent = text;
+  box.hidden = false;
+  clearTimeout(messageTimer);
+  messageTimer = setTimeout(() => { box.hidden = true; }, 8000);
+}
+
+function showProgress(progress, stage) {
+  const box = $('#progress');
+  box.hidden = progress >= 1;
+  box.querySelector('.bar').style.width = `${Math.round(progress * 100)}%`;
+  box.querySelector('.label').textContent = `Generating field: ${stage} (${Math.round(progress * 100)} %)`;
+}
+
+const state = {
+  field: structuredClone(DEFAULT_FIELD),
+  lattice: '32⁴',
+  sliceZ: 0,
+  playing: !reduceMotion,
+  speed: 1,
+  t: 0,
+};
+const stats = { fieldMs: 0, frameMs: 0, fps: 0, energy: null };
+let info = null;
+let speedScale = 1;
+let generation = Promise.resolve();
+let sliceBusy = false;
+
+const engine = new Engine({
+  onError: (message) => showMessage(message),
+  onRestart: () => { regenerate(); },
+});
+const view = new SliceView($('#canvas'));
+
+function describe(report) {
+  const [nx, ny, nz, nt] = info.size;
+  const lines = [
+    `${nx}×${ny}×${nz}×${nt} field generated in ${info.fieldMs.toFixed(0)} ms`,
+    `energy ½⟨|u|²⟩ ${report.energy.toFixed(4)} (law ${report.energy_expected.toFixed(4)})`,
+  ];
+  if (report.slope !== null) {
+    lines.push(`inertial slope ${report.slope.toFixed(3)} (law ${report.slope_expected.toFixed(3)})`);
+  }
+  lines.push(`divergence ratio ${report.divergence_ratio.toExponential(1)}`);
+  $('#status').textContent = lines.join('\n');
+}
+
+/** Generates the field for `state.field`; resolves once it is shown. */
+function regenerate() {
+  const errors = validateField(state.field);
+  if (errors.length) {
+    showMessage(errors.join('\n'));
+    return generation;
+  }
+  const params = structuredClone(state.field);
+  generation = generation
+    .catch(() => {})
+    .then(async () => {
+      // The field alone: a scene with only a field (no wind, no gas).
+      const loaded = await engine.request('load', {
+        scene: { version: 1, seed: params.seed, field: { size: params.size, spectrum: params.spectrum } },
+      }, { onProgress: (p) => showProgress(p.progress, p.stage) });
+      info = { size: loaded.size, fieldMs: loaded.fieldMs };
+      stats.fieldMs = info.fieldMs;
+      const report = await engine.request('fieldStats');
+      stats.energy = report.energy;
+      speedScale = 2.5 * report.rms_speed / Math.sqrt(3);
+      describe(report);
+      await drawSlice();
+    })
+    .catch((err) => {
+      showProgress(1, 'failed');
+      showMessage(err.message);
+    });
+  return generation;
+}
+
+async function drawSlice() {
+  if (!info || sliceBusy) return;
+  sliceBusy = true;
+  try {
+    const slice = await engine.request('slice', {
+      z: state.sliceZ, t: state.t, width: SLICE_RES, height: SLICE_RES,
+    });
+    view.update(slice.data, slice.width, slice.height, speedScale);
+    view.render();
+  } finally {
+    sliceBusy = false;
+  }
+}
+
+function resize() {
+  const canvas = $('#canvas');
+  view.resize(canvas.clientWidth, canvas.clientHeight);
+  view.render();
+}
+
+let last = performance.now();
+function frame(now) {
+  const dt = Math.min((now - last) / 1000, 0.1);
+  last = now;
+  if (state.playing && info) {
+    state.t = (state.t + (dt * state.speed * info.size[3]) / SECONDS_PER_PERIOD) % info.size[3];
+    const start = performance.now();
+    drawSlice().then(() => {
+      stats.frameMs = performance.now() - start;
+    });
+    stats.fps = stats.fps * 0.9 + (dt > 0 ? 0.1 / dt : 0);
+  }
+  requestAnimationFrame(frame);
+}
+
+function buildControls() {
+  const gui = new GUI({ container: $('#panel'), title: 'Small-scale turbulence' });
+  const spectrum = gui.addFolder('Spectrum (paper §3.2)');
+  const s = state.field.spectrum;
+  spectrum.add(s, 'law', LAWS).name('law').onFinishChange(regenerate);
+  spectrum.add(s, 'epsilon', 0.01, 10, 0.01).name('ε (cascade rate)').onFinishChange(regenerate);
+  const kController = spectrum.add(s, 'k_inertial', 0.5, 15, 0.5).name('k inertial').onFinishChange(regenerate);
+  spectrum.add(s, 'sigma', 0, 4, 0.05).name('σ (temporal spread)').onFinishChange(regenerate);
+  const lattice = gui.addFolder('Lattice');
+  lattice.add(state, 'lattice', Object.keys(LATTICES)).name('size').onFinishChange((name) => {
+    state.field.size = [...LATTICES[name]];
+    const kMax = maxInertial(state.field.size);
+    kController.max(kMax);
+    if (s.k_inertial > kMax) s.k_inertial = kMax;
+    kController.updateDisplay();
+    state.sliceZ = Math.min(state.sliceZ, state.field.size[2] - 1);
+    regenerate();
+  });
+  lattice.add(state.field, 'seed', 0, 100000, 1).name('seed').onFinishChange(regenerate);
+  const viewFolder = gui.addFolder('View');
+  viewFolder.add(state, 'sliceZ', 0, 63, 0.25).name('slice z (lattice)').onChange(() => drawSlice());
+  viewFolder.add(state, 'playing').name('play');
+  viewFolder.add(state, 'speed', 0, 4, 0.05).name('time speed');
+  $('#panel').append($('#status'));
+  return gui;
+}
+
+buildControls();
+window.addEventListener('resize', resize);
+resize();
+const ready = regenerate();
+requestAnimationFrame(frame);
+
+/** Scripting handle for tests and the console (the playground has DESIGN §5's full API). */
+window.windfield = {
+  ready,
+  getField: () => structuredClone(state.field),
+  setField: (field) => {
+    const errors = validateField(field);
+    if (errors.length) return Promise.reject(new Error(errors.join('\n')));
+    state.field = structuredClone(field);
+    return regenerate();
+  },
+  pause: () => { state.playing = false; },
+  play: () => { state.playing = true; },
+  stats: () => ({ ...stats, size: info?.size ?? null }),
+  fieldStats: (spectrum) => engine.request('fieldStats', { spectrum }),
+  sample: (x, y, z, t) => engine.request('sample', { x, y, z, t }),
+};

@@ -1,0 +1,188 @@
+// A player: one scene running in its own engine worker, drawn into one canvas, with the
+// scripting API of DESIGN §5. The playground page and every <wind-field> element each own one.
+
+import { Engine } from './engine/client.js';
+import { SceneView } from './views/scene-view.js';
+
+/** Shadow-grid points per axis for the GPU ray march. */
+const SHADOW_GRID = 32;
+/** Most fixed steps taken in one animation frame. */
+const MAX_STEPS_PER_FRAME = 4;
+
+function bytesToDataUrl(bytes) {
+  let binary = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return `data:image/png;base64,${btoa(binary)}`;
+}
+
+export class Player {
+  /**
+   * @param {HTMLCanvasElement} canvas
+   * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
+   *          onFrame?: (frame: object) => void, onScene?: (scene: object) => void,
+   *          playing?: boolean}} hooks
+   */
+  constructor(canvas, hooks = {}) {
+    this.hooks = hooks;
+    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'points', speed: 1, visible: true };
+    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0 };
+    this.busy = false;
+    this.lastFrame = null;
+    this.accumulated = 0;
+    this.view = new SceneView(canvas);
+    this.engine = new Engine({
+      onError: (m) => hooks.onMessage?.(m),
+      onRestart: () => {
+        if (this.state.scene) this.load(this.state.scene).catch((e) => hooks.onMessage?.(e.message));
+      },
+    });
+    this.lastTime = performance.now();
+    this.running = true;
+    this.resize();
+    requestAnimationFrame((t) => this.loop(t));
+  }
+
+  /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
+  async load(scene) {
+    const info = await this.engine.request('load', { scene }, {
+      onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
+    });
+    this.hooks.onProgress?.(1, 'done');
+    this.state.scene = info.scene;
+    this.stats.fieldMs = info.fieldMs;
+    this.view.setCamera(info.scene.render.camera);
+    this.view.setRenderSettings(info.scene.render);
+    this.accumulated = 0;
+    await this.advance(0);
+    await this.hooks.onScene?.(info.scene);
+    return info.scene;
+  }
+
+  /** Loads the scene JSON at `url`. */
+  async loadUrl(url) {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error(`could not load ${url} (${response.status})`);
+    let scene;
+    try {
+      scene = await response.json();
+    } catch {
+      throw new Error(`${url} is not a scene (JSON expected)`);
+    }
+    return this.load(scene);
+  }
+
+  async advance(steps) {
+    const t0 = performance.now();
+    const frame = await this.engine.request('advance', { steps });
+    this.lastFrame = frame;
+    this.stats.blobs = frame.count;
+    if (steps > 0) this.stats.stepMs = frame.stepMs;
+    await this.draw();
+    this.stats.frameMs = performance.now() - t0;
+    this.hooks.onFrame?.(frame);
+  }
+
+  /** The blob list of the current state for the current view (DESIGN §4). */
+  exportBlobs({ width, height } = this.view.size()) {
+    return this.engine.request('blobList', { camera: this.view.cameraSettings(), image: { width, height } });
+  }
+
+  async draw(size = this.view.size()) {
+    if (!this.lastFrame || !this.state.scene) return;
+    if (this.state.mode === 'raymarch') {
+      const list = await this.exportBlobs(size);
+      const grid = list.shadows && list.lights.length ? await this.engine.request('shadowGrid', { list, res: SHADOW_GRID }) : null;
+      this.view.raymarch.update(list, grid, this.view.viewBasis(), size.width, size.height);
+    } else {
+      this.view.points.update(this.lastFrame, this.state.scene.render.medium.albedo);
+    }
+    this.view.render(this.state.mode);
+  }
+
+  resize() {
+    const c = this.view.canvas;
+    this.view.resize(Math.max(c.clientWidth, 1), Math.max(c.clientHeight, 1));
+    this.draw().catch(() => {});
+  }
+
+  loop(now) {
+    if (!this.running) return;
+    const dt = Math.min((now - this.lastTime) / 1000, 0.1);
+    this.lastTime = now;
+    this.stats.fps = 0.9 * this.stats.fps + 0.1 * (dt > 0 ? 1 / dt : 0);
+    if (this.state.scene && !this.busy && this.state.visible) {
+      let steps = 0;
+      if (this.state.playing) {
+        this.accumulated += dt * this.state.speed;
+        const h = this.state.scene.simulation.dt;
+        steps = Math.min(Math.floor(this.accumulated / h), MAX_STEPS_PER_FRAME);
+        this.accumulated -= steps * h;
+      }
+      this.busy = true;
+      (steps > 0 ? this.advance(steps) : this.draw())
+        .catch((e) => this.hooks.onMessage?.(e.message))
+        .finally(() => { this.busy = false; });
+    }
+    requestAnimationFrame((t) => this.loop(t));
+  }
+
+  /** Runs `fn` when no frame is in flight. */
+  async exclusive(fn) {
+    while (this.busy) await new Promise((r) => setTimeout(r, 5));
+    this.busy = true;
+    try {
+      return await fn();
+    } finally {
+      this.busy = false;
+    }
+  }
+
+  /** Renders the current view offscreen at `width × height`; a PNG data URL. */
+  captureGPU({ mode = 'raymarch', width = 640, height = 480 } = {}) {
+    return this.exclusive(async () => {
+      const before = this.view.size();
+      const saved = this.state.mode;
+      this.state.mode = mode;
+      try {
+        this.view.resize(width, height);
+        await this.draw({ width, height });
+        return this.view.canvas.toDataURL('image/png');
+      } finally {
+        this.state.mode = saved;
+        this.view.resize(before.width, before.height);
+      }
+    });
+  }
+
+  /** The WASM reference still of the current view at `width × height`; a PNG data URL. */
+  async renderReference({ width = 320, height = 240 } = {}) {
+    const list = await this.exportBlobs({ width, height });
+    const out = await this.engine.request('reference', { list, width, height }, {
+      onProgress: (p) => this.hooks.onProgress?.(p.progress, 'Rendering reference still'),
+    });
+    this.hooks.onProgress?.(1, 'done');
+    return bytesToDataUrl(out.png);
+  }
+
+  /** DESIGN §5's methods, bound to this player. */
+  api(ready) {
+    return {
+      ready,
+      getScene: () => structuredClone(this.state.scene),
+      setScene: (scene) => this.load(scene),
+      pause: () => { this.state.playing = false; },
+      play: () => { this.state.playing = true; },
+      step: (n = 1) => this.exclusive(() => this.advance(n)),
+      stats: () => ({ ...this.stats }),
+      exportBlobs: (size) => this.exportBlobs(size),
+      captureGPU: (options) => this.captureGPU(options),
+      renderReference: (options) => this.renderReference(options),
+    };
+  }
+
+  dispose() {
+    this.running = false;
+    this.engine.terminate();
+    this.view.renderer.dispose();
+  }
+}

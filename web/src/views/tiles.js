@@ -1,0 +1,81 @@
+// Screen tiles for the GPU ray march: each blob's truncated sphere is projected to the screen
+// and its index appended to every tile it may cover, nearest blobs first. A pixel then visits
+// only the blobs of its tile, so the cost per pixel follows local, not total, blob count.
+
+/** Blobs are truncated at this many σ (as in the reference renderer). */
+export const TRUNCATION = 4.5;
+
+/**
+ * @param {{positions: Float32Array, sigma: Float32Array, count: number}} blobs
+ * @param {{position: number[], forward: number[], right: number[], up: number[], tanHalf: number}} view
+ *   camera basis (unit vectors) and tan(fov_y / 2)
+ * @param {number} width @param {number} height pixels; tile rows count from the bottom (GL)
+ * @param {number} tile tile side in pixels
+ * @returns {{tilesX: number, tilesY: number, heads: Float32Array, list: Float32Array}}
+ *   heads: per tile [start, count, 0, 0]; list: blob indices, front to back within each tile
+ */
+export function binBlobs(blobs, view, width, height, tile) {
+  const tilesX = Math.ceil(width / tile);
+  const tilesY = Math.ceil(height / tile);
+  const aspect = width / height;
+  const [ox, oy, oz] = view.position;
+  const rects = [];
+  for (let i = 0; i < blobs.count; i++) {
+    const cx = blobs.positions[3 * i] - ox;
+    const cy = blobs.positions[3 * i + 1] - oy;
+    const cz = blobs.positions[3 * i + 2] - oz;
+    const r = TRUNCATION * blobs.sigma[i];
+    const z = cx * view.forward[0] + cy * view.forward[1] + cz * view.forward[2];
+    if (z + r <= 0) continue; // wholly behind the camera
+    let x0 = 0;
+    let x1 = tilesX - 1;
+    let y0 = 0;
+    let y1 = tilesY - 1;
+    if (z > r * 1.01) {
+      const x = cx * view.right[0] + cy * view.right[1] + cz * view.right[2];
+      const y = cx * view.up[0] + cy * view.up[1] + cz * view.up[2];
+      // A sphere's projection lies within r / sqrt(z² − r²) of its centre's (in tan units).
+      const spread = r / Math.sqrt(z * z - r * r);
+      const u = x / z;
+      const v = y / z;
+      const px = (t) => ((t / (view.tanHalf * aspect)) * 0.5 + 0.5) * width;
+      const py = (t) => ((t / view.tanHalf) * 0.5 + 0.5) * height;
+      // Off axis the projected circle stretches by up to sqrt(1 + u²) (resp. v): cover it.
+      const gu = spread * Math.hypot(1, u);
+      const gv = spread * Math.hypot(1, v);
+      x0 = Math.floor(px(u - gu) / tile);
+      x1 = Math.floor(px(u + gu) / tile);
+      y0 = Math.floor(py(v - gv) / tile);
+      y1 = Math.floor(py(v + gv) / tile);
+      if (x1 < 0 || y1 < 0 || x0 >= tilesX || y0 >= tilesY) continue;
+      x0 = Math.max(x0, 0);
+      y0 = Math.max(y0, 0);
+      x1 = Math.min(x1, tilesX - 1);
+      y1 = Math.min(y1, tilesY - 1);
+    }
+    rects.push({ i, z, x0, x1, y0, y1 });
+  }
+  rects.sort((a, b) => a.z - b.z || a.i - b.i);
+  const counts = new Uint32Array(tilesX * tilesY);
+  for (const q of rects) {
+    for (let ty = q.y0; ty <= q.y1; ty++) for (let tx = q.x0; tx <= q.x1; tx++) counts[ty * tilesX + tx]++;
+  }
+  const heads = new Float32Array(4 * tilesX * tilesY);
+  let total = 0;
+  for (let t = 0; t < counts.length; t++) {
+    heads[4 * t] = total;
+    total += counts[t];
+  }
+  const list = new Float32Array(Math.max(total, 1));
+  const fill = new Uint32Array(counts.length);
+  for (const q of rects) {
+    for (let ty = q.y0; ty <= q.y1; ty++) {
+      for (let tx = q.x0; tx <= q.x1; tx++) {
+        const t = ty * tilesX + tx;
+        list[heads[4 * t] + fill[t]++] = q.i;
+      }
+    }
+  }
+  for (let t = 0; t < counts.length; t++) heads[4 * t + 1] = counts[t];
+  return { tilesX, tilesY, heads, list };
+}
