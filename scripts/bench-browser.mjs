@@ -10,22 +10,21 @@ import { fileURLToPath } from 'node:url';
 const root = fileURLToPath(new URL('..', import.meta.url));
 const PORT = 4179;
 
-function gzipSize(dir, pattern) {
+/** Gzipped size (KiB) of the files under `dir` whose names match `pattern`. */
+export function gzipKiB(dir, pattern) {
   let total = 0;
   for (const name of readdirSync(dir)) {
     const path = `${dir}/${name}`;
-    if (statSync(path).isDirectory()) total += gzipSize(path, pattern);
+    if (statSync(path).isDirectory()) total += gzipKiB(path, pattern) * 1024;
     else if (pattern.test(name)) total += gzipSync(readFileSync(path), { level: 9 }).length;
   }
-  return total;
+  return total / 1024;
 }
 
-/** Runs the benchmarks; returns the results. */
+/** Runs the benchmarks against the built site; returns the results. */
 export async function benchBrowser() {
   const results = [];
   const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
-  emit('site_js_gzip_kib', gzipSize(`${root}dist`, /\.js$/) / 1024, 'KiB');
-  emit('site_wasm_gzip_kib', gzipSize(`${root}dist`, /\.wasm$/) / 1024, 'KiB');
 
   const server = spawn('npx', ['vite', 'preview', '--config', 'web/vite.config.js', '--host', '127.0.0.1', '--port', String(PORT), '--strictPort'], {
     cwd: root, stdio: 'ignore', detached: true,

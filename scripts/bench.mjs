@@ -6,7 +6,7 @@ import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
-import { benchBrowser } from './bench-browser.mjs';
+import { benchBrowser, gzipKiB } from './bench-browser.mjs';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const json = process.argv.includes('--json');
@@ -67,8 +67,14 @@ if (nativeMs && wasmMs) emit('field_generate_wasm_over_native', wasmMs / nativeM
 
 // The browser: the built site (`npm run build` first), skipped with --no-browser.
 if (!process.argv.includes('--no-browser')) {
-  execFileSync('npx', ['vite', 'build', '--config', 'web/vite.config.js', '--logLevel', 'error'], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
-  execFileSync('npx', ['vite', 'build', '--config', 'web/vite.embed.config.js', '--logLevel', 'error'], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  const build = (config) => execFileSync('npx', ['vite', 'build', '--config', config, '--logLevel', 'error'], { cwd: root, stdio: ['ignore', 'ignore', 'inherit'] });
+  // The site's sizes before the embed build adds its standalone module to dist/.
+  build('web/vite.config.js');
+  emit('site_js_gzip_kib', gzipKiB(`${root}dist`, /\.js$/), 'KiB');
+  emit('site_wasm_gzip_kib', gzipKiB(`${root}dist`, /\.wasm$/), 'KiB');
+  const before = gzipKiB(`${root}dist`, /\.js$/);
+  build('web/vite.embed.config.js');
+  emit('embed_module_gzip_kib', gzipKiB(`${root}dist`, /\.js$/) - before, 'KiB');
   for (const r of await benchBrowser()) emit(r.name, r.value, r.unit);
 }
 
