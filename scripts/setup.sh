@@ -36,7 +36,9 @@ fi
 
 if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   log "installing npm packages"
-  npm ci --no-audit --no-fund
+  # npm ci insists on every platform's optional packages in the lock; some npm setups leave
+  # them out. npm install still takes the locked versions.
+  npm ci --no-audit --no-fund || npm install --no-audit --no-fund
 fi
 
 if [ "$want_browser" = 1 ] && [ ! -x "${CHROMIUM_PATH:-/usr/bin/chromium}" ]; then
