@@ -2,6 +2,7 @@
 // progress), animates one slice of it over time, and lets the spectrum be edited.
 
 import GUI from 'lil-gui';
+import { showMessage, showProgress } from './page-ui.js';
 import { Engine } from './engine/client.js';
 import { SliceView } from './views/slice-view.js';
 import { DEFAULT_FIELD, LAWS, maxInertial, validateField } from './field-params.js';
@@ -21,22 +22,6 @@ const LATTICES = {
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
-
-let messageTimer = 0;
-function showMessage(text) {
-  const box = $('#message');
-  box.textContent = text;
-  box.hidden = false;
-  clearTimeout(messageTimer);
-  messageTimer = setTimeout(() => { box.hidden = true; }, 8000);
-}
-
-function showProgress(progress, stage) {
-  const box = $('#progress');
-  box.hidden = progress >= 1;
-  box.querySelector('.bar').style.width = `${Math.round(progress * 100)}%`;
-  box.querySelector('.label').textContent = `Generating field: ${stage} (${Math.round(progress * 100)} %)`;
-}
 
 const state = {
   field: structuredClone(DEFAULT_FIELD),
@@ -85,7 +70,7 @@ function regenerate() {
       // The field alone: a scene with only a field (no wind, no gas).
       const loaded = await engine.request('load', {
         scene: { version: 1, seed: params.seed, field: { size: params.size, spectrum: params.spectrum } },
-      }, { onProgress: (p) => showProgress(p.progress, p.stage) });
+      }, { onProgress: (p) => showProgress(p.progress, `Generating field: ${p.stage}`) });
       info = { size: loaded.size, fieldMs: loaded.fieldMs };
       stats.fieldMs = info.fieldMs;
       const report = await engine.request('fieldStats');

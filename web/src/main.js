@@ -2,28 +2,13 @@
 // URL hash, imports and exports, and exposes `window.windfield` (DESIGN §5).
 
 import GUI from 'lil-gui';
+import { showMessage, showProgress } from './page-ui.js';
 import { Player } from './player.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
 const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).href;
-
-let messageTimer = 0;
-function showMessage(text) {
-  const box = $('#message');
-  box.textContent = text;
-  box.hidden = false;
-  clearTimeout(messageTimer);
-  messageTimer = setTimeout(() => { box.hidden = true; }, 8000);
-}
-
-function showProgress(progress, stage) {
-  const box = $('#progress');
-  box.hidden = progress >= 1;
-  box.querySelector('.bar').style.width = `${Math.round(progress * 100)}%`;
-  box.querySelector('.label').textContent = `${stage} (${Math.round(progress * 100)} %)`;
-}
 
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
