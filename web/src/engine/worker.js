@@ -91,7 +91,6 @@ function frame() {
 
 const handlers = {
   load: ({ id, scene }) => ({ result: load(id, scene) }),
-  validate: ({ scene }) => ({ result: JSON.parse(validateScene(JSON.stringify(scene))) }),
   reset: () => {
     const next = field && JSON.parse(sceneJson).field.amplitude > 0
       ? SceneSimulation.withField(sceneJson, field)

@@ -287,7 +287,6 @@ export class RaymarchLayer {
       u.lightColor.value[i].fromArray(l.color);
     });
     u.srgb.value = (list.image?.encoding ?? 'srgb') === 'srgb';
-    this.maxPerTile = Math.max(0, ...Array.from({ length: tiles.tilesX * tiles.tilesY }, (_, t) => tiles.heads[4 * t + 1]));
   }
 
   /** Binds the opaque pass (colour and depth targets) and its camera's clip planes. */
