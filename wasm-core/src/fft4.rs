@@ -11,11 +11,23 @@
 
 use crate::lattice::Lattice;
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftDirection, FftNum, FftPlanner};
+use rustfft::{Fft, FftDirection, FftNum};
 use std::sync::Arc;
 
 /// Columns gathered per batch on the strided axes.
 pub const BATCH: usize = 16;
+
+/// rustfft's planner. In WASM (always built with SIMD) the SIMD planner alone, so the scalar
+/// planner's algorithms stay out of the module.
+#[cfg(not(target_arch = "wasm32"))]
+fn planner<T: FftNum>() -> rustfft::FftPlanner<T> {
+    rustfft::FftPlanner::new()
+}
+
+#[cfg(target_arch = "wasm32")]
+fn planner<T: FftNum>() -> rustfft::FftPlannerWasmSimd<T> {
+    rustfft::FftPlannerWasmSimd::new().expect("the WASM build enables simd128")
+}
 
 /// A planned 4-D transform in one direction.
 pub struct Fft4<T: FftNum> {
@@ -27,7 +39,7 @@ pub struct Fft4<T: FftNum> {
 
 impl<T: FftNum> Fft4<T> {
     pub fn new(lattice: Lattice, direction: FftDirection) -> Self {
-        let mut planner = FftPlanner::<T>::new();
+        let mut planner = planner::<T>();
         let axes = lattice.size.map(|n| planner.plan_fft(n, direction));
         let scratch_len = axes
             .iter()

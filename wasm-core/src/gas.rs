@@ -6,9 +6,10 @@
 //! and colours hand to a renderer as whole buffers.
 
 use crate::emitter::{stream_seed, uniform, EmitterState};
+use crate::lanes::load3;
 use crate::scene::{Emitter, GasSettings, Integrator};
 use crate::wind::{Wind, WindFrame};
-use glam::{Quat, Vec3};
+use glam::{Quat, Vec3, Vec3A};
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
@@ -42,6 +43,9 @@ pub struct Blobs {
     pub velocity0: Vec<f32>,
     /// τ (s).
     pub velocity_time: Vec<f32>,
+    /// Whether any blob pushed since the arrays were built has a velocity of its own (saves a
+    /// scan of `velocity0` per step; a zero velocity adds exactly nothing either way).
+    own_velocity: bool,
 }
 
 /// One blob's full state, for building and rebuilding the arrays.
@@ -99,6 +103,7 @@ impl Blobs {
         self.birth.push(b.birth);
         self.velocity0.extend_from_slice(&b.velocity0.to_array());
         self.velocity_time.push(b.velocity_time);
+        self.own_velocity |= b.velocity0 != Vec3::ZERO;
     }
 
     /// The full state of blob `i`.
@@ -212,7 +217,7 @@ impl Gas {
     }
 
     /// Eq. 14 over one step for every blob, then σ (Eq. 15) and mass (Eq. 16) at the step's
-    /// end, in one pass. Returns whether any blob needs splitting or removal.
+    /// end. Returns whether any blob needs splitting or removal.
     fn advect_and_age(
         &mut self,
         t: f64,
@@ -222,39 +227,46 @@ impl Gas {
         fh: &WindFrame,
         factor: f32,
     ) -> bool {
-        let (kappa, split, min_mass) = self.limits();
+        self.advect(t, dt, integrator, f0, fh);
+        self.age_from(0, t + dt, factor)
+    }
+
+    /// Eq. 14: every centre from t to t + dt through the wind plus the blob's own relaxing
+    /// velocity, by Euler or the RK2 midpoint rule.
+    fn advect(&mut self, t: f64, dt: f64, integrator: Integrator, f0: &WindFrame, fh: &WindFrame) {
         let b = &mut self.blobs;
-        let own_velocity = b.velocity0.iter().any(|&v| v != 0.0);
+        let n = b.len();
+        let position = &mut b.position[..3 * n];
+        let x_at = |p: &[f32], i: usize| load3(p, 3 * i);
         let dtf = dt as f32;
-        let t1 = t + dt;
-        let mut flagged = false;
-        for i in 0..b.sigma.len() {
-            let x = Vec3::from_slice(&b.position[3 * i..3 * i + 3]);
-            let own = |time: f64| {
-                if own_velocity {
-                    let v0 = Vec3::from_slice(&b.velocity0[3 * i..3 * i + 3]);
-                    v0 * (-((time - b.birth[i]) as f32) / b.velocity_time[i]).exp()
-                } else {
-                    Vec3::ZERO
-                }
-            };
-            let k1 = f0.velocity(x) + own(t);
-            let x1 = match integrator {
-                Integrator::Euler => x + k1 * dtf,
-                Integrator::Rk2 => {
-                    let xm = x + k1 * (0.5 * dtf);
-                    x + (fh.velocity(xm) + own(t + 0.5 * dt)) * dtf
-                }
-            };
-            b.position[3 * i..3 * i + 3].copy_from_slice(&x1.to_array());
-            let s0 = b.sigma0[i];
-            let sigma = (s0 * s0 + (kappa * (t1 - b.birth[i])) as f32).sqrt();
-            let mass = self.decayed[i] * factor;
-            b.sigma[i] = sigma;
-            b.mass[i] = mass;
-            flagged |= sigma > split || mass < min_mass;
+        // The blob's own velocity v0·exp(−age/τ) at `time` (m/s).
+        let own = |i: usize, time: f64| {
+            let v0 = Vec3A::from_slice(&b.velocity0[3 * i..3 * i + 3]);
+            v0 * (-((time - b.birth[i]) as f32) / b.velocity_time[i]).exp()
+        };
+        let th = t + 0.5 * dt;
+        match (integrator, b.own_velocity) {
+            (Integrator::Euler, false) => (0..n).for_each(|i| {
+                let x = x_at(position, i);
+                (x + f0.velocity_a(x) * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
+            }),
+            (Integrator::Euler, true) => (0..n).for_each(|i| {
+                let x = x_at(position, i);
+                let k1 = f0.velocity_a(x) + own(i, t);
+                (x + k1 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
+            }),
+            (Integrator::Rk2, false) => (0..n).for_each(|i| {
+                let x = x_at(position, i);
+                let xm = x + f0.velocity_a(x) * (0.5 * dtf);
+                (x + fh.velocity_a(xm) * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
+            }),
+            (Integrator::Rk2, true) => (0..n).for_each(|i| {
+                let x = x_at(position, i);
+                let xm = x + (f0.velocity_a(x) + own(i, t)) * (0.5 * dtf);
+                let k2 = fh.velocity_a(xm) + own(i, th);
+                (x + k2 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
+            }),
         }
-        flagged
     }
 
     /// κ, the split σ (or infinity) and the removal mass, in f32.
@@ -324,11 +336,17 @@ impl Gas {
         let (kappa, split, min_mass) = self.limits();
         let b = &mut self.blobs;
         let mut flagged = false;
-        for i in first..b.len() {
-            let s0 = b.sigma0[i];
-            b.sigma[i] = (s0 * s0 + (kappa * (t - b.birth[i])) as f32).sqrt();
-            b.mass[i] = self.decayed[i] * factor;
-            flagged |= b.sigma[i] > split || b.mass[i] < min_mass;
+        let ages = b.sigma0[first..].iter().zip(&b.birth[first..]);
+        let decayed = &self.decayed[first..b.len()];
+        for (((sigma, mass), (&s0, &birth)), &d) in b.sigma[first..]
+            .iter_mut()
+            .zip(b.mass[first..].iter_mut())
+            .zip(ages)
+            .zip(decayed)
+        {
+            *sigma = (s0 * s0 + (kappa * (t - birth)) as f32).sqrt();
+            *mass = d * factor;
+            flagged |= (*sigma > split) | (*mass < min_mass);
         }
         flagged
     }

@@ -16,6 +16,7 @@ pub mod error;
 pub mod fft4;
 pub mod field;
 pub mod gas;
+pub mod lanes;
 pub mod lattice;
 pub mod npy;
 pub mod render;

@@ -10,14 +10,19 @@
 //! trilinear lookup (equal to the quadrilinear sample, since both are linear in t).
 
 use crate::field::TurbulentField;
+use crate::lanes::load4;
 use crate::scene::{Primitive, Scene};
 use crate::spline::Path;
-use glam::Vec3;
+use glam::{Vec3, Vec3A, Vec4};
 use std::f32::consts::PI;
 use std::sync::Arc;
 
 fn v3(a: [f32; 3]) -> Vec3 {
     Vec3::from_array(a)
+}
+
+fn v3a(a: [f32; 3]) -> Vec3A {
+    Vec3A::from_array(a)
 }
 
 /// The small-scale field with its world mapping.
@@ -93,24 +98,29 @@ impl SmallScale {
         let b = &self.field.data[i1 * per..(i1 + 1) * per];
         let scale = self.velocity_scale.to_array();
         let (sx, sy, sz) = (nx + 1, ny + 1, nz + 1);
-        slice.data.resize(3 * sx * sy * sz, 0.0);
+        // One float of padding: the last row's four-wide load reads one past its end.
+        slice.data.resize(3 * sx * sy * sz + 1, 0.0);
         for z in 0..sz {
             for y in 0..sy {
                 let src = 3 * (((z % nz) * ny + y % ny) * nx);
                 let dst = 3 * ((z * sy + y) * sx);
                 let (ra, rb) = (&a[src..src + 3 * nx], &b[src..src + 3 * nx]);
                 let out = &mut slice.data[dst..dst + 3 * sx];
-                for x in 0..sx {
-                    let j = 3 * (x % nx);
+                for ((o, a), b) in out
+                    .chunks_exact_mut(3)
+                    .zip(ra.chunks_exact(3))
+                    .zip(rb.chunks_exact(3))
+                {
                     for k in 0..3 {
-                        out[3 * x + k] = (ra[j + k] + f * (rb[j + k] - ra[j + k])) * scale[k];
+                        o[k] = (a[k] + f * (b[k] - a[k])) * scale[k];
                     }
                 }
+                out.copy_within(0..3, 3 * nx);
             }
         }
         slice.size = [nx, ny, nz];
-        slice.cells_per_metre = self.cells_per_metre;
-        slice.offset = self.carry * t as f32;
+        slice.cells_per_metre = self.cells_per_metre.into();
+        slice.offset = (self.carry * t as f32).into();
     }
 }
 
@@ -121,75 +131,72 @@ impl SmallScale {
 pub struct FieldSlice {
     size: [usize; 3],
     data: Vec<f32>,
-    cells_per_metre: Vec3,
-    offset: Vec3,
+    cells_per_metre: Vec3A,
+    offset: Vec3A,
 }
 
 impl FieldSlice {
-    /// Trilinear, periodic sample at world position `x`.
+    /// Trilinear, periodic sample at world position `x` (m/s).
+    ///
+    /// Four-wide: a lattice row `[u0 v0 w0 u1 v1 w1]` is read as two overlapping vectors
+    /// `[u0 v0 w0 u1]` and `[u1 v1 w1 u2]`, so one vector lerp interpolates all three
+    /// components along x (the fourth lane is ignored).
     #[inline]
-    pub fn sample(&self, x: Vec3) -> Vec3 {
+    pub fn sample(&self, x: Vec3A) -> Vec3A {
         let q = (x - self.offset) * self.cells_per_metre;
-        let (ix, iy, iz) = (floor_i32(q.x), floor_i32(q.y), floor_i32(q.z));
-        let (tx, ty, tz) = (q.x - ix as f32, q.y - iy as f32, q.z - iz as f32);
+        let fl = q.floor();
+        let t = q - fl;
         let [nx, ny, nz] = self.size;
-        // Extents are powers of two: masking wraps negative indices too.
-        let x0 = (ix as usize) & (nx - 1);
-        let y0 = (iy as usize) & (ny - 1);
-        let z0 = (iz as usize) & (nz - 1);
+        // Extents are powers of two: masking wraps negative indices too (|q| < 2^31).
+        let x0 = (fl.x as i32 as usize) & (nx - 1);
+        let y0 = (fl.y as i32 as usize) & (ny - 1);
+        let z0 = (fl.z as i32 as usize) & (nz - 1);
         let (sx, sy) = (nx + 1, ny + 1);
-        let base = (z0 * sy + y0) * sx + x0;
-        let row = |r: usize| -> [f32; 6] {
-            let i = 3 * r;
-            self.data[i..i + 6].try_into().unwrap_or([0.0; 6])
+        let base = 3 * ((z0 * sy + y0) * sx + x0);
+        let (dy, dz) = (3 * sx, 3 * sx * sy);
+        // The farthest of the eight corners' reads ends at base + dz + dy + 7.
+        let Some(w) = self.data.get(base..base + dz + dy + 7) else {
+            return Vec3A::ZERO;
         };
-        let (r00, r10, r01, r11) = (
-            row(base),
-            row(base + sx),
-            row(base + sx * sy),
-            row(base + sx * sy + sx),
-        );
-        let mut out = [0.0f32; 3];
-        for (k, o) in out.iter_mut().enumerate() {
-            let e = |r: &[f32; 6]| r[k] + (r[k + 3] - r[k]) * tx;
-            let (e00, e10, e01, e11) = (e(&r00), e(&r10), e(&r01), e(&r11));
-            let lo = e00 + (e10 - e00) * ty;
-            let hi = e01 + (e11 - e01) * ty;
-            *o = lo + (hi - lo) * tz;
-        }
-        Vec3::from_array(out)
+        let tx = Vec4::splat(t.x);
+        // Every read below starts at most dz + dy + 3 and spans four floats: inside `w`.
+        let along_x = |i: usize| -> Vec4 {
+            let a = load4(w, i);
+            a + (load4(w, i + 3) - a) * tx
+        };
+        let e00 = along_x(0);
+        let e10 = along_x(dy);
+        let e01 = along_x(dz);
+        let e11 = along_x(dz + dy);
+        let (ty, tz) = (t.y, t.z);
+        let lo = e00 + (e10 - e00) * ty;
+        let hi = e01 + (e11 - e01) * ty;
+        Vec3A::from_vec4(lo + (hi - lo) * tz)
     }
-}
-
-/// ⌊v⌋ as an integer, without a libm call (|v| < 2^31).
-#[inline]
-fn floor_i32(v: f32) -> i32 {
-    let i = v as i32;
-    i - ((v < i as f32) as i32)
 }
 
 /// A primitive frozen at one time, with its constants folded.
 #[derive(Debug, Clone, Copy)]
 enum Frozen {
     Uniform {
-        velocity: Vec3,
+        velocity: Vec3A,
     },
     /// k = s/(4π), a² the squared core radius.
     Source {
-        position: Vec3,
+        position: Vec3A,
         k: f32,
         a2: f32,
     },
     /// g = Γ/(2π).
     Vortex {
-        position: Vec3,
-        axis: Vec3,
+        position: Vec3A,
+        axis: Vec3A,
         g: f32,
         a2: f32,
     },
     Repulsor {
-        center: Vec3,
-        velocity: Vec3,
+        center: Vec3A,
+        velocity: Vec3A,
         radius: f32,
         strength: f32,
     },
@@ -199,13 +206,13 @@ enum Frozen {
 struct FrozenPrimitive {
     kind: Frozen,
     /// Where decay is measured from, and 1/L (0 for no decay).
-    origin: Vec3,
+    origin: Vec3A,
     inv_decay: f32,
 }
 
 impl FrozenPrimitive {
     #[inline]
-    fn velocity(&self, x: Vec3) -> Vec3 {
+    fn velocity(&self, x: Vec3A) -> Vec3A {
         let u = match self.kind {
             Frozen::Uniform { velocity } => velocity,
             Frozen::Source { position, k, a2 } => {
@@ -219,9 +226,10 @@ impl FrozenPrimitive {
                 g,
                 a2,
             } => {
-                let d = x - position;
-                let perp = d - axis * d.dot(axis);
-                axis.cross(perp) * (g / (perp.length_squared() + a2))
+                // â × (x − p) is the distance from the axis turned a quarter round it, so
+                // its length is that distance: u = g (â × r) / (|â × r|² + a²).
+                let c = axis.cross(x - position);
+                c * (g / (c.length_squared() + a2))
             }
             Frozen::Repulsor {
                 center,
@@ -242,9 +250,9 @@ impl FrozenPrimitive {
 /// flow of a moving sphere (a dipole; normal velocity v·n at the surface) plus a radial push of
 /// speed `s` at the surface, falling as 1/r². Inside, the sphere carries and expels gas.
 #[inline]
-pub fn repulsor_velocity(r: Vec3, v: Vec3, radius: f32, s: f32) -> Vec3 {
+pub fn repulsor_velocity(r: Vec3A, v: Vec3A, radius: f32, s: f32) -> Vec3A {
     let d = r.length();
-    let n = if d > 1e-6 { r / d } else { Vec3::Y };
+    let n = if d > 1e-6 { r / d } else { Vec3A::Y };
     if d < radius {
         return v + n * s;
     }
@@ -300,7 +308,7 @@ impl Wind {
             s.slice_into(t, &mut frame.slice);
             frame.has_slice = true;
         }
-        frame.constant = Vec3::ZERO;
+        frame.constant = Vec3A::ZERO;
         frame.primitives.clear();
         for p in self.large.iter().map(|l| freeze(l, t)) {
             match p.kind {
@@ -324,7 +332,7 @@ impl Wind {
             + self
                 .large
                 .iter()
-                .map(|l| freeze(l, t).velocity(x))
+                .map(|l| Vec3::from(freeze(l, t).velocity(x.into())))
                 .sum::<Vec3>()
     }
 
@@ -357,9 +365,9 @@ fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
             ..
         } => FrozenPrimitive {
             kind: Frozen::Uniform {
-                velocity: v3(*velocity),
+                velocity: v3a(*velocity),
             },
-            origin: v3(*position),
+            origin: v3a(*position),
             inv_decay: inv(decay),
         },
         Primitive::Source {
@@ -370,11 +378,11 @@ fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
             ..
         } => FrozenPrimitive {
             kind: Frozen::Source {
-                position: v3(*position),
+                position: v3a(*position),
                 k: strength / (4.0 * PI),
                 a2: radius * radius,
             },
-            origin: v3(*position),
+            origin: v3a(*position),
             inv_decay: inv(decay),
         },
         Primitive::Vortex {
@@ -386,12 +394,12 @@ fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
             ..
         } => FrozenPrimitive {
             kind: Frozen::Vortex {
-                position: v3(*position),
-                axis: v3(*axis).normalize(),
+                position: v3a(*position),
+                axis: v3a(*axis).normalize(),
                 g: strength / (2.0 * PI),
                 a2: radius * radius,
             },
-            origin: v3(*position),
+            origin: v3a(*position),
             inv_decay: inv(decay),
         },
         Primitive::Repulsor {
@@ -403,12 +411,12 @@ fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
             let (c, v) = l.path.as_ref().expect("repulsors have paths").at(t);
             FrozenPrimitive {
                 kind: Frozen::Repulsor {
-                    center: c.as_vec3(),
-                    velocity: v.as_vec3(),
+                    center: c.as_vec3a(),
+                    velocity: v.as_vec3a(),
                     radius: *radius,
                     strength: *strength,
                 },
-                origin: c.as_vec3(),
+                origin: c.as_vec3a(),
                 inv_decay: inv(decay),
             }
         }
@@ -420,7 +428,7 @@ fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
 pub struct WindFrame {
     pub time: f64,
     /// Sum of the uniform winds without decay (m/s).
-    constant: Vec3,
+    constant: Vec3A,
     has_slice: bool,
     slice: FieldSlice,
     primitives: Vec<FrozenPrimitive>,
@@ -430,6 +438,12 @@ impl WindFrame {
     /// u(x) = u_s(x) + Σ primitives (m/s).
     #[inline]
     pub fn velocity(&self, x: Vec3) -> Vec3 {
+        self.velocity_a(x.into()).into()
+    }
+
+    /// [`Self::velocity`] in four-wide vectors, for the per-blob loop.
+    #[inline]
+    pub fn velocity_a(&self, x: Vec3A) -> Vec3A {
         let mut u = self.constant;
         if self.has_slice {
             u += self.slice.sample(x);

@@ -8,15 +8,15 @@
 //! fewer nodes. Traversal serves primary and shadow rays alike.
 
 use super::gaussian::RenderBlob;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// Most blobs in a leaf.
-pub const LEAF_SIZE: usize = 4;
+pub const LEAF_SIZE: usize = 8;
 
 #[derive(Debug, Clone, Copy)]
 struct Node {
-    min: Vec3,
-    max: Vec3,
+    min: Vec3A,
+    max: Vec3A,
     /// Leaf: `start..start + count` in `order`; inner: `start` is the left child, right is next
     /// after the left subtree (`right`).
     start: u32,
@@ -55,7 +55,8 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let inv = dir.recip();
+        let inv = Vec3A::from(dir).recip();
+        let origin = Vec3A::from(origin);
         let mut stack = [0u32; 64];
         let mut top = 1;
         while top > 0 {
@@ -81,7 +82,7 @@ impl Bvh {
 }
 
 #[inline]
-fn hits_box(min: Vec3, max: Vec3, origin: Vec3, inv: Vec3, s_max: f32) -> bool {
+fn hits_box(min: Vec3A, max: Vec3A, origin: Vec3A, inv: Vec3A, s_max: f32) -> bool {
     let t0 = (min - origin) * inv;
     let t1 = (max - origin) * inv;
     let near = t0.min(t1).max_element().max(0.0);
@@ -111,8 +112,8 @@ fn build_node(
     let (min, max) = bounds(blobs, order);
     let me = nodes.len() as u32;
     nodes.push(Node {
-        min,
-        max,
+        min: min.into(),
+        max: max.into(),
         start: offset as u32,
         count: order.len() as u32,
         right: 0,

@@ -82,6 +82,20 @@ impl Chord {
         self.peak * (self.erf_at(b) - self.erf_at(a))
     }
 
+    /// ∫ρ ds over [a, b] clipped to the chord; the whole chord needs no erf (it holds
+    /// erf(TRUNCATION/√2) of the line's integral on either side of s*).
+    #[inline]
+    pub fn integral_clipped(&self, a: f32, b: f32) -> f32 {
+        let (lo, hi) = (a.max(self.s_in), b.min(self.s_out));
+        if lo >= hi {
+            0.0
+        } else if lo == self.s_in && hi == self.s_out {
+            self.peak * (2.0 * erf_truncation())
+        } else {
+            self.integral(lo, hi)
+        }
+    }
+
     /// erf((s − s*)/(σ√2)): the chord's share of the line integral up to `s`, in units of `peak`.
     #[inline]
     pub fn erf_at(&self, s: f32) -> f32 {
@@ -107,6 +121,14 @@ fn erf_table() -> &'static [[f32; 2]] {
             })
             .collect()
     })
+}
+
+/// erf(TRUNCATION/√2), the share of a Gaussian's line integral within the truncation radius
+/// on one side of its centre.
+#[inline]
+fn erf_truncation() -> f32 {
+    static VALUE: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+    *VALUE.get_or_init(|| erf(TRUNCATION * FRAC_1_SQRT_2))
 }
 
 /// erf(x) by cubic Hermite interpolation of the table (absolute error below 1e-7, the f32

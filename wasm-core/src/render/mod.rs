@@ -216,10 +216,7 @@ impl Renderer {
         let limit = SHADOW_DEPTH / self.kappa.min_element().max(1e-12);
         self.candidates(origin, dir, s_max, |j| {
             if let Some(c) = self.blobs[j].chord(origin, dir) {
-                let (a, b) = (c.s_in.max(0.0), c.s_out.min(s_max));
-                if b > a {
-                    sum += c.integral(a, b);
-                }
+                sum += c.integral_clipped(0.0, s_max);
             }
             sum < limit
         });
