@@ -174,40 +174,39 @@ impl SceneSimulation {
 
     /// Live blob count.
     pub fn count(&self) -> u32 {
-        self.inner.gas.blobs.len() as u32
+        self.inner.blobs().len() as u32
     }
 
     /// Blob centres, xyz interleaved (m).
     pub fn positions(&self) -> Vec<f32> {
-        self.inner.gas.blobs.position.clone()
+        self.inner.blobs().position.clone()
     }
 
     /// Blob σ (m).
     pub fn sigma(&self) -> Vec<f32> {
-        self.inner.gas.blobs.sigma.clone()
+        self.inner.blobs().sigma.clone()
     }
 
     /// Blob masses.
     pub fn mass(&self) -> Vec<f32> {
-        self.inner.gas.blobs.mass.clone()
+        self.inner.blobs().mass.clone()
     }
 
     /// Blob albedo, rgb interleaved; a negative red channel means the medium's albedo.
     pub fn albedo(&self) -> Vec<f32> {
-        self.inner.gas.blobs.albedo.clone()
+        self.inner.blobs().albedo.clone()
     }
 
     /// Blob self-emission, rgb interleaved.
     pub fn emission(&self) -> Vec<f32> {
-        self.inner.gas.blobs.emission.clone()
+        self.inner.blobs().emission.clone()
     }
 
     /// Blob ages (s) at the current time.
     pub fn age(&self) -> Vec<f32> {
         let t = self.inner.time();
         self.inner
-            .gas
-            .blobs
+            .blobs()
             .birth
             .iter()
             .map(|b| (t - b) as f32)

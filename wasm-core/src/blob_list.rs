@@ -142,7 +142,19 @@ pub enum Object {
         radius: f32,
         height: f32,
         color: [f32; 3],
+        /// A richer mesh the browser draws in the cylinder's place (the still keeps the
+        /// cylinder as its stand-in).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        model: Option<Model>,
     },
+}
+
+/// Meshes the browser may draw in place of a cylinder stand-in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum Model {
+    Mug,
+    Teapot,
 }
 
 /// Everything of a blob list except the blobs; the `render` section of a scene.
@@ -316,6 +328,7 @@ impl RenderSettings {
                     radius,
                     height,
                     color,
+                    ..
                 } => {
                     check::vector(&format!("{op}.base"), *base, MAX_COORD)?;
                     check::direction(&format!("{op}.axis"), *axis)?;

@@ -106,6 +106,21 @@ impl Blobs {
         self.own_velocity |= b.velocity0 != Vec3::ZERO;
     }
 
+    /// Appends every blob of `other`, with birth times moved by `shift` (s).
+    pub fn append_shifted(&mut self, other: &Blobs, shift: f64) {
+        self.position.extend_from_slice(&other.position);
+        self.sigma.extend_from_slice(&other.sigma);
+        self.mass.extend_from_slice(&other.mass);
+        self.albedo.extend_from_slice(&other.albedo);
+        self.emission.extend_from_slice(&other.emission);
+        self.sigma0.extend_from_slice(&other.sigma0);
+        self.mass0.extend_from_slice(&other.mass0);
+        self.birth.extend(other.birth.iter().map(|b| b + shift));
+        self.velocity0.extend_from_slice(&other.velocity0);
+        self.velocity_time.extend_from_slice(&other.velocity_time);
+        self.own_velocity |= other.own_velocity;
+    }
+
     /// The full state of blob `i`.
     pub fn get(&self, i: usize) -> Blob {
         let rgb = |v: &[f32]| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];

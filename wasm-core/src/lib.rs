@@ -21,6 +21,7 @@ pub mod lattice;
 pub mod npy;
 pub mod render;
 pub mod scene;
+pub mod shapes;
 pub mod simulation;
 pub mod spectrum;
 pub mod spline;

@@ -9,6 +9,7 @@ use crate::blob_list::{RenderSettings, MAX_COORD};
 use crate::check;
 use crate::error::ParamError;
 use crate::field::{FieldParams, MAX_SEED};
+use crate::shapes::Shape;
 use crate::spectrum::SpectrumParams;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -17,6 +18,8 @@ use serde::{Deserialize, Serialize};
 pub const SCENE_VERSION: u32 = 1;
 /// Memory guard on the number of live blobs.
 pub const MAX_BLOBS_LIMIT: usize = 2_000_000;
+/// Memory guard on reversed shapes, which store their whole run: blobs × steps.
+pub const MAX_REVERSED_BLOB_STEPS: f64 = 2e6;
 
 fn one() -> u64 {
     1
@@ -41,6 +44,9 @@ pub struct Scene {
     pub wind: Vec<Primitive>,
     #[serde(default)]
     pub emitters: Vec<Emitter>,
+    /// Initial blob sets born at time 0, optionally played in reverse (the morph of §6).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shapes: Vec<Shape>,
     #[serde(default)]
     pub gas: GasSettings,
     #[serde(default)]
@@ -57,6 +63,7 @@ impl Default for Scene {
             field: FieldSettings::default(),
             wind: Vec::new(),
             emitters: Vec::new(),
+            shapes: Vec::new(),
             gas: GasSettings::default(),
             simulation: SimulationSettings::default(),
             render: RenderSettings::default(),
@@ -350,6 +357,23 @@ impl Scene {
         for (i, e) in self.emitters.iter().enumerate() {
             validate_emitter(&format!("emitters[{i}]"), e)?;
         }
+        check::positive("simulation.dt", self.simulation.dt, 1.0)?;
+        let mut reversed_blob_steps = 0.0;
+        for (i, shape) in self.shapes.iter().enumerate() {
+            shape.validate(&format!("shapes[{i}]"))?;
+            if let Some(t) = shape.reverse_from {
+                reversed_blob_steps += shape.blob_count() as f64 * (t / self.simulation.dt);
+            }
+        }
+        if reversed_blob_steps > MAX_REVERSED_BLOB_STEPS {
+            return Err(ParamError::new(
+                "shapes",
+                format!(
+                    "reversed sets keep every step of their run: blobs × reverse_from / dt must \
+                     stay below {MAX_REVERSED_BLOB_STEPS:e} (got {reversed_blob_steps:.3e})"
+                ),
+            ));
+        }
         let g = &self.gas;
         check::range("gas.diffusion", g.diffusion, 0.0, 1e3)?;
         check::range("gas.dissipation", g.dissipation, 0.0, 1e3)?;
@@ -366,7 +390,6 @@ impl Scene {
             ));
         }
         check::range("gas.min_mass", g.min_mass, 0.0, 1e12)?;
-        check::positive("simulation.dt", self.simulation.dt, 1.0)?;
         self.render.validate("render")?;
         Ok(())
     }

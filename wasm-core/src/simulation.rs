@@ -4,19 +4,33 @@
 use crate::blob_list::{BlobList, BlobRecord, Object};
 use crate::error::ParamError;
 use crate::field::TurbulentField;
-use crate::gas::Gas;
+use crate::gas::{Blob, Blobs, Gas};
 use crate::scene::Scene;
+use crate::shapes::Shape;
 use crate::wind::{Wind, WindFrame};
+use std::borrow::Cow;
 use std::sync::Arc;
 
 #[derive(Debug, Clone)]
 pub struct Simulation {
     pub scene: Scene,
     pub wind: Wind,
+    /// Emitted blobs and the shapes played forwards.
     pub gas: Gas,
+    /// Shapes played in reverse, one run each: `snapshots[k]` is the run after k steps.
+    reversed: Vec<Vec<Blobs>>,
     field: Option<Arc<TurbulentField>>,
     steps: u64,
     frames: [WindFrame; 2],
+}
+
+/// The blobs of shape `index`, born at time 0.
+fn shape_blobs(shape: &Shape, seed: u64, index: usize) -> impl Iterator<Item = Blob> + '_ {
+    shape.centres(seed, index).into_iter().map(move |c| Blob {
+        albedo: shape.albedo.unwrap_or([-1.0; 3]),
+        emission: shape.emission.unwrap_or([0.0; 3]),
+        ..Blob::new(c, shape.sigma0, shape.mass0, 0.0)
+    })
 }
 
 impl Simulation {
@@ -46,15 +60,54 @@ impl Simulation {
             }
         }
         let wind = Wind::new(&scene, field.clone());
-        let gas = Gas::new(scene.gas.clone(), &scene.emitters, scene.seed);
+        let mut gas = Gas::new(scene.gas.clone(), &scene.emitters, scene.seed);
+        let mut reversed = Vec::new();
+        for (i, shape) in scene.shapes.iter().enumerate() {
+            match shape.reverse_from {
+                None => shape_blobs(shape, scene.seed, i)
+                    .for_each(|b| gas.blobs.push(&b, b.sigma0, b.mass0)),
+                Some(t) => reversed.push(Self::run_shape(&scene, &wind, shape, i, t)),
+            }
+        }
         Ok(Self {
             scene,
             wind,
             gas,
+            reversed,
             field,
             steps: 0,
             frames: Default::default(),
         })
+    }
+
+    /// Runs shape `index` alone forwards for `seconds`, keeping every step.
+    fn run_shape(scene: &Scene, wind: &Wind, shape: &Shape, index: usize, seconds: f64) -> Vec<Blobs> {
+        let dt = scene.simulation.dt;
+        let steps = (seconds / dt).round().max(0.0) as u64;
+        let mut gas = Gas::new(scene.gas.clone(), &[], scene.seed);
+        shape_blobs(shape, scene.seed, index).for_each(|b| gas.blobs.push(&b, b.sigma0, b.mass0));
+        let mut frames: [WindFrame; 2] = Default::default();
+        let mut snapshots = vec![gas.blobs.clone()];
+        for k in 0..steps {
+            gas.step(wind, k as f64 * dt, dt, scene.simulation.integrator, &mut frames);
+            snapshots.push(gas.blobs.clone());
+        }
+        snapshots
+    }
+
+    /// Every visible blob: the gas, then each reversed shape at its mirrored step (ages are
+    /// those within the shape's own run).
+    pub fn blobs(&self) -> Cow<'_, Blobs> {
+        if self.reversed.is_empty() {
+            return Cow::Borrowed(&self.gas.blobs);
+        }
+        let mut all = self.gas.blobs.clone();
+        let dt = self.scene.simulation.dt;
+        for run in &self.reversed {
+            let k = (run.len() as u64 - 1).saturating_sub(self.steps) as usize;
+            all.append_shifted(&run[k], self.time() - k as f64 * dt);
+        }
+        Cow::Owned(all)
     }
 
     /// The small-scale field, if the scene has one.
@@ -109,7 +162,7 @@ impl Simulation {
                 color,
             });
         }
-        let b = &self.gas.blobs;
+        let b = self.blobs();
         let blobs = (0..b.len())
             .map(|i| {
                 let e = [

@@ -14,9 +14,34 @@ fn golden_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
 }
 
+/// The paper's scenes (§6), shipped in `public/scenes/`, with the time of their golden still.
+pub const PRESETS: [(&str, f64); 5] = [
+    ("steam-mug", 3.0),
+    ("psychedelic-steam", 3.0),
+    ("cigarette", 3.0),
+    ("sphere-smoke", 4.0),
+    ("morph", 1.5),
+];
+/// Preset stills are compared at this size (the scenes' own size, 640×480, is for people).
+const PRESET_SIZE: (u32, u32) = (160, 120);
+
+fn presets_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../public/scenes")
+}
+
 /// Renders `name.json` (a blob list, or a scene simulated for `seconds`) to 8-bit RGB.
 fn render(name: &str, seconds: f64) -> (u32, u32, Vec<u8>) {
-    let text = std::fs::read_to_string(golden_dir().join(format!("{name}.json"))).unwrap();
+    render_file(&golden_dir().join(format!("{name}.json")), seconds, None, false)
+}
+
+/// Renders a scene or blob list file; `without_gas` drops every blob first.
+fn render_file(
+    path: &std::path::Path,
+    seconds: f64,
+    size: Option<(u32, u32)>,
+    without_gas: bool,
+) -> (u32, u32, Vec<u8>) {
+    let text = std::fs::read_to_string(path).unwrap();
     let value: serde_json::Value = serde_json::from_str(&text).unwrap();
     let list = if value.get("version").is_some() {
         let mut sim = Simulation::new(Scene::from_value(value).unwrap()).unwrap();
@@ -25,7 +50,11 @@ fn render(name: &str, seconds: f64) -> (u32, u32, Vec<u8>) {
     } else {
         BlobList::from_value(value).unwrap()
     };
-    let image = Renderer::new(&list, None, RenderOptions::default())
+    let mut list = list;
+    if without_gas {
+        list.blobs.clear();
+    }
+    let image = Renderer::new(&list, size, RenderOptions::default())
         .unwrap()
         .render();
     (
@@ -37,16 +66,21 @@ fn render(name: &str, seconds: f64) -> (u32, u32, Vec<u8>) {
 
 fn check(name: &str, seconds: f64) {
     let (w, h, rgb) = render(name, seconds);
+    compare(name, w, h, &rgb);
+}
+
+/// Compares with (or, when regenerating, writes) `tests/golden/NAME.png`.
+fn compare(name: &str, w: u32, h: u32, rgb: &[u8]) {
     let path = golden_dir().join(format!("{name}.png"));
     if std::env::var_os("WINDFIELD_REGENERATE").is_some() {
-        std::fs::write(&path, encode_png(w, h, &rgb).unwrap()).unwrap();
+        std::fs::write(&path, encode_png(w, h, rgb).unwrap()).unwrap();
         return;
     }
     let bytes = std::fs::read(&path)
         .unwrap_or_else(|_| panic!("{} missing: run `npm run goldens`", path.display()));
     let (gw, gh, golden) = decode_png(&bytes).unwrap();
     assert_eq!((gw, gh), (w, h), "{name}: size changed");
-    let p = psnr(&rgb, &golden);
+    let p = psnr(rgb, &golden);
     assert!(
         p >= TOLERANCE_DB,
         "{name}: PSNR {p:.1} dB against the golden still (need {TOLERANCE_DB})"
@@ -61,4 +95,23 @@ fn golden_plume() {
 #[test]
 fn golden_colours() {
     check("colours", 0.0);
+}
+
+/// Every preset validates, simulates and renders a still that is not blank (its pixels vary,
+/// and the gas changes the image: PSNR against the same frame without blobs below 30 dB), and
+/// the still matches its golden image.
+#[test]
+fn golden_presets() {
+    for (name, seconds) in PRESETS {
+        let path = presets_dir().join(format!("{name}.json"));
+        let (w, h, rgb) = render_file(&path, seconds, Some(PRESET_SIZE), false);
+        let (_, _, bare) = render_file(&path, seconds, Some(PRESET_SIZE), true);
+        let p = psnr(&rgb, &bare);
+        assert!(p < 30.0, "{name}: the gas barely shows ({p:.1} dB from the bare frame)");
+        let n = rgb.len() as f64;
+        let mean = rgb.iter().map(|&v| v as f64).sum::<f64>() / n;
+        let var = rgb.iter().map(|&v| (v as f64 - mean).powi(2)).sum::<f64>() / n;
+        assert!(var.sqrt() > 8.0, "{name}: the still is nearly flat (sd {:.1})", var.sqrt());
+        compare(&format!("preset-{name}"), w, h, &rgb);
+    }
 }

@@ -126,6 +126,7 @@ fn intersect(o: &Object, origin: Vec3, dir: Vec3) -> Option<Hit> {
             radius,
             height,
             color,
+            ..
         } => cylinder(
             Vec3::from_array(*base),
             Vec3::from_array(*axis).normalize(),
@@ -226,6 +227,7 @@ mod tests {
             radius: 0.5,
             height: 1.0,
             color: [1.0; 3],
+            model: None,
         };
         let h = nearest_hit(std::slice::from_ref(&cyl), o, d).unwrap();
         assert!((h.s - 4.5).abs() < 1e-5 && (h.normal - Vec3::Z).length() < 1e-5);

@@ -1,0 +1,176 @@
+//! Initial blob sets (paper §6, "3-D morphing"): point sets sampled from simple solids, each
+//! point the centre of a blob born at time 0. A set may be played in reverse: at time t it shows
+//! its own forward evolution at `reverse_from − t`, so it condenses out of the turbulence into
+//! its shape while another set dissolves — the paper's morph of one shape into another.
+
+use crate::blob_list::MAX_COORD;
+use crate::check;
+use crate::emitter::{stream_seed, uniform};
+use crate::error::ParamError;
+use glam::Vec3;
+use rand_xoshiro::rand_core::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::f32::consts::TAU;
+
+/// Most blobs one set may hold.
+pub const MAX_SHAPE_BLOBS: usize = 200_000;
+
+/// The solid a set's points are drawn from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum Solid {
+    /// A ball of `radius`.
+    Sphere,
+    /// A ring of major radius `radius` and tube radius `thickness`, about `axis`.
+    Torus,
+    /// A trefoil knot of scale `radius` and tube radius `thickness`, about `axis`.
+    Trefoil,
+    /// A cube of half-side `radius`.
+    Cube,
+    /// The listed `points`, offset by `center`.
+    Points,
+}
+
+/// One initial blob set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Shape {
+    pub shape: Solid,
+    pub center: [f32; 3],
+    /// Axis of the torus and the trefoil (need not be unit length).
+    pub axis: [f32; 3],
+    /// Size (m): ball radius, torus major radius, trefoil scale, cube half-side.
+    pub radius: f32,
+    /// Tube radius of the torus and the trefoil (m).
+    pub thickness: f32,
+    /// Number of blobs (ignored for `points`).
+    pub count: usize,
+    /// Blob centres relative to `center`, for `points`.
+    pub points: Vec<[f32; 3]>,
+    /// σ0 (m) and m0 of every blob.
+    pub sigma0: f32,
+    pub mass0: f32,
+    /// Albedo colour; none uses the medium's. Zero lights the set by its emission alone.
+    pub albedo: Option<[f32; 3]>,
+    /// Self-emission colour Q.
+    pub emission: Option<[f32; 3]>,
+    /// Play this set backwards from this time (s): at time t it shows its forward state at
+    /// max(reverse_from − t, 0).
+    pub reverse_from: Option<f64>,
+}
+
+impl Default for Shape {
+    fn default() -> Self {
+        Self {
+            shape: Solid::Sphere,
+            center: [0.0; 3],
+            axis: [0.0, 1.0, 0.0],
+            radius: 0.5,
+            thickness: 0.15,
+            count: 500,
+            points: Vec::new(),
+            sigma0: 0.04,
+            mass0: 0.01,
+            albedo: None,
+            emission: None,
+            reverse_from: None,
+        }
+    }
+}
+
+impl Shape {
+    /// Number of blobs the set makes.
+    pub fn blob_count(&self) -> usize {
+        match self.shape {
+            Solid::Points => self.points.len(),
+            _ => self.count,
+        }
+    }
+
+    /// Checks every value; `path` names the set (`shapes[0]`).
+    pub fn validate(&self, path: &str) -> Result<(), ParamError> {
+        let p = |s: &str| format!("{path}.{s}");
+        check::vector(&p("center"), self.center, MAX_COORD)?;
+        check::direction(&p("axis"), self.axis)?;
+        check::positive(&p("radius"), self.radius as f64, MAX_COORD)?;
+        check::positive(&p("thickness"), self.thickness as f64, MAX_COORD)?;
+        if self.shape != Solid::Points && (self.count == 0 || self.count > MAX_SHAPE_BLOBS) {
+            return Err(ParamError::new(
+                p("count"),
+                format!(
+                    "must be an integer between 1 and {MAX_SHAPE_BLOBS} (got {})",
+                    self.count
+                ),
+            ));
+        }
+        if self.points.len() > MAX_SHAPE_BLOBS {
+            return Err(ParamError::new(
+                p("points"),
+                format!("at most {MAX_SHAPE_BLOBS} points"),
+            ));
+        }
+        for (i, &q) in self.points.iter().enumerate() {
+            check::vector(&format!("{path}.points[{i}]"), q, MAX_COORD)?;
+        }
+        check::positive(&p("sigma0"), self.sigma0 as f64, 1e4)?;
+        check::positive(&p("mass0"), self.mass0 as f64, 1e12)?;
+        if let Some(a) = self.albedo {
+            check::colour(&p("albedo"), a, 1.0)?;
+        }
+        if let Some(q) = self.emission {
+            check::colour(&p("emission"), q, 1e6)?;
+        }
+        if let Some(t) = self.reverse_from {
+            check::positive(&p("reverse_from"), t, 1e4)?;
+        }
+        Ok(())
+    }
+
+    /// The blob centres (m), drawn with a generator seeded by the scene seed and the set's
+    /// index, so the same scene always yields the same points.
+    pub fn centres(&self, seed: u64, index: usize) -> Vec<Vec3> {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x5348_4150 + index as u64));
+        let mut u = || uniform(&mut rng);
+        let c = Vec3::from_array(self.center);
+        let axis = Vec3::from_array(self.axis).normalize();
+        let (e1, e2) = axis.any_orthonormal_pair();
+        // A point of the ring frame (e1, e2, axis) to world.
+        let frame = |p: Vec3| c + e1 * p.x + e2 * p.y + axis * p.z;
+        let (r, a) = (self.radius, self.thickness);
+        let in_ball = |u: &mut dyn FnMut() -> f32| loop {
+            let p = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
+            if p.length_squared() <= 1.0 {
+                return p;
+            }
+        };
+        match self.shape {
+            Solid::Points => self.points.iter().map(|&p| c + Vec3::from_array(p)).collect(),
+            Solid::Sphere => (0..self.count).map(|_| c + in_ball(&mut u) * r).collect(),
+            Solid::Cube => (0..self.count)
+                .map(|_| c + Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0) * r)
+                .collect(),
+            Solid::Torus => (0..self.count)
+                .map(|_| {
+                    let phi = TAU * u();
+                    let ring = Vec3::new(phi.cos(), phi.sin(), 0.0);
+                    let d = in_ball(&mut u) * a;
+                    frame(ring * r + d)
+                })
+                .collect(),
+            Solid::Trefoil => (0..self.count)
+                .map(|_| {
+                    // (sin t + 2 sin 2t, cos t − 2 cos 2t, −sin 3t), scaled to radius / 3.
+                    let t = TAU * u();
+                    let k = Vec3::new(
+                        t.sin() + 2.0 * (2.0 * t).sin(),
+                        t.cos() - 2.0 * (2.0 * t).cos(),
+                        -(3.0 * t).sin(),
+                    ) * (r / 3.0);
+                    frame(k + in_ball(&mut u) * a)
+                })
+                .collect(),
+        }
+    }
+}
