@@ -213,6 +213,12 @@ impl SceneSimulation {
             .collect()
     }
 
+    /// The opaque objects at the current time (the scene's, and visible repulsor spheres), as
+    /// DESIGN §4's `objects` JSON.
+    pub fn objects(&self) -> String {
+        serde_json::to_string(&self.inner.render_settings().objects).unwrap_or_default()
+    }
+
     /// Adds blobs born now at `positions` (xyz interleaved) with σ0 and m0, medium albedo.
     #[wasm_bindgen(js_name = addBlobs)]
     pub fn add_blobs(&mut self, positions: &[f32], sigma0: f32, mass0: f32) -> Result<(), JsError> {

@@ -1,7 +1,7 @@
 //! The animation system of paper §6: a scene's field, wind and gas advanced in fixed steps,
 //! and the blob list (DESIGN §4) a renderer takes.
 
-use crate::blob_list::{BlobList, BlobRecord, Object};
+use crate::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
 use crate::error::ParamError;
 use crate::field::TurbulentField;
 use crate::gas::{Blob, Blobs, Gas};
@@ -150,18 +150,25 @@ impl Simulation {
         }
     }
 
-    /// The blob list of the current state: the scene's render settings, visible repulsor
-    /// spheres added to the objects, and every blob with its age, σ0 and m0.
-    pub fn blob_list(&self) -> BlobList {
+    /// The scene's render settings at the current time: visible repulsor spheres join the
+    /// objects.
+    pub fn render_settings(&self) -> RenderSettings {
         let mut settings = self.scene.render.clone();
-        let t = self.time();
-        for (center, radius, color) in self.wind.visible_spheres(t) {
+        for (center, radius, color) in self.wind.visible_spheres(self.time()) {
             settings.objects.push(Object::Sphere {
                 center: center.to_array(),
                 radius,
                 color,
             });
         }
+        settings
+    }
+
+    /// The blob list of the current state: the scene's render settings, visible repulsor
+    /// spheres added to the objects, and every blob with its age, σ0 and m0.
+    pub fn blob_list(&self) -> BlobList {
+        let settings = self.render_settings();
+        let t = self.time();
         let b = self.blobs();
         let blobs = (0..b.len())
             .map(|i| {

@@ -3,7 +3,7 @@
 
 import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
-import { Player } from './player.js';
+import { Player, SHADOW_GRID } from './player.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
@@ -60,6 +60,7 @@ function buildControls() {
   sim.add(actions, 'reset');
   sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
   sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
+  sim.add(state, 'quality', Object.keys(SHADOW_GRID)).name('quality').onChange(() => draw());
   const edit = (fn) => async () => {
     const next = structuredClone(state.scene);
     fn(next);

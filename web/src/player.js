@@ -5,7 +5,8 @@ import { Engine } from './engine/client.js';
 import { SceneView } from './views/scene-view.js';
 
 /** Shadow-grid points per axis for the GPU ray march. */
-const SHADOW_GRID = 32;
+/** Shadow-grid resolution (points per axis) of the GPU view at each quality. */
+export const SHADOW_GRID = { draft: 16, standard: 32, high: 64 };
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
 
@@ -24,7 +25,7 @@ export class Player {
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
-    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'points', speed: 1, visible: true };
+    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'points', quality: 'standard', speed: 1, visible: true };
     this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0 };
     this.busy = false;
     this.lastFrame = null;
@@ -75,6 +76,8 @@ export class Player {
     const t0 = performance.now();
     const frame = await this.engine.request('advance', { steps });
     this.lastFrame = frame;
+    // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
+    this.view.setRenderSettings({ ...this.state.scene.render, objects: frame.objects });
     this.stats.blobs = frame.count;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     await this.draw();
@@ -89,9 +92,10 @@ export class Player {
 
   async draw(size = this.view.size()) {
     if (!this.lastFrame || !this.state.scene) return;
+    this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
     if (this.state.mode === 'raymarch') {
       const list = await this.exportBlobs(size);
-      const grid = list.shadows && list.lights.length ? await this.engine.request('shadowGrid', { list, res: SHADOW_GRID }) : null;
+      const grid = list.shadows && list.lights.length ? await this.engine.request('shadowGrid', { list, res: SHADOW_GRID[this.state.quality] ?? SHADOW_GRID.standard }) : null;
       this.view.raymarch.update(list, grid, this.view.viewBasis(), size.width, size.height);
     } else {
       this.view.points.update(this.lastFrame, this.state.scene.render.medium.albedo);
@@ -138,17 +142,22 @@ export class Player {
   }
 
   /** Renders the current view offscreen at `width × height`; a PNG data URL. */
-  captureGPU({ mode = 'raymarch', width = 640, height = 480 } = {}) {
+  captureGPU({ mode = 'raymarch', width = 640, height = 480, standIns = false, quality = this.state.quality } = {}) {
     return this.exclusive(async () => {
       const before = this.view.size();
       const saved = this.state.mode;
+      const savedQuality = this.state.quality;
       this.state.mode = mode;
+      this.state.quality = quality;
       try {
+        this.view.standIns = standIns;
         this.view.resize(width, height);
         await this.draw({ width, height });
         return this.view.canvas.toDataURL('image/png');
       } finally {
         this.state.mode = saved;
+        this.state.quality = savedQuality;
+        this.view.standIns = false;
         this.view.resize(before.width, before.height);
       }
     });

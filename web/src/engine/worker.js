@@ -84,6 +84,7 @@ function frame() {
     emission: s.emission(),
     age: s.age(),
     counts: JSON.parse(s.counts()),
+    objects: JSON.parse(s.objects()),
   };
   const transfer = ['positions', 'sigma', 'mass', 'albedo', 'emission', 'age'].map((k) => result[k].buffer);
   return { result, transfer };

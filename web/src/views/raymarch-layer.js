@@ -18,6 +18,55 @@ out vec2 vUv;
 void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }
 `;
 
+/** Uniforms and functions for gas shadows (shared by the ray march and the objects' material). */
+export const SHADOW_GLSL = /* glsl */ `
+uniform sampler2D shadowTex;  // shadow columns: light-major, then z, y, x (in .x)
+uniform vec3 gridMin, gridMax;
+uniform int gridRes;
+uniform bool hasShadows;
+uniform int lightCount;
+uniform int lightType[${MAX_LIGHTS}]; // 0 point, 1 directional
+uniform vec3 lightVec[${MAX_LIGHTS}]; // position, or unit vector towards the light
+uniform vec3 lightColor[${MAX_LIGHTS}];
+uniform vec3 kappa;
+float fetchShadow(int i) { return texelFetch(shadowTex, ivec2(i % ${TEX_WIDTH}, i / ${TEX_WIDTH}), 0).x; }
+
+// Shadow column ∫ρ towards light l from x, trilinear on the grid of the gas's bounds. Outside
+// the grid the column is the one from where the path to the light enters it (no gas lies
+// outside), or 0 if it never does.
+float gridColumn(int l, vec3 g) {
+  ivec3 i0 = min(ivec3(floor(g)), ivec3(gridRes - 2));
+  vec3 f = g - vec3(i0);
+  int base = l * gridRes * gridRes * gridRes;
+  float v[8];
+  for (int c = 0; c < 8; c++) {
+    ivec3 o = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+    ivec3 p = i0 + o;
+    v[c] = fetchShadow(base + (p.z * gridRes + p.y) * gridRes + p.x);
+  }
+  float x00 = mix(v[0], v[1], f.x), x10 = mix(v[2], v[3], f.x);
+  float x01 = mix(v[4], v[5], f.x), x11 = mix(v[6], v[7], f.x);
+  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+}
+
+float shadowColumn(int l, vec3 x) {
+  if (!hasShadows) return 0.0;
+  float top = float(gridRes - 1);
+  vec3 scale = top / (gridMax - gridMin);
+  vec3 g = (x - gridMin) * scale;
+  if (all(greaterThanEqual(g, vec3(0.0))) && all(lessThanEqual(g, vec3(top)))) return gridColumn(l, g);
+  // Enter the grid's box along the path towards the light (slab test in grid units).
+  vec3 d = (lightType[l] == 0 ? lightVec[l] - x : lightVec[l]) * scale;
+  float sMax = lightType[l] == 0 ? 1.0 : 1e30;
+  vec3 inv = 1.0 / d;
+  vec3 t0 = (vec3(0.0) - g) * inv, t1 = (vec3(top) - g) * inv;
+  float near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
+  float far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), sMax));
+  if (near > far) return 0.0;
+  return gridColumn(l, clamp(g + d * near, vec3(0.0), vec3(top)));
+}
+`;
+
 const fragmentShader = /* glsl */ `
 precision highp float;
 precision highp int;
@@ -25,10 +74,6 @@ precision highp sampler2D;
 in vec2 vUv;
 out vec4 outColor;
 uniform sampler2D blobTex;    // 3 texels a blob: centre, σ | mass, albedo | emission
-uniform sampler2D shadowTex;  // shadow columns: light-major, then z, y, x (in .x)
-uniform vec3 gridMin, gridMax;
-uniform int gridRes;
-uniform bool hasShadows;
 uniform sampler2D headTex;    // a texel a tile: start, count
 uniform sampler2D listTex;    // blob indices
 uniform sampler2D opaqueColor;
@@ -38,13 +83,9 @@ uniform vec2 resolution;
 uniform int tilesX;
 uniform vec3 camPos, camForward, camRight, camUp;
 uniform float tanHalf, camNear, camFar;
-uniform vec3 kappa, background;
+uniform vec3 background;
 uniform int phaseType; // 0 isotropic, 1 Henyey-Greenstein
 uniform float phaseG;
-uniform int lightCount;
-uniform int lightType[${MAX_LIGHTS}]; // 0 point, 1 directional
-uniform vec3 lightVec[${MAX_LIGHTS}]; // position, or unit vector towards the light
-uniform vec3 lightColor[${MAX_LIGHTS}];
 uniform bool srgb;
 
 const int W = ${TEX_WIDTH};
@@ -71,27 +112,45 @@ vec3 encode(vec3 v) {
   return mix(12.92 * v, 1.055 * pow(v, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), v));
 }
 
-// Shadow column towards light l at x, trilinear on the grid (0 outside it).
-float shadowColumn(int l, vec3 x) {
-  if (!hasShadows) return 0.0;
-  vec3 g = (x - gridMin) / (gridMax - gridMin) * float(gridRes - 1);
-  if (any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(float(gridRes - 1))))) return 0.0;
-  ivec3 i0 = min(ivec3(floor(g)), ivec3(gridRes - 2));
-  vec3 f = g - vec3(i0);
-  int base = l * gridRes * gridRes * gridRes;
-  float v[8];
-  for (int c = 0; c < 8; c++) {
-    ivec3 o = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-    ivec3 p = i0 + o;
-    v[c] = fetch(shadowTex, base + (p.z * gridRes + p.y) * gridRes + p.x).x;
-  }
-  float x00 = mix(v[0], v[1], f.x), x10 = mix(v[2], v[3], f.x);
-  float x01 = mix(v[4], v[5], f.x), x11 = mix(v[6], v[7], f.x);
-  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+${SHADOW_GLSL}
+const int MAX_HITS = 64;
+const int MAX_STEPS = 4000;
+const int MAX_WINDOWS = 256;
+
+// The chord of blob idx along the ray: [s0, s1] clipped to [0, sMax]; false if none.
+bool chordOf(int idx, vec3 rd, float sMax, out float s0, out float s1, out float sm, out float r2, out float sigma) {
+  vec4 a = fetch(blobTex, 3 * idx);
+  sigma = a.w;
+  vec3 oc = a.xyz - camPos;
+  sm = dot(oc, rd);
+  r2 = max(dot(oc, oc) - sm * sm, 0.0);
+  float R = TRUNC * sigma;
+  if (r2 >= R * R) return false;
+  float h = sqrt(R * R - r2);
+  s0 = max(sm - h, 0.0);
+  s1 = min(sm + h, sMax);
+  return s1 > s0;
 }
 
-const int MAX_HITS = 96;
-const int MAX_STEPS = 400;
+// m/(4πσ²) exp(−r²/2σ²): the chord's line integral per unit of erf.
+float peakOf(int idx, float sigma, float r2) {
+  float m = fetch(blobTex, 3 * idx + 1).x;
+  return m / (12.566370614 * sigma * sigma) * exp(-r2 / (2.0 * sigma * sigma));
+}
+
+// Adds blob idx's share of the step [s, e] (its chord [s0, s1]) to the density-weighted sums.
+void addChord(int idx, float s0, float s1, float sm, float pk, float iw, float s, float e,
+              inout float w, inout vec3 albedo, inout vec3 emitted) {
+  float a = max(s, s0);
+  float b = min(e, s1);
+  if (b <= a) return;
+  float wk = pk * (erf1((b - sm) * iw) - erf1((a - sm) * iw));
+  vec4 bb = fetch(blobTex, 3 * idx + 1);
+  vec3 q = fetch(blobTex, 3 * idx + 2).rgb;
+  w += wk;
+  albedo += bb.yzw * wk;
+  emitted += (1.0 - bb.yzw) * q * wk;
+}
 
 void main() {
   vec2 ndc = gl_FragCoord.xy / resolution * 2.0 - 1.0;
@@ -112,75 +171,93 @@ void main() {
   vec4 head = fetch(headTex, tile.y * tilesX + tile.x);
   int start = int(head.x);
   int count = int(head.y);
-  // Gather the chords this ray meets.
-  float sIn[MAX_HITS], sOut[MAX_HITS], sMid[MAX_HITS], peak[MAX_HITS], invW[MAX_HITS];
-  int id[MAX_HITS];
-  int hits = 0;
-  float minSigma = 1e30;
+  float s0, s1, sm, r2, sigma;
+  // Where the ray's chords begin and end, and the smallest σ it meets.
   float first = 1e30;
   float last = 0.0;
-  for (int k = 0; k < count && hits < MAX_HITS; k++) {
-    int idx = int(fetch(listTex, start + k).x);
-    vec4 a = fetch(blobTex, 3 * idx);
-    float sigma = a.w;
-    vec3 oc = a.xyz - camPos;
-    float sm = dot(oc, rd);
-    float r2 = max(dot(oc, oc) - sm * sm, 0.0);
-    float R = TRUNC * sigma;
-    if (r2 >= R * R) continue;
-    float h = sqrt(R * R - r2);
-    float s0 = max(sm - h, 0.0);
-    float s1 = min(sm + h, sMax);
-    if (s1 <= s0) continue;
-    float m = fetch(blobTex, 3 * idx + 1).x;
-    sIn[hits] = s0; sOut[hits] = s1; sMid[hits] = sm; id[hits] = idx;
-    invW[hits] = 0.70710678 / sigma;
-    peak[hits] = m / (12.566370614 * sigma * sigma) * exp(-r2 / (2.0 * sigma * sigma));
-    minSigma = min(minSigma, sigma);
+  float sigmaMin = 1e30;
+  for (int k = 0; k < count; k++) {
+    if (!chordOf(int(fetch(listTex, start + k).x), rd, sMax, s0, s1, sm, r2, sigma)) continue;
     first = min(first, s0);
     last = max(last, s1);
-    hits++;
+    sigmaMin = min(sigmaMin, sigma);
   }
+  // March [first, last) in windows that each meet at most MAX_HITS chords, kept in registers:
+  // a window that meets more is halved and gathered again. Where more than MAX_HITS chords
+  // overlap within a blob's width, that window is marched reading every candidate per step.
+  // No blob is ever dropped.
+  float sIn[MAX_HITS], sOut[MAX_HITS], sMid[MAX_HITS], peak[MAX_HITS], invW[MAX_HITS];
+  int id[MAX_HITS];
   vec3 T = vec3(1.0);
   vec3 rad = vec3(0.0);
-  float step = 0.5 * minSigma;
-  float s = first;
-  for (int n = 0; n < MAX_STEPS && hits > 0 && s < last; n++) {
-    float s1 = s + step;
-    float w = 0.0;
-    vec3 albedo = vec3(0.0);
-    vec3 emitted = vec3(0.0);
+  float sA = first;
+  float width = last - first;
+  int steps = 0;
+  for (int win = 0; win < MAX_WINDOWS && sA < last && steps < MAX_STEPS; win++) {
+    float sB = min(sA + width, last);
+    int hits = 0;
+    bool full = false;
+    float minSigma = 1e30;
     float nextIn = 1e30;
-    for (int k = 0; k < hits; k++) {
-      if (sIn[k] >= s1) { nextIn = min(nextIn, sIn[k]); continue; }
-      if (sOut[k] <= s) continue;
-      float a = max(s, sIn[k]);
-      float b = min(s1, sOut[k]);
-      float wk = peak[k] * (erf1((b - sMid[k]) * invW[k]) - erf1((a - sMid[k]) * invW[k]));
-      vec4 bb = fetch(blobTex, 3 * id[k] + 1);
-      vec3 q = fetch(blobTex, 3 * id[k] + 2).rgb;
-      w += wk;
-      albedo += bb.yzw * wk;
-      emitted += (1.0 - bb.yzw) * q * wk;
+    for (int k = 0; k < count; k++) {
+      int idx = int(fetch(listTex, start + k).x);
+      if (!chordOf(idx, rd, sMax, s0, s1, sm, r2, sigma)) continue;
+      if (s1 <= sA || s0 >= sB) continue;
+      minSigma = min(minSigma, sigma);
+      nextIn = min(nextIn, s0);
+      if (hits == MAX_HITS) { full = true; continue; }
+      sIn[hits] = s0; sOut[hits] = s1; sMid[hits] = sm; id[hits] = idx;
+      invW[hits] = 0.70710678 / sigma;
+      peak[hits] = peakOf(idx, sigma, r2);
+      hits++;
     }
-    if (w > 0.0) {
-      albedo /= w;
-      vec3 x = camPos + rd * (0.5 * (s + s1));
-      vec3 L = vec3(0.0);
-      for (int l = 0; l < ${MAX_LIGHTS}; l++) {
-        if (l >= lightCount) break;
-        vec3 toLight = lightType[l] == 0 ? normalize(lightVec[l] - x) : lightVec[l];
-        L += phase(dot(rd, toLight)) * exp(-kappa * shadowColumn(l, x)) * lightColor[l];
+    if (full && width > sigmaMin) {
+      width *= 0.5;
+      continue;
+    }
+    float step = 0.5 * minSigma;
+    float s = max(sA, nextIn);
+    while (hits > 0 && s < sB && steps < MAX_STEPS) {
+      steps++;
+      float e = min(s + step, sB);
+      float w = 0.0;
+      vec3 albedo = vec3(0.0);
+      vec3 emitted = vec3(0.0);
+      float upcoming = 1e30;
+      if (full) {
+        for (int k = 0; k < count; k++) {
+          int idx = int(fetch(listTex, start + k).x);
+          if (!chordOf(idx, rd, sMax, s0, s1, sm, r2, sigma)) continue;
+          if (s0 >= e) { upcoming = min(upcoming, s0); continue; }
+          addChord(idx, s0, s1, sm, peakOf(idx, sigma, r2), 0.70710678 / sigma, s, e, w, albedo, emitted);
+        }
+      } else {
+        for (int k = 0; k < hits; k++) {
+          if (sIn[k] >= e) { upcoming = min(upcoming, sIn[k]); continue; }
+          addChord(id[k], sIn[k], sOut[k], sMid[k], peak[k], invW[k], s, e, w, albedo, emitted);
+        }
       }
-      vec3 C = albedo * L + emitted / w;
-      vec3 absorbed = 1.0 - exp(-kappa * w);
-      rad += T * absorbed * C;
-      T *= 1.0 - absorbed;
-      if (max(T.r, max(T.g, T.b)) < 1e-4) break;
-      s = s1;
-    } else {
-      s = max(s1, nextIn); // jump the gap to the next chord
+      if (w > 0.0) {
+        albedo /= w;
+        vec3 x = camPos + rd * (0.5 * (s + e));
+        vec3 L = vec3(0.0);
+        for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+          if (l >= lightCount) break;
+          vec3 toLight = lightType[l] == 0 ? normalize(lightVec[l] - x) : lightVec[l];
+          L += phase(dot(rd, toLight)) * exp(-kappa * shadowColumn(l, x)) * lightColor[l];
+        }
+        vec3 C = albedo * L + emitted / w;
+        vec3 absorbed = 1.0 - exp(-kappa * w);
+        rad += T * absorbed * C;
+        T *= 1.0 - absorbed;
+        s = e;
+      } else {
+        s = max(e, upcoming); // jump the gap to the next chord
+      }
     }
+    if (max(T.r, max(T.g, T.b)) < 1e-4) break;
+    sA = sB;
+    width *= 2.0;
   }
   outColor = vec4(encode(rad + T * behind), 1.0);
 }
@@ -246,7 +323,6 @@ export class RaymarchLayer {
       positions.set(b.center, 3 * i);
       sigma[i] = b.sigma;
     });
-    const lights = list.lights.slice(0, MAX_LIGHTS);
     const res = grid ? grid[6] : 0;
     const columns = res > 1 ? grid.subarray(8) : new Float32Array(1);
     const shadowData = new Float32Array(4 * Math.max(columns.length, 1));
@@ -274,19 +350,26 @@ export class RaymarchLayer {
     u.camRight.value.fromArray(view.right);
     u.camUp.value.fromArray(view.up);
     u.tanHalf.value = view.tanHalf;
-    const k = Array.isArray(medium.extinction) ? medium.extinction : [medium.extinction, medium.extinction, medium.extinction];
-    u.kappa.value.fromArray(k);
     u.background.value.fromArray(list.background);
     u.phaseType.value = medium.phase?.type === 'henyey-greenstein' ? 1 : 0;
     u.phaseG.value = medium.phase?.g ?? 0;
-    u.lightCount.value = lights.length;
-    lights.forEach((l, i) => {
+    this.setLights(list.lights, medium);
+    u.srgb.value = (list.image?.encoding ?? 'srgb') === 'srgb';
+  }
+
+  /** Lights (at most MAX_LIGHTS) and the medium's extinction κ_t, shared with the objects. */
+  setLights(lights, medium) {
+    const u = this.material.uniforms;
+    const k = Array.isArray(medium.extinction) ? medium.extinction : [medium.extinction, medium.extinction, medium.extinction];
+    u.kappa.value.fromArray(k);
+    const used = lights.slice(0, MAX_LIGHTS);
+    u.lightCount.value = used.length;
+    used.forEach((l, i) => {
       u.lightType.value[i] = l.type === 'point' ? 0 : 1;
       if (l.type === 'point') u.lightVec.value[i].fromArray(l.position);
       else u.lightVec.value[i].fromArray(l.direction).normalize().negate();
       u.lightColor.value[i].fromArray(l.color);
     });
-    u.srgb.value = (list.image?.encoding ?? 'srgb') === 'srgb';
   }
 
   /** Binds the opaque pass (colour and depth targets) and its camera's clip planes. */

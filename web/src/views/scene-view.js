@@ -5,6 +5,8 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { PointsLayer } from './points-layer.js';
 import { RaymarchLayer } from './raymarch-layer.js';
+import { modelMesh } from './models.js';
+import { shadowedLambert } from './object-material.js';
 
 export class SceneView {
   /** @param {HTMLCanvasElement} canvas */
@@ -12,7 +14,7 @@ export class SceneView {
     this.canvas = canvas;
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(1);
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 200);
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 4000);
     this.controls = new OrbitControls(this.camera, canvas);
     // Without damping the controls update the camera only on user input, so an untouched
     // camera stays exactly where the scene put it (deterministic exports).
@@ -26,6 +28,8 @@ export class SceneView {
     this.target = null;
     this.settingsKey = '';
     this.background = [0, 0, 0];
+    /** Draw plain cylinders in place of models (for comparisons with the CPU still). */
+    this.standIns = false;
   }
 
   /** Places the camera as the scene's render settings say. */
@@ -64,9 +68,12 @@ export class SceneView {
     };
   }
 
-  /** Rebuilds the objects and three.js lights when the render settings change. */
-  setRenderSettings(settings) {
-    const key = JSON.stringify([settings.objects, settings.lights, settings.background]);
+  /**
+   * Rebuilds the objects and three.js lights when the render settings change. With
+   * `standIns`, cylinders that name a model are drawn as the plain cylinders the CPU still uses.
+   */
+  setRenderSettings(settings, { standIns = this.standIns } = {}) {
+    const key = JSON.stringify([settings.objects, settings.lights, settings.medium, settings.background, standIns]);
     if (key === this.settingsKey) return;
     this.settingsKey = key;
     this.background = settings.background;
@@ -76,19 +83,10 @@ export class SceneView {
       child.geometry?.dispose();
       child.material?.dispose();
     }
-    for (const o of settings.objects) this.objects.add(objectMesh(o));
-    for (const l of settings.lights) {
-      const color = new THREE.Color().setRGB(...l.color, THREE.LinearSRGBColorSpace);
-      if (l.type === 'point') {
-        const light = new THREE.PointLight(color, Math.PI, 0, 0);
-        light.position.fromArray(l.position);
-        this.objects.add(light);
-      } else {
-        const light = new THREE.DirectionalLight(color, Math.PI);
-        light.position.fromArray(l.direction).multiplyScalar(-50);
-        this.objects.add(light);
-      }
-    }
+    for (const o of settings.objects) this.objects.add(objectMesh(o, standIns, this.raymarch.material.uniforms));
+    // Lights reach the objects through the shared uniforms; set them now so the points view
+    // shades the objects before the first ray-march frame.
+    this.raymarch.setLights(settings.lights, settings.medium);
   }
 
   resize(width, height) {
@@ -124,15 +122,17 @@ export class SceneView {
   }
 }
 
-function objectMesh(o) {
-  const material = new THREE.MeshLambertMaterial({ color: new THREE.Color().setRGB(...o.color, THREE.LinearSRGBColorSpace), side: THREE.DoubleSide });
+function objectMesh(o, standIns, shared) {
+  const material = shadowedLambert(o.color, shared);
+  const model = o.type === 'cylinder' && !standIns ? modelMesh(o, material) : null;
+  if (model) return model;
   if (o.type === 'sphere') {
     const mesh = new THREE.Mesh(new THREE.SphereGeometry(o.radius, 48, 24), material);
     mesh.position.fromArray(o.center);
     return mesh;
   }
   if (o.type === 'plane') {
-    const mesh = new THREE.Mesh(new THREE.PlaneGeometry(200, 200), material);
+    const mesh = new THREE.Mesh(new THREE.PlaneGeometry(4000, 4000, 200, 200), material);
     mesh.position.fromArray(o.point);
     mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3().fromArray(o.normal).normalize());
     return mesh;
