@@ -13,7 +13,7 @@ export default defineConfig({
     emptyOutDir: true,
     target: 'es2022',
     rollupOptions: {
-      input: { main: here('index.html'), field: here('field.html'), embed: here('embed.html') },
+      input: { main: here('index.html'), field: here('field.html'), embed: here('embed.html'), classroom: here('classroom.html') },
     },
   },
   worker: { format: 'es' },

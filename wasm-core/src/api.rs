@@ -374,3 +374,60 @@ pub fn decode_png_rgb(bytes: &[u8]) -> Result<Vec<u8>, JsError> {
     out.extend_from_slice(&rgb);
     Ok(out)
 }
+
+/// The paper's Figure 1: a square of density in a 2-D wind, on a grid (Eq. 12) and as blobs.
+#[wasm_bindgen(js_name = Figure1Demo)]
+pub struct Figure1Demo {
+    inner: crate::figure1::Figure1,
+}
+
+#[wasm_bindgen(js_class = Figure1Demo)]
+impl Figure1Demo {
+    /// `params_json`: [`crate::figure1::Figure1Params`] (any subset; the rest default).
+    #[wasm_bindgen(constructor)]
+    pub fn new(params_json: &str) -> Result<Figure1Demo, JsError> {
+        let params: crate::figure1::Figure1Params = serde_json::from_str(params_json)
+            .map_err(|e| JsError::new(&format!("Figure 1 setup: {e}")))?;
+        Ok(Self {
+            inner: crate::figure1::Figure1::new(params).map_err(js_error)?,
+        })
+    }
+
+    /// Advances both models by `seconds`.
+    pub fn step(&mut self, seconds: f64) {
+        self.inner.step(seconds);
+    }
+
+    pub fn time(&self) -> f64 {
+        self.inner.time
+    }
+
+    /// Cells per side.
+    pub fn n(&self) -> u32 {
+        self.inner.params.n as u32
+    }
+
+    /// The grid's density, row-major from y = 0.
+    pub fn grid(&self) -> Vec<f32> {
+        self.inner.rho.iter().map(|&v| v as f32).collect()
+    }
+
+    /// The blobs' density averaged over the same cells.
+    pub fn blobs(&self) -> Vec<f32> {
+        self.inner
+            .blob_density()
+            .iter()
+            .map(|&v| v as f32)
+            .collect()
+    }
+
+    #[wasm_bindgen(js_name = gridMass)]
+    pub fn grid_mass(&self) -> f64 {
+        self.inner.grid_mass()
+    }
+
+    #[wasm_bindgen(js_name = blobMass)]
+    pub fn blob_mass(&self) -> f64 {
+        self.inner.blob_mass()
+    }
+}

@@ -15,6 +15,7 @@ pub mod emitter;
 pub mod error;
 pub mod fft4;
 pub mod field;
+pub mod figure1;
 pub mod gas;
 pub mod lanes;
 pub mod lattice;

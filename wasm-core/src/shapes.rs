@@ -131,7 +131,8 @@ impl Shape {
     /// The blob centres (m), drawn with a generator seeded by the scene seed and the set's
     /// index, so the same scene always yields the same points.
     pub fn centres(&self, seed: u64, index: usize) -> Vec<Vec3> {
-        let mut rng = Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x5348_4150 + index as u64));
+        let mut rng =
+            Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x5348_4150 + index as u64));
         let mut u = || uniform(&mut rng);
         let c = Vec3::from_array(self.center);
         let axis = Vec3::from_array(self.axis).normalize();
@@ -146,7 +147,11 @@ impl Shape {
             }
         };
         match self.shape {
-            Solid::Points => self.points.iter().map(|&p| c + Vec3::from_array(p)).collect(),
+            Solid::Points => self
+                .points
+                .iter()
+                .map(|&p| c + Vec3::from_array(p))
+                .collect(),
             Solid::Sphere => (0..self.count).map(|_| c + in_ball(&mut u) * r).collect(),
             Solid::Cube => (0..self.count)
                 .map(|_| c + Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0) * r)

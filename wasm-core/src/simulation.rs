@@ -81,7 +81,13 @@ impl Simulation {
     }
 
     /// Runs shape `index` alone forwards for `seconds`, keeping every step.
-    fn run_shape(scene: &Scene, wind: &Wind, shape: &Shape, index: usize, seconds: f64) -> Vec<Blobs> {
+    fn run_shape(
+        scene: &Scene,
+        wind: &Wind,
+        shape: &Shape,
+        index: usize,
+        seconds: f64,
+    ) -> Vec<Blobs> {
         let dt = scene.simulation.dt;
         let steps = (seconds / dt).round().max(0.0) as u64;
         let mut gas = Gas::new(scene.gas.clone(), &[], scene.seed);
@@ -89,7 +95,13 @@ impl Simulation {
         let mut frames: [WindFrame; 2] = Default::default();
         let mut snapshots = vec![gas.blobs.clone()];
         for k in 0..steps {
-            gas.step(wind, k as f64 * dt, dt, scene.simulation.integrator, &mut frames);
+            gas.step(
+                wind,
+                k as f64 * dt,
+                dt,
+                scene.simulation.integrator,
+                &mut frames,
+            );
             snapshots.push(gas.blobs.clone());
         }
         snapshots

@@ -31,7 +31,12 @@ fn presets_dir() -> PathBuf {
 
 /// Renders `name.json` (a blob list, or a scene simulated for `seconds`) to 8-bit RGB.
 fn render(name: &str, seconds: f64) -> (u32, u32, Vec<u8>) {
-    render_file(&golden_dir().join(format!("{name}.json")), seconds, None, false)
+    render_file(
+        &golden_dir().join(format!("{name}.json")),
+        seconds,
+        None,
+        false,
+    )
 }
 
 /// Renders a scene or blob list file; `without_gas` drops every blob first.
@@ -107,11 +112,18 @@ fn golden_presets() {
         let (w, h, rgb) = render_file(&path, seconds, Some(PRESET_SIZE), false);
         let (_, _, bare) = render_file(&path, seconds, Some(PRESET_SIZE), true);
         let p = psnr(&rgb, &bare);
-        assert!(p < 30.0, "{name}: the gas barely shows ({p:.1} dB from the bare frame)");
+        assert!(
+            p < 30.0,
+            "{name}: the gas barely shows ({p:.1} dB from the bare frame)"
+        );
         let n = rgb.len() as f64;
         let mean = rgb.iter().map(|&v| v as f64).sum::<f64>() / n;
         let var = rgb.iter().map(|&v| (v as f64 - mean).powi(2)).sum::<f64>() / n;
-        assert!(var.sqrt() > 8.0, "{name}: the still is nearly flat (sd {:.1})", var.sqrt());
+        assert!(
+            var.sqrt() > 8.0,
+            "{name}: the still is nearly flat (sd {:.1})",
+            var.sqrt()
+        );
         compare(&format!("preset-{name}"), w, h, &rgb);
     }
 }

@@ -40,7 +40,9 @@ fn points_lie_inside_their_solids() {
     let ms = ball.iter().map(|p| (*p - c).length_squared()).sum::<f32>() / 2000.0;
     assert!((ms / (0.6 * 0.36) - 1.0).abs() < 0.05, "{ms}");
     let cube = shape(Solid::Cube).centres(1, 0);
-    assert!(cube.iter().all(|p| (*p - c).abs().max_element() <= 0.6 + 1e-5));
+    assert!(cube
+        .iter()
+        .all(|p| (*p - c).abs().max_element() <= 0.6 + 1e-5));
     for p in shape(Solid::Torus).centres(1, 0) {
         let d = p - c;
         let along = d.dot(axis);
@@ -49,7 +51,9 @@ fn points_lie_inside_their_solids() {
         assert!(tube <= 0.1 + 1e-5, "torus point {tube} from the ring");
     }
     let trefoil = shape(Solid::Trefoil).centres(1, 0);
-    assert!(trefoil.iter().all(|p| (*p - c).length() <= 0.6 + 0.1 + 1e-5));
+    assert!(trefoil
+        .iter()
+        .all(|p| (*p - c).length() <= 0.6 + 0.1 + 1e-5));
     let listed = Shape {
         shape: Solid::Points,
         center: [1.0, 0.0, 0.0],
@@ -144,11 +148,20 @@ fn bad_sets_are_rejected_with_their_path() {
     for (set, path) in [
         (json!({"shape": "torus", "count": 0}), "shapes[0].count"),
         (json!({"shape": "cube", "radius": -1}), "shapes[0].radius"),
-        (json!({"shape": "sphere", "reverse_from": -2}), "shapes[0].reverse_from"),
+        (
+            json!({"shape": "sphere", "reverse_from": -2}),
+            "shapes[0].reverse_from",
+        ),
         (json!({"shape": "sphere", "sigma0": 0}), "shapes[0].sigma0"),
         (json!({"shape": "blob"}), "shapes[0].shape"),
-        (json!({"shape": "points", "points": [[0, "a", 0]]}), "shapes[0].points[0][1]"),
-        (json!({"shape": "sphere", "count": 100000, "reverse_from": 100}), "shapes"),
+        (
+            json!({"shape": "points", "points": [[0, "a", 0]]}),
+            "shapes[0].points[0][1]",
+        ),
+        (
+            json!({"shape": "sphere", "count": 100000, "reverse_from": 100}),
+            "shapes",
+        ),
     ] {
         let v = json!({"version": 1, "shapes": [set]});
         let err = Scene::from_json(&v.to_string()).unwrap_err().to_string();

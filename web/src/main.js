@@ -52,6 +52,20 @@ function buildControls() {
       $('#still').hidden = false;
     },
     png: () => download('windfield.png', $('#canvas').toDataURL('image/png')),
+    blobs: async () => {
+      const list = await player.exportBlobs();
+      download('blobs.json', URL.createObjectURL(new Blob([JSON.stringify(list)], { type: 'application/json' })));
+    },
+    frames: 120,
+    video: async () => {
+      state.playing = false;
+      try {
+        const video = await player.recordWebM({ frames: actions.frames, width: 640, height: 480 });
+        download('windfield.webm', URL.createObjectURL(video));
+      } catch (e) {
+        showMessage(`Could not record: ${e.message}`);
+      }
+    },
   };
   const sim = gui.addFolder('Simulation');
   sim.add(actions, 'play');
@@ -97,6 +111,9 @@ function buildControls() {
   share.add(actions, 'importScene').name('import scene JSON');
   share.add(actions, 'still').name('render still (CPU)');
   share.add(actions, 'png').name('export PNG of view');
+  share.add(actions, 'blobs').name('export blob list JSON');
+  share.add(actions, 'frames', 2, 1800, 1).name('video frames');
+  share.add(actions, 'video').name('record WebM');
   $('#panel').append($('#status'), $('#still'));
   return {
     refresh: () => {

@@ -2,6 +2,7 @@
 // scripting API of DESIGN §5. The playground page and every <wind-field> element each own one.
 
 import { Engine } from './engine/client.js';
+import { recordWebM } from './recorder.js';
 import { SceneView } from './views/scene-view.js';
 
 /** Shadow-grid points per axis for the GPU ray march. */
@@ -173,6 +174,31 @@ export class Player {
     return bytesToDataUrl(out.png);
   }
 
+  /**
+   * A WebM of `frames` consecutive fixed steps (one step a frame, from the current state),
+   * drawn at width × height in `mode`, at `fps` frames per second of video.
+   */
+  recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
+    return this.exclusive(async () => {
+      const before = this.view.size();
+      const saved = this.state.mode;
+      this.state.mode = mode;
+      try {
+        this.view.resize(width, height);
+        return await recordWebM({
+          canvas: this.view.canvas,
+          frames,
+          fps,
+          renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
+          onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
+        });
+      } finally {
+        this.state.mode = saved;
+        this.view.resize(before.width, before.height);
+      }
+    });
+  }
+
   /** DESIGN §5's methods, bound to this player. */
   api(ready) {
     return {
@@ -186,6 +212,7 @@ export class Player {
       exportBlobs: (size) => this.exportBlobs(size),
       captureGPU: (options) => this.captureGPU(options),
       renderReference: (options) => this.renderReference(options),
+      recordWebM: (options) => this.recordWebM(options),
     };
   }
 

@@ -1,0 +1,92 @@
+// The classroom page and the exports: the spectrum plot's data is what `windfield stats`
+// reports for the same field; the Figure 1 demo conserves mass; the side-by-side players run
+// three variants; PNG, WebM and blob-list exports are valid files.
+import { test, expect } from '@playwright/test';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { collectErrors } from './helpers.js';
+import { cliPath, loadCore } from '../tests/support/core.js';
+
+test('classroom: the spectrum plot shows what windfield stats reports', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.goto('./classroom.html');
+  await page.waitForFunction(() => window.classroom?.ready);
+  await page.evaluate(() => window.classroom.ready);
+  const { series, report } = await page.evaluate(() => ({ series: window.classroom.series, report: window.classroom.report }));
+  const dir = mkdtempSync(join(tmpdir(), 'windfield-classroom-'));
+  try {
+    execFileSync(cliPath, ['generate', '--size', '32', '--seed', '1', '--out', join(dir, 'f.npy')]);
+    const cli = JSON.parse(execFileSync(cliPath, ['stats', '--json', join(dir, 'f.npy')]).toString());
+    const inertial = cli.shells.filter((s) => s.energy_expected > 0);
+    expect(series.measured.length).toBe(inertial.length);
+    expect(series.measured.length).toBeGreaterThan(5);
+    inertial.forEach((s, i) => {
+      expect(series.measured[i][0]).toBe(s.k);
+      expect(Math.abs(series.measured[i][1] / s.energy - 1)).toBeLessThan(1e-4);
+      expect(Math.abs(series.target[i][1] / s.energy_expected - 1)).toBeLessThan(1e-9);
+      expect(Math.abs(series.spread[i][1] - s.temporal_spread)).toBeLessThan(1e-3 * Math.max(1, s.temporal_spread));
+    });
+    expect(Math.abs(report.slope - cli.slope)).toBeLessThan(1e-3);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+  expect(errors).toEqual([]);
+});
+
+test('classroom: Figure 1 conserves mass; the side-by-side players run three variants', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.goto('./classroom.html');
+  await page.waitForFunction(() => window.classroom?.ready);
+  await page.evaluate(() => window.classroom.ready);
+  const masses = await page.evaluate(() => {
+    const d = window.classroom.figure1;
+    const before = d.gridMass();
+    d.step(0.5);
+    return { before, grid: d.gridMass(), blobs: d.blobMass(), t: d.time() };
+  });
+  expect(masses.t).toBeGreaterThan(0.4);
+  expect(Math.abs(masses.grid / masses.before - 1)).toBeLessThan(1e-9);
+  expect(Math.abs(masses.blobs / masses.before - 1)).toBeLessThan(1e-9);
+  const variants = await page.evaluate(() => ['off', 'on', 'carried'].map((id) => {
+    const f = document.getElementById(id).getScene().field;
+    return [f.amplitude, f.carried_by_wind];
+  }));
+  expect(variants[0][0]).toBe(0);
+  expect(variants[1][0]).toBeGreaterThan(0);
+  expect(variants[1][1]).toBe(false);
+  expect(variants[2][1]).toBe(true);
+  expect(errors).toEqual([]);
+});
+
+test('exports: PNG, frame-accurate WebM and the blob list are valid files', async ({ page }) => {
+  await page.goto('./');
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    await w.step(30);
+    const png = await w.captureGPU({ mode: 'points', width: 160, height: 120 });
+    const video = await w.recordWebM({ frames: 12, width: 160, height: 120, fps: 30, mode: 'points' });
+    const bytes = new Uint8Array(await video.arrayBuffer());
+    const list = await w.exportBlobs({ width: 96, height: 72 });
+    return { png, video: Array.from(bytes), list: JSON.stringify(list) };
+  });
+  const core = await loadCore();
+  const rgb = core.decodePng(Buffer.from(out.png.split(',')[1], 'base64'));
+  expect(rgb.length).toBe(8 + 160 * 120 * 3);
+  const video = Buffer.from(out.video);
+  expect(video.subarray(0, 4).toString('hex')).toBe('1a45dfa3'); // EBML header
+  expect(video.includes(Buffer.from('webm'))).toBe(true);
+  expect(video.length).toBeGreaterThan(500);
+  const dir = mkdtempSync(join(tmpdir(), 'windfield-export-'));
+  try {
+    writeFileSync(join(dir, 'blobs.json'), out.list);
+    execFileSync(cliPath, ['render', join(dir, 'blobs.json'), '--out', join(dir, 'still.png')]);
+    expect(readFileSync(join(dir, 'still.png')).subarray(1, 4).toString()).toBe('PNG');
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
