@@ -176,11 +176,13 @@ void main() {
   float first = 1e30;
   float last = 0.0;
   float sigmaMin = 1e30;
+  int chords = 0;
   for (int k = 0; k < count; k++) {
     if (!chordOf(int(fetch(listTex, start + k).x), rd, sMax, s0, s1, sm, r2, sigma)) continue;
     first = min(first, s0);
     last = max(last, s1);
     sigmaMin = min(sigmaMin, sigma);
+    chords++;
   }
   // March [first, last) in windows that each meet at most MAX_HITS chords, kept in registers:
   // a window that meets more is halved and gathered again. Where more than MAX_HITS chords
@@ -191,7 +193,8 @@ void main() {
   vec3 T = vec3(1.0);
   vec3 rad = vec3(0.0);
   float sA = first;
-  float width = last - first;
+  // First window: the whole ray when its chords fit, else a share sized for them to.
+  float width = (last - first) * (chords <= MAX_HITS ? 1.0 : 0.5 * float(MAX_HITS) / float(chords));
   int steps = 0;
   for (int win = 0; win < MAX_WINDOWS && sA < last && steps < MAX_STEPS; win++) {
     float sB = min(sA + width, last);
@@ -205,7 +208,11 @@ void main() {
       if (s1 <= sA || s0 >= sB) continue;
       minSigma = min(minSigma, sigma);
       nextIn = min(nextIn, s0);
-      if (hits == MAX_HITS) { full = true; continue; }
+      if (hits == MAX_HITS) {
+        full = true;
+        if (width > sigmaMin) break; // this window is halved and gathered again
+        continue;
+      }
       sIn[hits] = s0; sOut[hits] = s1; sMid[hits] = sm; id[hits] = idx;
       invW[hits] = 0.70710678 / sigma;
       peak[hits] = peakOf(idx, sigma, r2);
@@ -250,6 +257,7 @@ void main() {
         vec3 absorbed = 1.0 - exp(-kappa * w);
         rad += T * absorbed * C;
         T *= 1.0 - absorbed;
+        if (max(T.r, max(T.g, T.b)) < 1e-4) break;
         s = e;
       } else {
         s = max(e, upcoming); // jump the gap to the next chord
@@ -257,7 +265,7 @@ void main() {
     }
     if (max(T.r, max(T.g, T.b)) < 1e-4) break;
     sA = sB;
-    width *= 2.0;
+    width *= 1.5;
   }
   outColor = vec4(encode(rad + T * behind), 1.0);
 }
