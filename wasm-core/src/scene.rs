@@ -508,14 +508,7 @@ fn validate_emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
         check::range(&format!("{path}.size[{i}]"), s as f64, 0.0, MAX_COORD)?;
     }
     check::range(&p("rate"), e.rate, 0.0, 1e6)?;
-    check::positive(&p("sigma0"), e.sigma0 as f64, 1e4)?;
-    check::positive(&p("mass0"), e.mass0 as f64, 1e12)?;
-    if let Some(a) = e.albedo {
-        check::colour(&p("albedo"), a, 1.0)?;
-    }
-    if let Some(q) = e.emission {
-        check::colour(&p("emission"), q, 1e6)?;
-    }
+    check::blob_birth(path, e.sigma0, e.mass0, e.albedo, e.emission)?;
     check::vector(&p("velocity"), e.velocity, 1e4)?;
     check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)?;
     Ok(())

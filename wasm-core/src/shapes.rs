@@ -114,14 +114,7 @@ impl Shape {
         for (i, &q) in self.points.iter().enumerate() {
             check::vector(&format!("{path}.points[{i}]"), q, MAX_COORD)?;
         }
-        check::positive(&p("sigma0"), self.sigma0 as f64, 1e4)?;
-        check::positive(&p("mass0"), self.mass0 as f64, 1e12)?;
-        if let Some(a) = self.albedo {
-            check::colour(&p("albedo"), a, 1.0)?;
-        }
-        if let Some(q) = self.emission {
-            check::colour(&p("emission"), q, 1e6)?;
-        }
+        check::blob_birth(path, self.sigma0, self.mass0, self.albedo, self.emission)?;
         if let Some(t) = self.reverse_from {
             check::positive(&p("reverse_from"), t, 1e4)?;
         }
