@@ -76,6 +76,16 @@ impl Blob {
             velocity_time: 1.0,
         }
     }
+
+    /// The same blob with a colour of its own: albedo (none: the medium's) and emission
+    /// (none: no emission).
+    pub fn coloured(self, albedo: Option<[f32; 3]>, emission: Option<[f32; 3]>) -> Self {
+        Self {
+            albedo: albedo.unwrap_or([-1.0; 3]),
+            emission: emission.unwrap_or([0.0; 3]),
+            ..self
+        }
+    }
 }
 
 impl Blobs {
@@ -306,16 +316,13 @@ impl Gas {
                 let x = state.sample_position();
                 let v0 = Vec3::from_array(em.velocity);
                 let age = (t1 - birth) as f32;
+                let position = x + (frame.velocity(x) + v0) * age;
                 let blob = Blob {
-                    position: x + (frame.velocity(x) + v0) * age,
-                    sigma0: em.sigma0,
-                    mass0: em.mass0,
-                    birth,
-                    albedo: em.albedo.unwrap_or([-1.0; 3]),
-                    emission: em.emission.unwrap_or([0.0; 3]),
                     velocity0: v0,
                     velocity_time: em.velocity_time,
-                };
+                    ..Blob::new(position, em.sigma0, em.mass0, birth)
+                }
+                .coloured(em.albedo, em.emission);
                 self.blobs.push(&blob, em.sigma0, em.mass0);
                 self.counts.emitted += 1;
             }

@@ -285,6 +285,13 @@ pub struct SimulationSettings {
     pub integrator: Integrator,
 }
 
+impl SimulationSettings {
+    /// Fixed steps that make up `seconds` (rounded to the nearest whole step).
+    pub fn steps_for(&self, seconds: f64) -> u64 {
+        (seconds / self.dt).round().max(0.0) as u64
+    }
+}
+
 impl Default for SimulationSettings {
     fn default() -> Self {
         Self {

@@ -26,10 +26,8 @@ pub struct Simulation {
 
 /// The blobs of shape `index`, born at time 0.
 fn shape_blobs(shape: &Shape, seed: u64, index: usize) -> impl Iterator<Item = Blob> + '_ {
-    shape.centres(seed, index).into_iter().map(move |c| Blob {
-        albedo: shape.albedo.unwrap_or([-1.0; 3]),
-        emission: shape.emission.unwrap_or([0.0; 3]),
-        ..Blob::new(c, shape.sigma0, shape.mass0, 0.0)
+    shape.centres(seed, index).into_iter().map(move |c| {
+        Blob::new(c, shape.sigma0, shape.mass0, 0.0).coloured(shape.albedo, shape.emission)
     })
 }
 
@@ -89,7 +87,7 @@ impl Simulation {
         seconds: f64,
     ) -> Vec<Blobs> {
         let dt = scene.simulation.dt;
-        let steps = (seconds / dt).round().max(0.0) as u64;
+        let steps = scene.simulation.steps_for(seconds);
         let mut gas = Gas::new(scene.gas.clone(), &[], scene.seed);
         shape_blobs(shape, scene.seed, index).for_each(|b| gas.blobs.push(&b, b.sigma0, b.mass0));
         let mut frames: [WindFrame; 2] = Default::default();
@@ -138,7 +136,7 @@ impl Simulation {
 
     /// Steps that make up `seconds` (rounded to the nearest whole step).
     pub fn steps_for(&self, seconds: f64) -> u64 {
-        (seconds / self.scene.simulation.dt).round().max(0.0) as u64
+        self.scene.simulation.steps_for(seconds)
     }
 
     /// One fixed step.
