@@ -77,8 +77,6 @@ export class Player {
     const t0 = performance.now();
     const frame = await this.engine.request('advance', { steps });
     this.lastFrame = frame;
-    // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
-    this.view.setRenderSettings({ ...this.state.scene.render, objects: frame.objects });
     this.stats.blobs = frame.count;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     await this.draw();
@@ -93,6 +91,7 @@ export class Player {
 
   async draw(size = this.view.size()) {
     if (!this.lastFrame || !this.state.scene) return;
+    // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
     this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
     if (this.state.mode === 'raymarch') {
       const list = await this.exportBlobs(size);

@@ -4,6 +4,7 @@
 
 import * as THREE from 'three';
 import { TeapotGeometry } from 'three/examples/jsm/geometries/TeapotGeometry.js';
+import { mergeGeometries } from 'three/examples/jsm/utils/BufferGeometryUtils.js';
 
 /** A mug of unit radius and unit height standing on y = 0: a lathed wall and a torus handle. */
 function mugGeometry() {
@@ -16,23 +17,6 @@ function mugGeometry() {
   handle.rotateZ(-Math.PI / 2);
   handle.translate(1, 0.5, 0);
   return mergeGeometries([body, handle]);
-}
-
-/** Concatenates non-indexed copies of `geometries` (positions and normals). */
-function mergeGeometries(geometries) {
-  const parts = geometries.map((g) => (g.index ? g.toNonIndexed() : g));
-  const merged = new THREE.BufferGeometry();
-  for (const name of ['position', 'normal']) {
-    const arrays = parts.map((g) => g.getAttribute(name).array);
-    const out = new Float32Array(arrays.reduce((n, a) => n + a.length, 0));
-    let offset = 0;
-    for (const a of arrays) {
-      out.set(a, offset);
-      offset += a.length;
-    }
-    merged.setAttribute(name, new THREE.BufferAttribute(out, 3));
-  }
-  return merged;
 }
 
 /** The teapot scaled to unit radius (body) standing on y = 0, spout towards +x. */
