@@ -5,7 +5,8 @@ import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { canvasLuminance, collectErrors } from './helpers.js';
-import { cliPath, loadCore } from '../tests/support/core.js';
+import { cliPath } from '../tests/support/core.js';
+import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 
 async function open(page, url = './') {
@@ -55,9 +56,7 @@ test('both GPU views draw something', async ({ page }) => {
   for (const mode of ['points', 'raymarch']) {
     const url = await page.evaluate((m) => window.windfield.captureGPU({ mode: m, width: 160, height: 120 }), mode);
     expect(url.startsWith('data:image/png;base64,')).toBe(true);
-    const core = await loadCore();
-    const raw = core.decodePng(dataUrlBytes(url));
-    const rgb = raw.subarray(8);
+    const { rgb } = decodePng(dataUrlBytes(url));
     let min = 255;
     let max = 0;
     for (const v of rgb) { min = Math.min(min, v); max = Math.max(max, v); }
@@ -67,8 +66,7 @@ test('both GPU views draw something', async ({ page }) => {
 
 test('the GPU ray march matches the WASM reference still (≥ 30 dB)', async ({ page }) => {
   await open(page);
-  const core = await loadCore();
-  const decode = (url) => core.decodePng(dataUrlBytes(url)).subarray(8);
+  const decode = (url) => decodePng(dataUrlBytes(url)).rgb;
   const colourful = await page.evaluate(() => {
     const s = window.windfield.getScene();
     s.emitters = [
@@ -110,9 +108,8 @@ test('the reference still in the browser equals the native CLI (≥ 45 dB)', asy
   try {
     writeFileSync(join(dir, 'list.json'), JSON.stringify(list));
     execFileSync(cliPath, ['render', join(dir, 'list.json'), '--out', join(dir, 'native.png')]);
-    const core = await loadCore();
-    const native = core.decodePng(readFileSync(join(dir, 'native.png'))).subarray(8);
-    const browser = core.decodePng(dataUrlBytes(still)).subarray(8);
+    const native = decodePng(readFileSync(join(dir, 'native.png'))).rgb;
+    const browser = decodePng(dataUrlBytes(still)).rgb;
     const p = psnr(native, browser);
     expect(p).toBeGreaterThanOrEqual(45);
   } finally {

@@ -4,7 +4,7 @@
 import { test, expect } from '@playwright/test';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { collectErrors } from './helpers.js';
-import { loadCore } from '../tests/support/core.js';
+import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 
 /** Preset names and the time (s) of their golden still (as wasm-core/tests/render_golden.rs). */
@@ -47,8 +47,7 @@ for (const [name, seconds] of PRESETS) {
     // Kept beside the test's results, for a look when the comparison fails.
     writeFileSync(test.info().outputPath('gpu.png'), bytes(gpu));
     writeFileSync(test.info().outputPath('reference.png'), bytes(ref));
-    const core = await loadCore();
-    const decode = (url) => core.decodePng(bytes(url)).subarray(8);
+    const decode = (url) => decodePng(bytes(url)).rgb;
     const p = psnr(decode(gpu), decode(ref));
     expect(p, `${name}: GPU against reference`).toBeGreaterThanOrEqual(30);
     expect(errors).toEqual([]);

@@ -8,16 +8,12 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { cli, cliPath, loadCore, root } from './support/core.js';
 import { psnr } from '../web/src/image-metrics.js';
+import { decodePng as decode } from './support/png.js';
 
 const core = await loadCore();
 const dir = mkdtempSync(join(tmpdir(), 'windfield-render-'));
 process.on('exit', () => rmSync(dir, { recursive: true, force: true }));
 
-function decode(bytes) {
-  const raw = core.decodePng(bytes);
-  const view = new DataView(raw.buffer, raw.byteOffset);
-  return { width: view.getUint32(0, true), height: view.getUint32(4, true), rgb: raw.subarray(8) };
-}
 
 function wasmStill(blobListJson, width, height) {
   const r = new core.ReferenceRender(blobListJson, width, height);

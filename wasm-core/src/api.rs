@@ -7,7 +7,7 @@
 use crate::blob_list::{BlobList, Encoding};
 use crate::field::{FieldParams, Synthesis, TurbulentField};
 use crate::gas::Blob;
-use crate::render::{decode_png, encode_png, LinearImage, RenderOptions, Renderer};
+use crate::render::{encode_png, LinearImage, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
@@ -360,18 +360,6 @@ pub fn shadow_grid(blob_list_json: &str, res: u32) -> Result<Vec<f32>, JsError> 
             }
         }
     }
-    Ok(out)
-}
-
-/// Decodes an 8-bit PNG to RGB bytes (`[width, height]` are the first two u32s of the result's
-/// header: eight little-endian bytes, then the pixels).
-#[wasm_bindgen(js_name = decodePng)]
-pub fn decode_png_rgb(bytes: &[u8]) -> Result<Vec<u8>, JsError> {
-    let (w, h, rgb) = decode_png(bytes).map_err(|e| JsError::new(&e))?;
-    let mut out = Vec::with_capacity(8 + rgb.len());
-    out.extend_from_slice(&w.to_le_bytes());
-    out.extend_from_slice(&h.to_le_bytes());
-    out.extend_from_slice(&rgb);
     Ok(out)
 }
 
