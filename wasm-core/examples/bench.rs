@@ -90,8 +90,9 @@ fn main() {
         "ms",
     );
     let small = Some((64, 48));
-    let tree_ms = median_ms(3, || render(small, true));
-    let brute_ms = median_ms(1, || render(small, false));
+    let tree_ms = median_ms(9, || render(small, true));
+    let brute_ms = median_ms(3, || render(small, false));
+    eprintln!("tree {tree_ms:.1} ms, brute force {brute_ms:.1} ms");
     emit("render_reference_tree_speedup", brute_ms / tree_ms, "ratio");
 
     if let Some(mib) = peak_rss_mib() {
