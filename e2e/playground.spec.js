@@ -170,3 +170,28 @@ test('controls change the scene', async ({ page }) => {
   await input.press('Enter');
   await expect.poll(() => page.evaluate(() => window.windfield.getScene().gas.dissipation)).toBe(0.75);
 });
+
+test('a failed worker shows a message, restarts, and the scene runs on', async ({ page }) => {
+  await open(page);
+  await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(10); });
+  const scene = await page.evaluate(() => window.windfield.getScene());
+  const [worker] = page.workers();
+  expect(worker).toBeDefined();
+  // An uncaught error in the worker's global scope: the page sees the worker fail.
+  await worker.evaluate(() => { setTimeout(() => { throw new Error('injected fault'); }); });
+  await expect(page.locator('#message')).toContainText('engine worker failed');
+  await expect(page.locator('#message')).toContainText('restarting');
+  // The restarted engine has reloaded the same scene from its start: 30 steps from there give
+  // what a fresh load of that scene gives.
+  const run = () => page.evaluate(async () => {
+    const w = window.windfield;
+    await w.step(30);
+    return { scene: w.getScene(), list: await w.exportBlobs({ width: 32, height: 24 }) };
+  });
+  const restarted = await run();
+  await page.evaluate((s) => window.windfield.setScene(s), scene);
+  const fresh = await run();
+  expect(restarted.scene).toEqual(scene);
+  expect(restarted.list.blobs.length).toBeGreaterThan(0);
+  expect(restarted.list.blobs).toEqual(fresh.list.blobs);
+});

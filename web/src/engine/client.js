@@ -28,8 +28,8 @@ export class Engine {
   }
 
   #receive(msg) {
-    if (msg.type === 'fatal') {
-      this.#fail(msg.error, false);
+    if (msg.type === 'fatal' || msg.type === 'crashed') {
+      this.#fail(msg.error, msg.type === 'crashed');
       return;
     }
     const pending = this.#pending.get(msg.id);
@@ -48,7 +48,7 @@ export class Engine {
   #fail(message, restart = true) {
     for (const p of this.#pending.values()) p.reject(new Error(message));
     this.#pending.clear();
-    this.#listeners.onError?.(message);
+    this.#listeners.onError?.(restart ? `${message}; restarting the engine` : message);
     this.#worker?.terminate();
     this.#worker = null;
     if (restart) {

@@ -4,7 +4,8 @@
 // Protocol (page → worker): { id, type, ...args }.
 // Replies (worker → page): { id, ok: true, result } | { id, ok: false, error },
 // progress while a request runs: { id, type: 'progress', progress, stage },
-// and { type: 'fatal', error } if the core cannot start.
+// { type: 'fatal', error } if the core cannot start, and { type: 'crashed', error } if it traps
+// (a Rust panic or running out of memory leaves the instance unusable: the page restarts us).
 // Requests that arrive before the core is ready wait for it, in order.
 // Typed arrays in results are transferred, never copied through JSON.
 
@@ -157,5 +158,8 @@ self.onmessage = async (event) => {
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {
     self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err) });
+    if (err instanceof WebAssembly.RuntimeError) {
+      self.postMessage({ type: 'crashed', error: `the WASM core stopped (${err.message})` });
+    }
   }
 };
