@@ -195,3 +195,66 @@ test('a failed worker shows a message, restarts, and the scene runs on', async (
   expect(restarted.list.blobs.length).toBeGreaterThan(0);
   expect(restarted.list.blobs).toEqual(fresh.list.blobs);
 });
+
+/** The lil-gui folder titled `title` (exactly). */
+function folder(page, title) {
+  return page.locator(`xpath=//div[contains(@class,"lil-gui")][./*[contains(@class,"lil-title")][normalize-space()="${title}"]]`);
+}
+
+async function openFolder(page, title) {
+  const f = folder(page, title);
+  if (await f.evaluate((el) => el.classList.contains('lil-closed'))) await f.locator('.lil-title').first().click();
+  return f;
+}
+
+async function setNumber(f, name, value) {
+  const input = f.locator('.lil-controller', { has: f.page().locator(`.lil-name:text-is("${name}")`) }).locator('input').first();
+  await input.fill(String(value));
+  await input.press('Enter');
+}
+
+test('the scene editor adds, edits, switches off and removes primitives, emitters and lights', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  const scene = () => page.evaluate(() => window.windfield.getScene());
+  const wind = await openFolder(page, 'Wind primitives');
+  await wind.locator('.lil-controller', { hasText: 'new' }).locator('select').selectOption('vortex');
+  await wind.locator('.lil-controller', { hasText: 'add primitive' }).click();
+  await expect.poll(async () => (await scene()).wind.map((p) => p.type)).toEqual(['uniform', 'vortex']);
+
+  const vortex = await openFolder(page, 'wind 2: vortex');
+  await setNumber(vortex, 'strength', 1.5);
+  await expect.poll(async () => (await scene()).wind[1].strength).toBe(1.5);
+  await (await openFolder(page, 'wind 2: vortex')).locator('.lil-controller', { hasText: /^on$/ }).locator('input').uncheck();
+  await expect.poll(async () => (await scene()).wind[1].enabled).toBe(false);
+  expect((await scene()).wind[1].decay).toBe(null);
+  await (await openFolder(page, 'wind 2: vortex')).locator('.lil-controller', { hasText: 'decay on' }).locator('input').check();
+  await expect.poll(async () => (await scene()).wind[1].decay).toBe(1);
+  await setNumber(await openFolder(page, 'wind 2: vortex'), 'decay', 0.5);
+  await expect.poll(async () => (await scene()).wind[1].decay).toBe(0.5);
+  await (await openFolder(page, 'wind 2: vortex')).locator('.lil-controller', { hasText: 'remove' }).click();
+  await expect.poll(async () => (await scene()).wind.length).toBe(1);
+
+  const emitters = await openFolder(page, 'Emitters');
+  await emitters.locator('.lil-controller', { hasText: 'new' }).locator('select').selectOption('sphere');
+  await emitters.locator('.lil-controller', { hasText: 'add emitter' }).click();
+  await expect.poll(async () => (await scene()).emitters.map((e) => e.shape)).toEqual(['disk', 'sphere']);
+  // A bad value: a visible message, and the last good scene keeps running.
+  await setNumber(await openFolder(page, 'emitters 2: sphere'), 'rate', -5);
+  await expect(page.locator('#message')).toContainText('emitters[1].rate');
+  expect((await scene()).emitters[1].rate).toBe(60);
+
+  const lights = await openFolder(page, 'Lights');
+  await lights.locator('.lil-controller', { hasText: 'new' }).locator('select').selectOption('directional');
+  await lights.locator('.lil-controller', { hasText: 'add light' }).click();
+  await expect.poll(async () => (await scene()).render.lights.map((l) => l.type)).toEqual(['point', 'directional']);
+
+  await setNumber(await openFolder(page, 'Medium (§5)'), 'extinction g', 20);
+  await expect.poll(async () => (await scene()).render.medium.extinction).toEqual([14, 20, 14]);
+  await setNumber(await openFolder(page, 'World mapping (§3)'), 'period x (m)', 3);
+  await expect.poll(async () => (await scene()).field.period).toEqual([3, 2, 2]);
+  const before = (await scene()).seed;
+  await page.evaluate(() => window.windfield.step(10));
+  expect((await scene()).seed).toBe(before);
+  expect(errors).toEqual([]);
+});

@@ -4,6 +4,7 @@
 import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
 import { Player, SHADOW_GRID } from './player.js';
+import { sceneEditor } from './scene-editor.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
@@ -86,10 +87,12 @@ function buildControls() {
     }
   };
   const proxy = {};
+  const getters = {};
   const field = gui.addFolder('Small-scale field (§3)');
   const scene = () => state.scene;
   const bind = (folder, label, get, set, ...range) => {
     proxy[label] = get(scene());
+    getters[label] = get;
     return folder.add(proxy, label, ...range).onFinishChange(edit((s) => set(s, proxy[label])));
   };
   bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01, 10, 0.01);
@@ -102,9 +105,18 @@ function buildControls() {
   bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; }, 0, 2, 0.01);
   bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100, 50000, 100);
   const look = gui.addFolder('Rendering (§5)');
-  bind(look, 'extinction', (s) => (Array.isArray(s.render.medium.extinction) ? s.render.medium.extinction[0] : s.render.medium.extinction),
-    (s, v) => { s.render.medium.extinction = v; }, 0, 100, 0.5);
   bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
+  const editor = sceneEditor(gui, {
+    scene,
+    apply: async (draft) => {
+      try {
+        await loadScene(structuredClone(draft));
+      } catch (e) {
+        showMessage(e.message);
+        editor.refresh();
+      }
+    },
+  });
   const share = gui.addFolder('Share and export');
   share.add(actions, 'copyLink').name('copy link');
   share.add(actions, 'exportScene').name('export scene JSON');
@@ -117,9 +129,9 @@ function buildControls() {
   $('#panel').append($('#status'), $('#still'));
   return {
     refresh: () => {
-      for (const c of gui.controllersRecursive()) {
-        if (c.object === proxy) c.updateDisplay();
-      }
+      for (const [label, get] of Object.entries(getters)) proxy[label] = get(scene());
+      for (const c of gui.controllersRecursive()) if (c.object === proxy) c.updateDisplay();
+      editor.refresh();
     },
     gui,
   };

@@ -1,0 +1,148 @@
+// The playground's scene editor: lil-gui folders for every list in the scene (wind primitives,
+// emitters, lights, objects) with add, remove, edit and on/off, plus the world mapping and the
+// medium. Every change goes through `apply(draft)`, which validates and loads the edited copy;
+// the folders are then rebuilt from the scene that loaded (or the last good one).
+
+/** New items, one per kind: valid as they stand (DESIGN §3, §4). */
+export const TEMPLATES = {
+  wind: {
+    uniform: { type: 'uniform', velocity: [0.3, 0, 0] },
+    source: { type: 'source', position: [0, 0.5, 0], strength: 0.2, radius: 0.1 },
+    vortex: { type: 'vortex', position: [0, 0.6, 0], axis: [0, 1, 0], strength: 0.5, radius: 0.1 },
+    repulsor: { type: 'repulsor', radius: 0.25, strength: 0.2, path: [[0, -1, 0.6, 0], [6, 1, 0.6, 0]], color: [0.8, 0.3, 0.2] },
+  },
+  emitters: Object.fromEntries(['point', 'disk', 'sphere', 'box'].map((shape) => [shape, {
+    shape, center: [0, 0, 0], normal: [0, 1, 0], radius: 0.08, size: [0.2, 0.2, 0.2], rate: 60, sigma0: 0.03, mass0: 0.004,
+  }])),
+  lights: {
+    point: { type: 'point', position: [2, 3, 2], color: [1, 1, 1] },
+    directional: { type: 'directional', direction: [-0.3, -1, -0.3], color: [1, 1, 1] },
+  },
+  objects: {
+    sphere: { type: 'sphere', center: [0.6, 0.3, 0], radius: 0.2, color: [0.7, 0.7, 0.7] },
+    plane: { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.45, 0.45, 0.42] },
+    cylinder: { type: 'cylinder', base: [0, 0, 0], axis: [0, 1, 0], radius: 0.1, height: 0.2, color: [0.8, 0.8, 0.8] },
+  },
+};
+
+/** Where each list lives in a scene. */
+export const LISTS = {
+  wind: { title: 'Wind primitives', get: (s) => s.wind, kind: (item) => item.type, optional: ['decay', 'color'] },
+  emitters: { title: 'Emitters', get: (s) => s.emitters, kind: (item) => item.shape, optional: ['albedo', 'emission'] },
+  lights: { title: 'Lights', get: (s) => s.render.lights, kind: (item) => item.type, optional: [] },
+  objects: { title: 'Objects', get: (s) => s.render.objects, kind: (item) => item.type, optional: ['model'] },
+};
+
+/** Values an optional (null) field takes when switched on. */
+const SWITCH_ON = { decay: 1, albedo: [0.9, 0.9, 0.9], emission: [1, 0.8, 0.5], color: [0.8, 0.8, 0.8], model: 'mug' };
+/** Fields edited elsewhere or not by hand (paths, the kind itself). */
+const SKIP = new Set(['type', 'path', 'enabled']);
+const COLOUR = new Set(['color', 'albedo', 'emission']);
+const CHOICES = { shape: ['point', 'disk', 'sphere', 'box'], model: ['mug', 'teapot'] };
+const LATTICE = [8, 16, 32, 64];
+
+const isTriple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number');
+
+/**
+ * Adds controllers for `item`'s fields to `folder`: numbers, switches, triples (three numbers),
+ * choices, and an on/off switch for each `optional` field (null when off). `changed` runs
+ * after each edit.
+ */
+export function addFields(folder, item, changed, optional = []) {
+  for (const [key, value] of Object.entries(item)) {
+    if (SKIP.has(key)) continue;
+    if (typeof value === 'number') {
+      folder.add(item, key).onFinishChange(changed);
+    } else if (typeof value === 'boolean') {
+      folder.add(item, key).onChange(changed);
+    } else if (typeof value === 'string' && CHOICES[key]) {
+      folder.add(item, key, CHOICES[key]).onChange(changed);
+    } else if (isTriple(value)) {
+      const axes = COLOUR.has(key) ? ['r', 'g', 'b'] : ['x', 'y', 'z'];
+      value.forEach((_, a) => folder.add(value, a).name(`${key} ${axes[a]}`).onFinishChange(changed));
+    }
+    if (optional.includes(key)) {
+      // Present (null when off) in every validated scene where the kind has it.
+      const toggle = { on: value !== null && value !== undefined };
+      folder.add(toggle, 'on').name(`${key} on`).onChange((on) => {
+        item[key] = on ? structuredClone(SWITCH_ON[key]) : null;
+        changed();
+      });
+    }
+  }
+}
+
+/** Folder state kept across rebuilds: which titles were open. */
+function openTitles(gui) {
+  return new Set(gui.foldersRecursive().filter((f) => !f._closed).map((f) => f._title));
+}
+
+/**
+ * Builds (and on `refresh`, rebuilds) the scene folders inside `parent`.
+ * `scene()` returns the current scene; `apply(draft)` loads an edited copy (a Promise).
+ */
+export function sceneEditor(parent, { scene, apply }) {
+  let root = null;
+  const build = () => {
+    const open = root ? openTitles(root) : new Set();
+    root?.destroy();
+    root = parent.addFolder('Scene');
+    const draft = structuredClone(scene());
+    const changed = () => apply(draft);
+    world(root, draft, changed);
+    for (const [key, list] of Object.entries(LISTS)) listFolder(root, key, list, draft, changed);
+    medium(root, draft, changed);
+    for (const f of root.foldersRecursive()) if (!open.has(f._title)) f.close();
+    if (open.has('Scene') || !open.size) root.open();
+  };
+  build();
+  return { refresh: build, get gui() { return root; } };
+}
+
+function world(root, draft, changed) {
+  const f = root.addFolder('World mapping (§3)');
+  const field = draft.field;
+  const lattice = { space: field.size[0], time: field.size[3] };
+  f.add(lattice, 'space', LATTICE).name('lattice N (x, y, z)').onChange((n) => { field.size = [n, n, n, field.size[3]]; changed(); });
+  f.add(lattice, 'time', LATTICE).name('lattice N (t)').onChange((n) => { field.size[3] = n; changed(); });
+  field.period.forEach((_, a) => f.add(field.period, a).name(`period ${'xyz'[a]} (m)`).onFinishChange(changed));
+  f.add(field, 'time_period').name('time period (s)').onFinishChange(changed);
+}
+
+function listFolder(root, key, list, draft, changed) {
+  const items = list.get(draft);
+  const f = root.addFolder(list.title);
+  const kinds = Object.keys(TEMPLATES[key]);
+  const adder = {
+    kind: kinds[0],
+    add: () => {
+      items.push(structuredClone(TEMPLATES[key][adder.kind]));
+      changed();
+    },
+  };
+  f.add(adder, 'kind', kinds).name('new');
+  f.add(adder, 'add').name(`add ${key === 'wind' ? 'primitive' : key.replace(/s$/, '')}`);
+  items.forEach((item, i) => {
+    const sub = f.addFolder(`${key} ${i + 1}: ${list.kind(item)}`);
+    if ('enabled' in item) sub.add(item, 'enabled').name('on').onChange(changed);
+    addFields(sub, item, changed, list.optional);
+    sub.add({ remove: () => { items.splice(i, 1); changed(); } }, 'remove');
+  });
+}
+
+function medium(root, draft, changed) {
+  const render = draft.render;
+  const m = render.medium;
+  const f = root.addFolder('Medium (§5)');
+  if (!Array.isArray(m.extinction)) m.extinction = [m.extinction, m.extinction, m.extinction];
+  m.extinction.forEach((_, a) => f.add(m.extinction, a).name(`extinction ${'rgb'[a]}`).onFinishChange(changed));
+  m.albedo.forEach((_, a) => f.add(m.albedo, a, 0, 1, 0.01).name(`albedo ${'rgb'[a]}`).onFinishChange(changed));
+  const phase = { type: m.phase.type, g: m.phase.g ?? 0.3 };
+  const setPhase = () => {
+    m.phase = phase.type === 'isotropic' ? { type: 'isotropic' } : { type: 'henyey-greenstein', g: phase.g };
+    changed();
+  };
+  f.add(phase, 'type', ['isotropic', 'henyey-greenstein']).name('phase').onChange(setPhase);
+  if (phase.type !== 'isotropic') f.add(phase, 'g', -0.99, 0.99, 0.01).name('phase g').onFinishChange(setPhase);
+  render.background.forEach((_, a) => f.add(render.background, a, 0, 1, 0.01).name(`background ${'rgb'[a]}`).onFinishChange(changed));
+}
