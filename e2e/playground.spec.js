@@ -258,3 +258,51 @@ test('the scene editor adds, edits, switches off and removes primitives, emitter
   expect((await scene()).seed).toBe(before);
   expect(errors).toEqual([]);
 });
+
+test('wind guides draw over the view; the drag handle moves an emitter', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const shot = () => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
+  const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  await settle();
+  const withGuides = await shot();
+  await page.keyboard.press('g');
+  await settle();
+  const without = await shot();
+  const a = decodePng(dataUrlBytes(withGuides)).rgb;
+  const b = decodePng(dataUrlBytes(without)).rgb;
+  let changed = 0;
+  for (let i = 0; i < a.length; i += 3) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) changed += 1;
+  expect(changed, 'pixels the guides draw').toBeGreaterThan(100);
+  writeFileSync(test.info().outputPath('guides.png'), dataUrlBytes(withGuides));
+  // The handle: pick the emitter, then drag the handle's x arrow (0.2 m out from its centre,
+  // where the gizmo of about 0.5 m draws it) 80 px to the right.
+  await (await openFolder(page, 'Simulation')).locator('.lil-controller', { hasText: 'drag handle' }).locator('select').selectOption('emitters 1: disk');
+  const at = await page.evaluate(() => {
+    const scene = window.windfield.getScene();
+    const cam = scene.render.camera;
+    const p = scene.emitters[0].center.map((v, a) => v + (a === 0 ? 0.2 : 0));
+    const sub = (u, v) => u.map((x, i) => x - v[i]);
+    const dot = (u, v) => u.reduce((s, x, i) => s + x * v[i], 0);
+    const cross = (u, v) => [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    const norm = (u) => u.map((x) => x / Math.hypot(...u));
+    const f = norm(sub(cam.target, cam.position));
+    const r = norm(cross(f, cam.up));
+    const u = cross(r, f);
+    const d = sub(p, cam.position);
+    const rect = document.querySelector('#canvas').getBoundingClientRect();
+    const t = Math.tan((cam.fov_y_deg * Math.PI) / 360);
+    const x = dot(d, r) / dot(d, f) / (t * (rect.width / rect.height));
+    const y = dot(d, u) / dot(d, f) / t;
+    return { x: rect.left + (x + 1) * rect.width / 2, y: rect.top + (1 - y) * rect.height / 2, before: scene.emitters[0].center };
+  });
+  await page.mouse.move(at.x, at.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; k += 1) await page.mouse.move(at.x + 10 * k, at.y);
+  await page.mouse.up();
+  await expect.poll(async () => (await page.evaluate(() => window.windfield.getScene())).emitters[0].center[0]).toBeGreaterThan(0.05);
+  const after = (await page.evaluate(() => window.windfield.getScene())).emitters[0].center;
+  expect([after[1], after[2]]).toEqual([at.before[1], at.before[2]]);
+  expect(errors).toEqual([]);
+});

@@ -5,6 +5,7 @@ import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
 import { Player, SHADOW_GRID } from './player.js';
 import { sceneEditor } from './scene-editor.js';
+import { moved } from './views/guides-layer.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
@@ -25,6 +26,7 @@ const player = new Player($('#canvas'), {
   },
 });
 const state = player.state;
+player.view.showGuides = true;
 const loadScene = (scene) => player.load(scene);
 const advance = (n) => player.advance(n);
 const draw = () => player.draw();
@@ -76,6 +78,21 @@ function buildControls() {
   sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
   sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
   sim.add(state, 'quality', Object.keys(SHADOW_GRID)).name('quality').onChange(() => draw());
+  sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
+  const handle = { drag: 'none' };
+  const handleChoices = () => ['none', ...state.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),
+    ...state.scene.emitters.map((e, i) => `emitters ${i + 1}: ${e.shape}`)];
+  const selectHandle = (label) => {
+    const m = /^(wind|emitters) (\d+)/.exec(label);
+    player.view.guides.select(m ? { list: m[1], index: Number(m[2]) - 1 } : null);
+    if (m) player.view.showGuides = true;
+    draw();
+  };
+  let dragControl = sim.add(handle, 'drag', handleChoices()).name('drag handle').onChange(selectHandle);
+  player.view.guides.onMoved = (selection, to) => edit((s) => {
+    const list = s[selection.list];
+    list[selection.index] = moved(list[selection.index], to.map((v) => Math.round(v * 1000) / 1000));
+  })();
   const edit = (fn) => async () => {
     const next = structuredClone(state.scene);
     fn(next);
@@ -132,6 +149,9 @@ function buildControls() {
       for (const [label, get] of Object.entries(getters)) proxy[label] = get(scene());
       for (const c of gui.controllersRecursive()) if (c.object === proxy) c.updateDisplay();
       editor.refresh();
+      if (!handleChoices().includes(handle.drag)) handle.drag = 'none';
+      dragControl = dragControl.options(handleChoices()).name('drag handle').onChange(selectHandle);
+      selectHandle(handle.drag);
     },
     gui,
   };
@@ -156,6 +176,7 @@ function wireKeys() {
     if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); }
     if (e.key === '.') advance(1);
     if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; draw(); }
+    if (e.key === 'g') { player.view.showGuides = !player.view.showGuides; draw(); }
   });
 }
 
@@ -181,7 +202,8 @@ async function initialScene() {
   return loadScene(scene);
 }
 
-window.addEventListener('resize', () => player.resize());
+// The view follows its box (window resizes, and the panel's folders opening and closing).
+new ResizeObserver(() => player.resize()).observe($('#view'));
 const ready = initialScene().then(() => {
   controls = buildControls();
   wireImport();

@@ -93,6 +93,7 @@ export class Player {
     if (!this.lastFrame || !this.state.scene) return;
     // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
     this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
+    this.view.guides.update(this.state.scene);
     if (this.state.mode === 'raymarch') {
       const list = await this.exportBlobs(size);
       const grid = list.shadows && list.lights.length ? await this.engine.request('shadowGrid', { list, res: SHADOW_GRID[this.state.quality] ?? SHADOW_GRID.standard }) : null;
@@ -147,8 +148,10 @@ export class Player {
       const before = this.view.size();
       const saved = this.state.mode;
       const savedQuality = this.state.quality;
+      const guides = this.view.showGuides;
       this.state.mode = mode;
       this.state.quality = quality;
+      this.view.showGuides = false;
       try {
         this.view.standIns = standIns;
         this.view.resize(width, height);
@@ -157,6 +160,7 @@ export class Player {
       } finally {
         this.state.mode = saved;
         this.state.quality = savedQuality;
+        this.view.showGuides = guides;
         this.view.standIns = false;
         this.view.resize(before.width, before.height);
       }
@@ -181,7 +185,9 @@ export class Player {
     return this.exclusive(async () => {
       const before = this.view.size();
       const saved = this.state.mode;
+      const guides = this.view.showGuides;
       this.state.mode = mode;
+      this.view.showGuides = false;
       try {
         this.view.resize(width, height);
         return await recordWebM({
@@ -193,6 +199,7 @@ export class Player {
         });
       } finally {
         this.state.mode = saved;
+        this.view.showGuides = guides;
         this.view.resize(before.width, before.height);
       }
     });

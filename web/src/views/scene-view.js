@@ -5,6 +5,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { PointsLayer } from './points-layer.js';
 import { RaymarchLayer } from './raymarch-layer.js';
+import { GuidesLayer } from './guides-layer.js';
 import { modelMesh } from './models.js';
 import { shadowedLambert } from './object-material.js';
 
@@ -30,6 +31,10 @@ export class SceneView {
     this.background = [0, 0, 0];
     /** Draw plain cylinders in place of models (for comparisons with the CPU still). */
     this.standIns = false;
+    /** Wind guides and the drag handle, drawn over the frame when `showGuides` is set. */
+    this.overlay = new THREE.Scene();
+    this.guides = new GuidesLayer(this.overlay, this.camera, canvas, this.controls);
+    this.showGuides = false;
   }
 
   /** Places the camera as the scene's render settings say. */
@@ -118,6 +123,13 @@ export class SceneView {
     } else {
       this.points.points.visible = true;
       this.renderer.render(this.scene, this.camera);
+    }
+    this.guides.setVisible(this.showGuides);
+    if (this.showGuides) {
+      this.renderer.autoClear = false;
+      this.renderer.clearDepth();
+      this.renderer.render(this.overlay, this.camera);
+      this.renderer.autoClear = true;
     }
   }
 }

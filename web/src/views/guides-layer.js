@@ -1,0 +1,164 @@
+// Wind guides: what the large-scale primitives and the emitters are, drawn in the scene
+// (arrows for uniform wind, sources and sinks; a circulating ring for a vortex; the path of a
+// repulsor; the outline of each emitter), and a drag handle (three.js TransformControls) that
+// moves one of them. Guides are a view aid: captures and recordings leave them out.
+
+import * as THREE from 'three';
+import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
+
+const WIND = 0x6fc3ff;
+const SINK = 0xff8a65;
+const EMITTER = 0xffd54f;
+/** Arrow length (m) per m/s of wind, and its bounds. */
+const ARROW_PER_SPEED = 0.8;
+const ARROW_MIN = 0.15;
+const ARROW_MAX = 1.2;
+
+/** The point a guide is dragged by: a wind primitive's position, an emitter's centre. */
+export function anchorOf(item) {
+  if (item.type === 'repulsor') return item.path[0].slice(1, 4);
+  return item.position ?? item.center;
+}
+
+/** `item` moved so that its anchor is at `to` (a repulsor's whole path moves with it). */
+export function moved(item, to) {
+  const next = structuredClone(item);
+  const from = anchorOf(item);
+  const d = to.map((v, a) => v - from[a]);
+  if (next.type === 'repulsor') next.path = next.path.map(([t, ...p]) => [t, ...p.map((v, a) => v + d[a])]);
+  else if ('position' in next) next.position = to;
+  else next.center = to;
+  return next;
+}
+
+function arrow(from, dir, length, color) {
+  const d = new THREE.Vector3().fromArray(dir);
+  if (d.lengthSq() === 0) d.set(0, 1, 0);
+  return new THREE.ArrowHelper(d.normalize(), new THREE.Vector3().fromArray(from), length, color, 0.25 * length, 0.12 * length);
+}
+
+const clampLength = (speed) => Math.min(Math.max(speed * ARROW_PER_SPEED, ARROW_MIN), ARROW_MAX);
+
+function ring(center, axis, radius, color) {
+  const points = [];
+  for (let k = 0; k <= 48; k += 1) {
+    const a = (k / 48) * Math.PI * 2;
+    points.push(new THREE.Vector3(Math.cos(a) * radius, 0, Math.sin(a) * radius));
+  }
+  const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineBasicMaterial({ color }));
+  line.position.fromArray(center);
+  line.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), new THREE.Vector3().fromArray(axis).normalize());
+  return line;
+}
+
+function primitiveGuide(p) {
+  const g = new THREE.Group();
+  if (p.type === 'uniform') {
+    const speed = Math.hypot(...p.velocity);
+    g.add(arrow(p.position, p.velocity, clampLength(speed), WIND));
+  } else if (p.type === 'source') {
+    const color = p.strength >= 0 ? WIND : SINK;
+    for (const d of [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]) {
+      const len = 0.3;
+      const from = p.strength >= 0 ? p.position : p.position.map((v, a) => v + d[a] * len);
+      g.add(arrow(from, p.strength >= 0 ? d : d.map((v) => -v), len, color));
+    }
+  } else if (p.type === 'vortex') {
+    const axis = new THREE.Vector3().fromArray(p.axis).normalize();
+    const r = Math.max(3 * p.radius, 0.15);
+    g.add(ring(p.position, p.axis, r, WIND));
+    g.add(arrow(p.position.map((v, a) => v - axis.getComponent(a) * 0.3), p.axis, 0.6, WIND));
+    // Arrowheads along the ring show the sense of rotation (Γ > 0: right-handed about the axis).
+    const q = new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis);
+    for (let k = 0; k < 4; k += 1) {
+      const a = (k / 4) * Math.PI * 2;
+      const at = new THREE.Vector3(Math.cos(a) * r, 0, Math.sin(a) * r).applyQuaternion(q).add(new THREE.Vector3().fromArray(p.position));
+      const tangent = new THREE.Vector3(Math.sin(a), 0, -Math.cos(a)).applyQuaternion(q).multiplyScalar(Math.sign(p.strength) || 1);
+      g.add(arrow(at.toArray(), tangent.toArray(), 0.12, WIND));
+    }
+  } else if (p.type === 'repulsor') {
+    const keys = p.path.map(([, x, y, z]) => new THREE.Vector3(x, y, z));
+    const points = keys.length > 1 ? new THREE.CatmullRomCurve3(keys).getPoints(64) : keys;
+    g.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineDashedMaterial({ color: WIND, dashSize: 0.05, gapSize: 0.04 })));
+    g.children[0].computeLineDistances();
+  }
+  if (!p.enabled) g.traverse((o) => { if (o.material) { o.material.transparent = true; o.material.opacity = 0.3; } });
+  return g;
+}
+
+function emitterGuide(e) {
+  const material = new THREE.LineBasicMaterial({ color: EMITTER, transparent: !e.enabled, opacity: e.enabled ? 1 : 0.3 });
+  if (e.shape === 'disk') return ring(e.center, e.normal, e.radius, EMITTER);
+  let geometry;
+  if (e.shape === 'sphere') geometry = new THREE.EdgesGeometry(new THREE.IcosahedronGeometry(e.radius, 1));
+  else if (e.shape === 'box') geometry = new THREE.EdgesGeometry(new THREE.BoxGeometry(...e.size));
+  else geometry = new THREE.EdgesGeometry(new THREE.OctahedronGeometry(0.03));
+  const lines = new THREE.LineSegments(geometry, material);
+  lines.position.fromArray(e.center);
+  return lines;
+}
+
+export class GuidesLayer {
+  /**
+   * @param {THREE.Scene} scene
+   * @param {THREE.Camera} camera
+   * @param {HTMLCanvasElement} canvas
+   * @param {import('three/examples/jsm/controls/OrbitControls.js').OrbitControls} orbit
+   */
+  constructor(scene, camera, canvas, orbit) {
+    this.group = new THREE.Group();
+    this.group.visible = false;
+    scene.add(this.group);
+    this.handle = new THREE.Object3D();
+    scene.add(this.handle);
+    this.drag = new TransformControls(camera, canvas);
+    this.drag.setSize(0.8);
+    this.drag.enabled = false;
+    this.helper = this.drag.getHelper();
+    this.helper.visible = false;
+    scene.add(this.helper);
+    this.drag.addEventListener('dragging-changed', (event) => {
+      orbit.enabled = !event.value;
+      if (!event.value && this.selected) this.onMoved?.(this.selected, this.handle.position.toArray());
+    });
+    this.key = '';
+    this.selected = null;
+    /** Called with (selection, [x, y, z]) when a drag ends. */
+    this.onMoved = null;
+  }
+
+  /** Rebuilds the guides when the scene's primitives or emitters change. */
+  update(scene) {
+    const key = JSON.stringify([scene.wind, scene.emitters]);
+    if (key === this.key) return;
+    this.key = key;
+    for (const child of [...this.group.children]) {
+      this.group.remove(child);
+      child.traverse((o) => { o.geometry?.dispose(); o.material?.dispose(); });
+    }
+    for (const p of scene.wind) this.group.add(primitiveGuide(p));
+    for (const e of scene.emitters) this.group.add(emitterGuide(e));
+    this.scene = scene;
+    this.select(this.selected);
+  }
+
+  /** Shows or hides the guides and the drag handle. */
+  setVisible(visible) {
+    this.group.visible = visible;
+    this.helper.visible = visible && this.selected !== null;
+    this.drag.enabled = this.helper.visible;
+  }
+
+  /** Attaches the drag handle to `selection` ({list: 'wind'|'emitters', index}) or to nothing. */
+  select(selection) {
+    const item = selection && this.scene?.[selection.list]?.[selection.index];
+    this.selected = item ? selection : null;
+    if (item) {
+      this.handle.position.fromArray(anchorOf(item));
+      this.drag.attach(this.handle);
+    } else {
+      this.drag.detach();
+    }
+    this.setVisible(this.group.visible);
+  }
+}
