@@ -381,42 +381,4 @@ mod tests {
         });
         assert_eq!(calls, 3);
     }
-
-    #[test]
-    fn finds_every_blob_a_ray_touches() {
-        let blobs: Vec<RenderBlob> = (0..500)
-            .map(|i| {
-                let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 4.0 - 2.0;
-                RenderBlob {
-                    center: Vec3::new(f(0.754_877_7), f(0.569_840_3), f(0.430_159_7)),
-                    sigma: 0.02 + 0.05 * ((i * 7 % 11) as f32 / 11.0),
-                    mass: 1.0,
-                    albedo: Vec3::ONE,
-                    emission: Vec3::ZERO,
-                }
-            })
-            .collect();
-        let bvh = Bvh::build(&blobs);
-        for k in 0..200 {
-            let o = Vec3::new(-3.0, (k as f32 * 0.37).sin(), (k as f32 * 0.91).cos());
-            let d = Vec3::new(
-                1.0,
-                (k as f32 * 0.13).sin() * 0.4,
-                (k as f32 * 0.29).cos() * 0.3,
-            )
-            .normalize();
-            let mut found = vec![false; blobs.len()];
-            bvh.for_each_candidate(o, d, f32::INFINITY, |i| {
-                found[i] = true;
-                true
-            });
-            for (i, b) in blobs.iter().enumerate() {
-                if let Some(c) = b.chord(o, d) {
-                    if c.s_out > 0.0 {
-                        assert!(found[i], "ray {k} misses blob {i}");
-                    }
-                }
-            }
-        }
-    }
 }
