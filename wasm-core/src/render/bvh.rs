@@ -72,17 +72,20 @@ impl Bvh {
             return Self::default();
         }
         build_node(blobs, &mut order, 0, &mut binary);
-        let spheres = [0, 1, 2, 3].map(|k| {
-            let mut lane: Vec<f32> = order
-                .iter()
-                .map(|&i| {
-                    let b = &blobs[i as usize];
-                    b.center.extend(b.radius() * b.radius())[k]
-                })
-                .collect();
+        let mut spheres: [Vec<f32>; 4] = Default::default();
+        for &i in order.iter() {
+            let b = &blobs[i as usize];
+            let r = b.radius();
+            for (lane, v) in spheres
+                .iter_mut()
+                .zip([b.center.x, b.center.y, b.center.z, r * r])
+            {
+                lane.push(v);
+            }
+        }
+        for lane in &mut spheres {
             lane.extend([0.0; 3]);
-            lane
-        });
+        }
         let mut nodes = Vec::with_capacity(binary.len() / 2 + 1);
         let root_leaf = binary[0].count > 0;
         if !root_leaf {
