@@ -89,13 +89,8 @@ function buildControls() {
     draw();
   };
   let dragControl = sim.add(handle, 'drag', handleChoices()).name('drag handle').onChange(selectHandle);
-  player.view.guides.onMoved = (selection, to) => edit((s) => {
-    const list = s[selection.list];
-    list[selection.index] = moved(list[selection.index], to.map((v) => Math.round(v * 1000) / 1000));
-  })();
-  const edit = (fn) => async () => {
-    const next = structuredClone(state.scene);
-    fn(next);
+  // Loads an edited scene; a refused one leaves a message and the controls on the last good one.
+  const tryLoad = async (next) => {
     try {
       await loadScene(next);
     } catch (e) {
@@ -103,6 +98,15 @@ function buildControls() {
       controls.refresh();
     }
   };
+  const edit = (fn) => () => {
+    const next = structuredClone(state.scene);
+    fn(next);
+    return tryLoad(next);
+  };
+  player.view.guides.onMoved = (selection, to) => edit((s) => {
+    const list = s[selection.list];
+    list[selection.index] = moved(list[selection.index], to.map((v) => Math.round(v * 1000) / 1000));
+  })();
   const proxy = {};
   const getters = {};
   const field = gui.addFolder('Small-scale field (§3)');
@@ -123,17 +127,7 @@ function buildControls() {
   bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100, 50000, 100);
   const look = gui.addFolder('Rendering (§5)');
   bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
-  const editor = sceneEditor(gui, {
-    scene,
-    apply: async (draft) => {
-      try {
-        await loadScene(structuredClone(draft));
-      } catch (e) {
-        showMessage(e.message);
-        editor.refresh();
-      }
-    },
-  });
+  const editor = sceneEditor(gui, { scene, apply: (draft) => tryLoad(structuredClone(draft)) });
   const share = gui.addFolder('Share and export');
   share.add(actions, 'copyLink').name('copy link');
   share.add(actions, 'exportScene').name('export scene JSON');

@@ -142,28 +142,31 @@ export class Player {
     }
   }
 
+  /**
+   * Runs `fn` (exclusively) with the view at `width × height`, drawn in `mode` at `quality`,
+   * with `standIns` and without guides; puts the view back as it was afterwards.
+   */
+  offscreen({ mode, quality = this.state.quality, standIns = false, width, height }, fn) {
+    return this.exclusive(async () => {
+      const before = { size: this.view.size(), mode: this.state.mode, quality: this.state.quality, guides: this.view.showGuides };
+      Object.assign(this.state, { mode, quality });
+      Object.assign(this.view, { standIns, showGuides: false });
+      try {
+        this.view.resize(width, height);
+        return await fn();
+      } finally {
+        Object.assign(this.state, { mode: before.mode, quality: before.quality });
+        Object.assign(this.view, { standIns: false, showGuides: before.guides });
+        this.view.resize(before.size.width, before.size.height);
+      }
+    });
+  }
+
   /** Renders the current view offscreen at `width × height`; a PNG data URL. */
   captureGPU({ mode = 'raymarch', width = 640, height = 480, standIns = false, quality = this.state.quality } = {}) {
-    return this.exclusive(async () => {
-      const before = this.view.size();
-      const saved = this.state.mode;
-      const savedQuality = this.state.quality;
-      const guides = this.view.showGuides;
-      this.state.mode = mode;
-      this.state.quality = quality;
-      this.view.showGuides = false;
-      try {
-        this.view.standIns = standIns;
-        this.view.resize(width, height);
-        await this.draw({ width, height });
-        return this.view.canvas.toDataURL('image/png');
-      } finally {
-        this.state.mode = saved;
-        this.state.quality = savedQuality;
-        this.view.showGuides = guides;
-        this.view.standIns = false;
-        this.view.resize(before.width, before.height);
-      }
+    return this.offscreen({ mode, quality, standIns, width, height }, async () => {
+      await this.draw({ width, height });
+      return this.view.canvas.toDataURL('image/png');
     });
   }
 
@@ -182,27 +185,13 @@ export class Player {
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
   recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
-    return this.exclusive(async () => {
-      const before = this.view.size();
-      const saved = this.state.mode;
-      const guides = this.view.showGuides;
-      this.state.mode = mode;
-      this.view.showGuides = false;
-      try {
-        this.view.resize(width, height);
-        return await recordWebM({
-          canvas: this.view.canvas,
-          frames,
-          fps,
-          renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
-          onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
-        });
-      } finally {
-        this.state.mode = saved;
-        this.view.showGuides = guides;
-        this.view.resize(before.width, before.height);
-      }
-    });
+    return this.offscreen({ mode, width, height }, () => recordWebM({
+      canvas: this.view.canvas,
+      frames,
+      fps,
+      renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
+      onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
+    }));
   }
 
   /** DESIGN §5's methods, bound to this player. */

@@ -82,20 +82,31 @@ function primitiveGuide(p) {
     g.add(new THREE.Line(new THREE.BufferGeometry().setFromPoints(points), new THREE.LineDashedMaterial({ color: WIND, dashSize: 0.05, gapSize: 0.04 })));
     g.children[0].computeLineDistances();
   }
-  if (!p.enabled) g.traverse((o) => { if (o.material) { o.material.transparent = true; o.material.opacity = 0.3; } });
   return g;
 }
 
 function emitterGuide(e) {
-  const material = new THREE.LineBasicMaterial({ color: EMITTER, transparent: !e.enabled, opacity: e.enabled ? 1 : 0.3 });
   if (e.shape === 'disk') return ring(e.center, e.normal, e.radius, EMITTER);
   let geometry;
   if (e.shape === 'sphere') geometry = new THREE.EdgesGeometry(new THREE.IcosahedronGeometry(e.radius, 1));
   else if (e.shape === 'box') geometry = new THREE.EdgesGeometry(new THREE.BoxGeometry(...e.size));
   else geometry = new THREE.EdgesGeometry(new THREE.OctahedronGeometry(0.03));
-  const lines = new THREE.LineSegments(geometry, material);
+  const lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: EMITTER }));
   lines.position.fromArray(e.center);
   return lines;
+}
+
+/** A guide of something switched off (`enabled: false`) is drawn faint. */
+function faintIfOff(guide, enabled) {
+  if (!enabled) {
+    guide.traverse((o) => {
+      if (o.material) {
+        o.material.transparent = true;
+        o.material.opacity = 0.3;
+      }
+    });
+  }
+  return guide;
 }
 
 export class GuidesLayer {
@@ -136,8 +147,8 @@ export class GuidesLayer {
       this.group.remove(child);
       child.traverse((o) => { o.geometry?.dispose(); o.material?.dispose(); });
     }
-    for (const p of scene.wind) this.group.add(primitiveGuide(p));
-    for (const e of scene.emitters) this.group.add(emitterGuide(e));
+    for (const p of scene.wind) this.group.add(faintIfOff(primitiveGuide(p), p.enabled));
+    for (const e of scene.emitters) this.group.add(faintIfOff(emitterGuide(e), e.enabled));
     this.scene = scene;
     this.select(this.selected);
   }
