@@ -96,6 +96,35 @@ test('the GPU ray march matches the WASM reference still (≥ 30 dB)', async ({ 
   }
 });
 
+test('a dense plume, merged for the ray march, matches the exact reference still', async ({ page }) => {
+  await open(page);
+  const { gpu, ref, blobs } = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    const s = w.getScene();
+    Object.assign(s.emitters[0], { rate: 16000 });
+    Object.assign(s.gas, { max_blobs: 8000, dissipation: 0, min_mass: 0 });
+    s.render.camera = { position: [0, 0.15, 0.7], target: [0, 0.12, 0], up: [0, 1, 0], fov_y_deg: 40 };
+    await w.setScene(s);
+    await w.step(33);
+    const size = { width: 160, height: 120 };
+    return {
+      gpu: {
+        standard: await w.captureGPU({ mode: 'raymarch', ...size, quality: 'standard' }),
+        high: await w.captureGPU({ mode: 'raymarch', ...size, quality: 'high' }),
+      },
+      ref: await w.renderReference(size),
+      blobs: w.stats().blobs,
+    };
+  });
+  expect(blobs).toBe(8000);
+  const still = decodePng(dataUrlBytes(ref)).rgb;
+  // Close up on an opaque plume the standard shadow grid (32³) sets the error; the high one
+  // (64³, finer merging) leaves far less.
+  expect(psnr(decodePng(dataUrlBytes(gpu.standard)).rgb, still)).toBeGreaterThanOrEqual(30);
+  expect(psnr(decodePng(dataUrlBytes(gpu.high)).rgb, still)).toBeGreaterThanOrEqual(40);
+});
+
 test('the reference still in the browser equals the native CLI (≥ 45 dB)', async ({ page }) => {
   await open(page);
   const { list, still } = await page.evaluate(async () => {

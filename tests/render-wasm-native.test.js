@@ -52,6 +52,26 @@ test('a scene simulated then rendered agrees too', () => {
   assert.ok(p >= 45, `PSNR ${p.toFixed(1)} dB`);
 });
 
+test('the ray march\'s merged list keeps the mass and the still (WASM)', () => {
+  const scene = JSON.parse(readFileSync(`${root}public/scenes/default.json`, 'utf8'));
+  Object.assign(scene.emitters[0], { rate: 8000 });
+  Object.assign(scene.gas, { max_blobs: 4000, dissipation: 0, min_mass: 0 });
+  const sim = new core.SceneSimulation(JSON.stringify(scene));
+  sim.step(33);
+  const exact = JSON.parse(sim.blobList());
+  const merged = JSON.parse(sim.marchList(0.5));
+  assert.deepEqual(JSON.parse(sim.marchList(0)), exact);
+  sim.free();
+  assert.equal(exact.blobs.length, 4000);
+  assert.ok(merged.blobs.length < exact.blobs.length / 2, `${merged.blobs.length} merged blobs`);
+  const mass = (list) => list.blobs.reduce((m, b) => m + b.mass, 0);
+  assert.ok(Math.abs(mass(merged) - mass(exact)) < 1e-4 * mass(exact));
+  // Close up, the plume fills the frame.
+  for (const list of [exact, merged]) list.camera = { position: [0, 0.15, 0.7], target: [0, 0.12, 0], up: [0, 1, 0], fov_y_deg: 40 };
+  const p = psnr(wasmStill(JSON.stringify(exact), 80, 60).rgb, wasmStill(JSON.stringify(merged), 80, 60).rgb);
+  assert.ok(p >= 40, `PSNR ${p.toFixed(1)} dB`);
+});
+
 test('bad input: a clear error and no partial file', () => {
   const bad = join(dir, 'bad.json');
   const out = join(dir, 'never.png');

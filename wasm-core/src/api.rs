@@ -7,7 +7,7 @@
 use crate::blob_list::{BlobList, Encoding};
 use crate::field::{FieldParams, Synthesis, TurbulentField};
 use crate::gas::Blob;
-use crate::render::{encode_png, LinearImage, RenderOptions, Renderer};
+use crate::render::{encode_png, merge_blobs, LinearImage, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
@@ -244,6 +244,17 @@ impl SceneSimulation {
     #[wasm_bindgen(js_name = blobList)]
     pub fn blob_list(&self) -> String {
         serde_json::to_string(&self.inner.blob_list()).unwrap_or_default()
+    }
+
+    /// The blob list for the GPU ray march (JSON): blobs closer than `fraction × σ` merged by
+    /// moments (`render::lod`); `fraction` ≤ 0 gives the exact list.
+    #[wasm_bindgen(js_name = marchList)]
+    pub fn march_list(&self, fraction: f32) -> String {
+        let mut list = self.inner.blob_list();
+        if fraction > 0.0 {
+            list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
+        }
+        serde_json::to_string(&list).unwrap_or_default()
     }
 }
 

@@ -3,7 +3,7 @@
 
 import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
-import { Player, SHADOW_GRID } from './player.js';
+import { Player, QUALITY } from './player.js';
 import { sceneEditor } from './scene-editor.js';
 import { moved } from './views/guides-layer.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
@@ -77,7 +77,7 @@ function buildControls() {
   sim.add(actions, 'reset');
   sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
   sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
-  sim.add(state, 'quality', Object.keys(SHADOW_GRID)).name('quality').onChange(() => draw());
+  sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => draw());
   sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
   const handle = { drag: 'none' };
   const handleChoices = () => ['none', ...state.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),

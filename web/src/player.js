@@ -5,9 +5,15 @@ import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
 import { SceneView } from './views/scene-view.js';
 
-/** Shadow-grid points per axis for the GPU ray march. */
-/** Shadow-grid resolution (points per axis) of the GPU view at each quality. */
-export const SHADOW_GRID = { draft: 16, standard: 32, high: 64 };
+/**
+ * The GPU ray march at each quality: shadow-grid points per axis, and the cell side (in σ)
+ * within which blobs are merged by moments for it (`render::lod` in the core).
+ */
+export const QUALITY = {
+  draft: { shadowGrid: 16, merge: 1 },
+  standard: { shadowGrid: 32, merge: 0.5 },
+  high: { shadowGrid: 64, merge: 0.25 },
+};
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
 
@@ -95,8 +101,10 @@ export class Player {
     this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
     this.view.guides.update(this.state.scene);
     if (this.state.mode === 'raymarch') {
-      const list = await this.exportBlobs(size);
-      const grid = list.shadows && list.lights.length ? await this.engine.request('shadowGrid', { list, res: SHADOW_GRID[this.state.quality] ?? SHADOW_GRID.standard }) : null;
+      const quality = QUALITY[this.state.quality] ?? QUALITY.standard;
+      const { list, grid } = await this.engine.request('marchList', {
+        camera: this.view.cameraSettings(), image: size, fraction: quality.merge, res: quality.shadowGrid,
+      });
       this.view.raymarch.update(list, grid, this.view.viewBasis(), size.width, size.height);
     } else {
       this.view.points.update(this.lastFrame, this.state.scene.render.medium.albedo);

@@ -15,11 +15,13 @@ mod bvh;
 mod gaussian;
 mod geometry;
 pub mod image;
+pub mod lod;
 
 pub use bvh::Bvh;
 pub use gaussian::{Chord, RenderBlob, TRUNCATION};
 pub use geometry::CameraRays;
 pub use image::{decode_png, encode_png, psnr, LinearImage};
+pub use lod::merge_blobs;
 
 use crate::blob_list::{BlobList, Light, Object, Phase};
 use crate::error::ParamError;

@@ -115,9 +115,14 @@ const handlers = {
     if (image) list.image = { ...list.image, ...image };
     return { result: list };
   },
-  shadowGrid: ({ list, res }) => {
-    const data = shadowGrid(JSON.stringify(list), res);
-    return { result: data, transfer: [data.buffer] };
+  marchList: ({ camera, image, fraction, res }) => {
+    // The ray march's input in one round trip: the merged blob list and its shadow grid.
+    const json = requireSim().marchList(fraction);
+    const list = JSON.parse(json);
+    list.camera = camera;
+    list.image = { ...list.image, ...image };
+    const grid = list.shadows && list.lights.length ? shadowGrid(json, res) : null;
+    return { result: { list, grid }, transfer: grid ? [grid.buffer] : [] };
   },
   reference: ({ id, list, width, height }) => {
     const render = new ReferenceRender(JSON.stringify(list), width, height);

@@ -4,7 +4,9 @@
 // step (erf), the density-weighted source Ω L + (1 − Ω) Q, front-to-back compositing. Shadows
 // come from a grid of shadow columns ∫ρ towards each light computed by the WASM core and
 // interpolated trilinearly. The opaque pass's colour and depth sit behind the gas. Blob data,
-// shadow grid and tile lists live in float textures.
+// shadow grid and tile lists live in float textures. The list drawn is the core's level of
+// detail (`marchList`): blobs much closer than their width merged by moments, so a dense plume
+// costs what its volume does, not what its blob count does.
 
 import * as THREE from 'three';
 import { binBlobs, TRUNCATION } from './tiles.js';
@@ -315,7 +317,7 @@ export class RaymarchLayer {
 
   /**
    * Uploads the blob list for one frame: `list` is DESIGN §4's object (camera is taken from
-   * `view`), `grid` the core's shadow grid (`shadowGrid`: header, then columns) or null.
+   * `view`), `grid` the core's shadow grid (header, then columns; `shadowGrid` in the core) or null.
    */
   update(list, grid, view, width, height) {
     const n = list.blobs.length;
