@@ -335,3 +335,33 @@ test('wind guides draw over the view; the drag handle moves an emitter', async (
   expect([after[1], after[2]]).toEqual([at.before[1], at.before[2]]);
   expect(errors).toEqual([]);
 });
+
+test('the wind slice draws the wind on a plane over the view and stays out of captures', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const shot = () => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
+  const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const capture = () => page.evaluate(() => window.windfield.captureGPU({ mode: 'points', width: 160, height: 120 }));
+  await settle();
+  const plain = decodePng(dataUrlBytes(await shot())).rgb;
+  const captured = await capture();
+  await page.keyboard.press('w');
+  const sim = await openFolder(page, 'Simulation');
+  await expect(sim.locator('.lil-controller', { hasText: 'wind slice' }).locator('select')).toHaveValue('xy');
+  await settle();
+  await settle();
+  const slicedUrl = await shot();
+  writeFileSync(test.info().outputPath('wind-slice.png'), dataUrlBytes(slicedUrl));
+  const sliced = decodePng(dataUrlBytes(slicedUrl)).rgb;
+  let changed = 0;
+  for (let i = 0; i < plain.length; i += 3) if (plain[i] !== sliced[i] || plain[i + 1] !== sliced[i + 1] || plain[i + 2] !== sliced[i + 2]) changed += 1;
+  // The square fills the view's height at the target: most of the frame is coloured.
+  expect(changed, 'pixels the slice draws').toBeGreaterThan(plain.length / 3 / 4);
+  expect(await capture()).toBe(captured);
+  await sim.locator('.lil-controller', { hasText: 'wind slice' }).locator('select').selectOption('off');
+  await settle();
+  await settle();
+  expect(decodePng(dataUrlBytes(await shot())).rgb).toEqual(plain);
+  expect(errors).toEqual([]);
+});

@@ -246,6 +246,42 @@ impl SceneSimulation {
         serde_json::to_string(&self.inner.blob_list()).unwrap_or_default()
     }
 
+    /// The whole wind u = u_l + u_s (Eq. 3) now, on an `nu × nv` grid over the parallelogram
+    /// `origin + a·u + b·v` (a, b in [0, 1], sampled at cell centres; metres): `3·nu·nv` m/s,
+    /// u-index fastest.
+    #[wasm_bindgen(js_name = windSlice)]
+    pub fn wind_slice(
+        &self,
+        origin: &[f32],
+        u: &[f32],
+        v: &[f32],
+        nu: u32,
+        nv: u32,
+    ) -> Result<Vec<f32>, JsError> {
+        let vector = |a: &[f32], name: &str| match a {
+            [x, y, z] if a.iter().all(|c| c.is_finite()) => Ok(Vec3::new(*x, *y, *z)),
+            _ => Err(JsError::new(&format!(
+                "windSlice: {name} must be 3 finite numbers"
+            ))),
+        };
+        let (origin, u, v) = (vector(origin, "origin")?, vector(u, "u")?, vector(v, "v")?);
+        if !(1..=256).contains(&nu) || !(1..=256).contains(&nv) {
+            return Err(JsError::new(
+                "windSlice: nu and nv must be between 1 and 256",
+            ));
+        }
+        let frame = self.inner.wind.frame(self.inner.time());
+        let mut out = Vec::with_capacity(3 * (nu * nv) as usize);
+        for j in 0..nv {
+            for i in 0..nu {
+                let a = (i as f32 + 0.5) / nu as f32;
+                let b = (j as f32 + 0.5) / nv as f32;
+                out.extend_from_slice(&frame.velocity(origin + a * u + b * v).to_array());
+            }
+        }
+        Ok(out)
+    }
+
     /// The blob list for the GPU ray march (JSON): blobs closer than `fraction × σ` merged by
     /// moments (`render::lod`); `fraction` ≤ 0 gives the exact list.
     #[wasm_bindgen(js_name = marchList)]

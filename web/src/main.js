@@ -6,6 +6,7 @@ import { showMessage, showProgress } from './page-ui.js';
 import { Player, QUALITY } from './player.js';
 import { sceneEditor } from './scene-editor.js';
 import { moved } from './views/guides-layer.js';
+import { SLICE_PLANES } from './views/wind-slice-layer.js';
 import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
@@ -79,6 +80,12 @@ function buildControls() {
   sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
   sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => draw());
   sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
+  const showSlice = () => {
+    if (player.view.slicePlane !== 'off') player.view.showGuides = true;
+    draw();
+  };
+  sim.add(player.view, 'slicePlane', SLICE_PLANES).name('wind slice').listen().onChange(showSlice);
+  sim.add(player.view, 'sliceOffset', -2, 2, 0.01).name('slice offset (m)').onChange(showSlice);
   const handle = { drag: 'none' };
   const handleChoices = () => ['none', ...state.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),
     ...state.scene.emitters.map((e, i) => `emitters ${i + 1}: ${e.shape}`)];
@@ -171,6 +178,12 @@ function wireKeys() {
     if (e.key === '.') advance(1);
     if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; draw(); }
     if (e.key === 'g') { player.view.showGuides = !player.view.showGuides; draw(); }
+    if (e.key === 'w') {
+      const view = player.view;
+      view.slicePlane = SLICE_PLANES[(SLICE_PLANES.indexOf(view.slicePlane) + 1) % SLICE_PLANES.length];
+      if (view.slicePlane !== 'off') view.showGuides = true;
+      draw();
+    }
   });
 }
 

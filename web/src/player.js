@@ -4,6 +4,7 @@
 import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
 import { SceneView } from './views/scene-view.js';
+import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
 
 /**
  * The GPU ray march at each quality: shadow-grid points per axis, and the cell side (in σ)
@@ -100,6 +101,13 @@ export class Player {
     // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
     this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
     this.view.guides.update(this.state.scene);
+    const square = this.view.sliceSquare();
+    if (square) {
+      const data = await this.engine.request('windSlice', { ...square, n: SLICE_SAMPLES });
+      this.view.windSlice.update(data, square);
+    } else {
+      this.view.windSlice.hide();
+    }
     if (this.state.mode === 'raymarch') {
       const quality = QUALITY[this.state.quality] ?? QUALITY.standard;
       const { list, grid } = await this.engine.request('marchList', {

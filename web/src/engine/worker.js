@@ -115,6 +115,10 @@ const handlers = {
     if (image) list.image = { ...list.image, ...image };
     return { result: list };
   },
+  windSlice: ({ origin, u, v, n }) => {
+    const data = requireSim().windSlice(new Float32Array(origin), new Float32Array(u), new Float32Array(v), n, n);
+    return { result: data, transfer: [data.buffer] };
+  },
   marchList: ({ camera, image, fraction, res }) => {
     // The ray march's input in one round trip: the merged blob list and its shadow grid.
     const json = requireSim().marchList(fraction);

@@ -6,6 +6,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { PointsLayer } from './points-layer.js';
 import { RaymarchLayer } from './raymarch-layer.js';
 import { GuidesLayer } from './guides-layer.js';
+import { WindSliceLayer, sliceGeometry } from './wind-slice-layer.js';
 import { modelMesh } from './models.js';
 import { shadowedLambert } from './object-material.js';
 
@@ -35,6 +36,19 @@ export class SceneView {
     this.overlay = new THREE.Scene();
     this.guides = new GuidesLayer(this.overlay, this.camera, canvas, this.controls);
     this.showGuides = false;
+    /** The wind on a plane through the target, one of the guides: 'off', 'xy', 'xz' or 'yz'. */
+    this.windSlice = new WindSliceLayer(this.overlay);
+    this.slicePlane = 'off';
+    /** Distance of the slice from the target along the plane's normal (m). */
+    this.sliceOffset = 0;
+  }
+
+  /** The slice's square (`{origin, u, v}`, m) when guides and a slice plane are on, else null. */
+  sliceSquare() {
+    if (!this.showGuides) return null;
+    const distance = this.camera.position.distanceTo(this.controls.target);
+    const side = 2 * distance * Math.tan((this.camera.fov * Math.PI) / 360);
+    return sliceGeometry(this.slicePlane, this.controls.target.toArray(), side, this.sliceOffset);
   }
 
   /** Places the camera as the scene's render settings say. */
