@@ -19,6 +19,18 @@ function dataUrlBytes(url) {
   return Buffer.from(url.split(',')[1], 'base64');
 }
 
+/** The playground's canvas as it stands, a PNG data URL. */
+const canvasShot = (page) => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
+/** Waits two animation frames, so the view has drawn what was just asked. */
+const settle = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+/** Pixels that differ between two RGB buffers of one size. */
+function changedPixels(a, b) {
+  let changed = 0;
+  for (let i = 0; i < a.length; i += 3) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) changed += 1;
+  return changed;
+}
+
 test('loads without errors; blobs appear and move', async ({ page }) => {
   const errors = collectErrors(page);
   await open(page);
@@ -292,17 +304,12 @@ test('wind guides draw over the view; the drag handle moves an emitter', async (
   const errors = collectErrors(page);
   await open(page);
   await page.evaluate(() => window.windfield.pause());
-  const shot = () => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
-  const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-  await settle();
-  const withGuides = await shot();
+  await settle(page);
+  const withGuides = await canvasShot(page);
   await page.keyboard.press('g');
-  await settle();
-  const without = await shot();
-  const a = decodePng(dataUrlBytes(withGuides)).rgb;
-  const b = decodePng(dataUrlBytes(without)).rgb;
-  let changed = 0;
-  for (let i = 0; i < a.length; i += 3) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) changed += 1;
+  await settle(page);
+  const without = await canvasShot(page);
+  const changed = changedPixels(decodePng(dataUrlBytes(withGuides)).rgb, decodePng(dataUrlBytes(without)).rgb);
   expect(changed, 'pixels the guides draw').toBeGreaterThan(100);
   writeFileSync(test.info().outputPath('guides.png'), dataUrlBytes(withGuides));
   // The handle: pick the emitter, then drag the handle's x arrow (0.2 m out from its centre,
@@ -340,28 +347,24 @@ test('the wind slice draws the wind on a plane over the view and stays out of ca
   const errors = collectErrors(page);
   await open(page);
   await page.evaluate(() => window.windfield.pause());
-  const shot = () => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
-  const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const capture = () => page.evaluate(() => window.windfield.captureGPU({ mode: 'points', width: 160, height: 120 }));
-  await settle();
-  const plain = decodePng(dataUrlBytes(await shot())).rgb;
+  await settle(page);
+  const plain = decodePng(dataUrlBytes(await canvasShot(page))).rgb;
   const captured = await capture();
   await page.keyboard.press('w');
   const sim = await openFolder(page, 'Simulation');
   await expect(sim.locator('.lil-controller', { hasText: 'wind slice' }).locator('select')).toHaveValue('xy');
-  await settle();
-  await settle();
-  const slicedUrl = await shot();
-  writeFileSync(test.info().outputPath('wind-slice.png'), dataUrlBytes(slicedUrl));
-  const sliced = decodePng(dataUrlBytes(slicedUrl)).rgb;
-  let changed = 0;
-  for (let i = 0; i < plain.length; i += 3) if (plain[i] !== sliced[i] || plain[i + 1] !== sliced[i + 1] || plain[i + 2] !== sliced[i + 2]) changed += 1;
-  // The square fills the view's height at the target: most of the frame is coloured.
+  await settle(page);
+  await settle(page);
+  const sliced = await canvasShot(page);
+  writeFileSync(test.info().outputPath('wind-slice.png'), dataUrlBytes(sliced));
+  // The square fills the view's height at the target: much of the frame is coloured.
+  const changed = changedPixels(plain, decodePng(dataUrlBytes(sliced)).rgb);
   expect(changed, 'pixels the slice draws').toBeGreaterThan(plain.length / 3 / 4);
   expect(await capture()).toBe(captured);
   await sim.locator('.lil-controller', { hasText: 'wind slice' }).locator('select').selectOption('off');
-  await settle();
-  await settle();
-  expect(decodePng(dataUrlBytes(await shot())).rgb).toEqual(plain);
+  await settle(page);
+  await settle(page);
+  expect(decodePng(dataUrlBytes(await canvasShot(page))).rgb).toEqual(plain);
   expect(errors).toEqual([]);
 });
