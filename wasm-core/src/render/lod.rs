@@ -18,6 +18,7 @@
 //! and `tests/render_lod.rs` bounds it on rendered images against the exact list.
 
 use crate::blob_list::BlobRecord;
+use glam::{DVec3, Vec3};
 use std::collections::HashMap;
 
 /// Ratio between the σ of neighbouring classes.
@@ -27,15 +28,20 @@ const CLASS_RATIO: f64 = std::f64::consts::SQRT_2;
 pub const DEFAULT_FRACTION: f32 = 0.5;
 
 /// Running sums of one cell, about the cell's first blob (for precision).
+#[derive(Default)]
 struct Cell {
-    origin: [f64; 3],
+    origin: DVec3,
     count: usize,
     first: usize,
     mass: f64,
-    moment: [f64; 3],
+    /// Σ m_j (c_j − origin).
+    moment: DVec3,
+    /// Σ m_j (σ_j² + |c_j − origin|²/3).
     second: f64,
-    albedo: [f64; 3],
-    source: [f64; 3],
+    /// Σ m_j Ω_j.
+    albedo: DVec3,
+    /// Σ m_j (1 − Ω_j) Q_j.
+    source: DVec3,
     has_albedo: bool,
     has_emission: bool,
 }
@@ -58,41 +64,28 @@ pub fn merge_blobs(
         let sigma = f64::from(b.sigma);
         let class = (sigma.ln() / CLASS_RATIO.ln()).floor();
         let side = fraction * CLASS_RATIO.powf(class);
-        let c = b.center.map(f64::from);
-        let key = [
-            class as i64,
-            (c[0] / side).floor() as i64,
-            (c[1] / side).floor() as i64,
-            (c[2] / side).floor() as i64,
-        ];
+        let c = Vec3::from_array(b.center).as_dvec3();
+        let at = (c / side).floor();
+        let key = [class as i64, at.x as i64, at.y as i64, at.z as i64];
         let k = *index.entry(key).or_insert_with(|| {
             cells.push(Cell {
                 origin: c,
-                count: 0,
                 first: j,
-                mass: 0.0,
-                moment: [0.0; 3],
-                second: 0.0,
-                albedo: [0.0; 3],
-                source: [0.0; 3],
-                has_albedo: false,
-                has_emission: false,
+                ..Default::default()
             });
             cells.len() - 1
         });
         let cell = &mut cells[k];
         let m = f64::from(b.mass);
-        let d = [0, 1, 2].map(|i| c[i] - cell.origin[i]);
-        let omega = b.albedo.unwrap_or(medium_albedo).map(f64::from);
-        let q = b.emission.unwrap_or([0.0; 3]).map(f64::from);
+        let d = c - cell.origin;
+        let omega = Vec3::from_array(b.albedo.unwrap_or(medium_albedo)).as_dvec3();
+        let q = Vec3::from_array(b.emission.unwrap_or([0.0; 3])).as_dvec3();
         cell.count += 1;
         cell.mass += m;
-        cell.second += m * (sigma * sigma + (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / 3.0);
-        for i in 0..3 {
-            cell.moment[i] += m * d[i];
-            cell.albedo[i] += m * omega[i];
-            cell.source[i] += m * (1.0 - omega[i]) * q[i];
-        }
+        cell.moment += m * d;
+        cell.second += m * (sigma * sigma + d.length_squared() / 3.0);
+        cell.albedo += m * omega;
+        cell.source += m * (1.0 - omega) * q;
         cell.has_albedo |= b.albedo.is_some();
         cell.has_emission |= b.emission.is_some();
     }
@@ -108,22 +101,24 @@ pub fn merge_blobs(
                 };
             }
             let m = cell.mass;
-            let mean = cell.moment.map(|v| v / m);
-            let spread = (mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]) / 3.0;
-            let omega = cell.albedo.map(|v| v / m);
+            let mean = cell.moment / m;
+            let omega = cell.albedo / m;
+            // Q = Σ m_j (1 − Ω_j) Q_j / (m (1 − Ω)); where Ω = 1 the source is unseen: 0.
+            let open = 1.0 - omega;
             let emission = [0, 1, 2].map(|i| {
-                let open = 1.0 - omega[i];
-                if open > 1e-9 {
-                    (cell.source[i] / m / open) as f32
+                if open[i] > 1e-9 {
+                    (cell.source[i] / m / open[i]) as f32
                 } else {
                     0.0
                 }
             });
             BlobRecord {
-                center: [0, 1, 2].map(|i| (cell.origin[i] + mean[i]) as f32),
-                sigma: (cell.second / m - spread).max(0.0).sqrt() as f32,
+                center: (cell.origin + mean).as_vec3().to_array(),
+                sigma: (cell.second / m - mean.length_squared() / 3.0)
+                    .max(0.0)
+                    .sqrt() as f32,
                 mass: m as f32,
-                albedo: cell.has_albedo.then(|| omega.map(|v| v as f32)),
+                albedo: cell.has_albedo.then(|| omega.as_vec3().to_array()),
                 emission: cell.has_emission.then_some(emission),
                 age: None,
                 sigma0: None,
