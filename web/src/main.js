@@ -31,6 +31,11 @@ player.view.showGuides = true;
 const loadScene = (scene) => player.load(scene);
 const advance = (n) => player.advance(n);
 const draw = () => player.draw();
+/** Draws after a change of the wind slice; a slice plane turns the guides on (it is one). */
+const showSlice = () => {
+  if (player.view.slicePlane !== 'off') player.view.showGuides = true;
+  draw();
+};
 
 function download(name, href) {
   const a = document.createElement('a');
@@ -80,10 +85,6 @@ function buildControls() {
   sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
   sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => draw());
   sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
-  const showSlice = () => {
-    if (player.view.slicePlane !== 'off') player.view.showGuides = true;
-    draw();
-  };
   sim.add(player.view, 'slicePlane', SLICE_PLANES).name('wind slice').listen().onChange(showSlice);
   sim.add(player.view, 'sliceOffset', -2, 2, 0.01).name('slice offset (m)').onChange(showSlice);
   const handle = { drag: 'none' };
@@ -181,8 +182,7 @@ function wireKeys() {
     if (e.key === 'w') {
       const view = player.view;
       view.slicePlane = SLICE_PLANES[(SLICE_PLANES.indexOf(view.slicePlane) + 1) % SLICE_PLANES.length];
-      if (view.slicePlane !== 'off') view.showGuides = true;
-      draw();
+      showSlice();
     }
   });
 }

@@ -91,6 +91,14 @@ function frame() {
   return { result, transfer };
 }
 
+/** A blob list (JSON) seen from `camera` at `image`'s size, either kept from the scene if absent. */
+function inView(json, camera, image) {
+  const list = JSON.parse(json);
+  if (camera) list.camera = camera;
+  if (image) list.image = { ...list.image, ...image };
+  return list;
+}
+
 const handlers = {
   load: ({ id, scene }) => ({ result: load(id, scene) }),
   reset: () => {
@@ -109,12 +117,7 @@ const handlers = {
     out.result.stepMs = stepMs;
     return out;
   },
-  blobList: ({ camera, image }) => {
-    const list = JSON.parse(requireSim().blobList());
-    if (camera) list.camera = camera;
-    if (image) list.image = { ...list.image, ...image };
-    return { result: list };
-  },
+  blobList: ({ camera, image }) => ({ result: inView(requireSim().blobList(), camera, image) }),
   windSlice: ({ origin, u, v, n }) => {
     const data = requireSim().windSlice(new Float32Array(origin), new Float32Array(u), new Float32Array(v), n, n);
     return { result: data, transfer: [data.buffer] };
@@ -122,9 +125,7 @@ const handlers = {
   marchList: ({ camera, image, fraction, res }) => {
     // The ray march's input in one round trip: the merged blob list and its shadow grid.
     const json = requireSim().marchList(fraction);
-    const list = JSON.parse(json);
-    list.camera = camera;
-    list.image = { ...list.image, ...image };
+    const list = inView(json, camera, image);
     const grid = list.shadows && list.lights.length ? shadowGrid(json, res) : null;
     return { result: { list, grid }, transfer: grid ? [grid.buffer] : [] };
   },

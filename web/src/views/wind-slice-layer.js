@@ -53,8 +53,6 @@ export class WindSliceLayer {
     this.group.add(this.plane, this.arrows);
     this.group.visible = false;
     overlay.add(this.group);
-    /** Largest speed on the slice last drawn (m/s). */
-    this.maxSpeed = 0;
   }
 
   hide() {
@@ -67,27 +65,27 @@ export class WindSliceLayer {
    */
   update(data, { origin, u, v }) {
     const n = SLICE_SAMPLES;
-    let max = 0;
-    for (let k = 0; k < n * n; k++) max = Math.max(max, Math.hypot(data[3 * k], data[3 * k + 1], data[3 * k + 2]));
-    this.maxSpeed = max;
+    const speed = new Float32Array(n * n);
+    for (let k = 0; k < n * n; k++) speed[k] = Math.hypot(data[3 * k], data[3 * k + 1], data[3 * k + 2]);
+    const max = speed.reduce((a, b) => Math.max(a, b), 0);
     const scale = max > 0 ? 1 / max : 0;
     for (let k = 0; k < n * n; k++) {
-      viridis(Math.hypot(data[3 * k], data[3 * k + 1], data[3 * k + 2]) * scale, this.pixels, 4 * k);
+      viridis(speed[k] * scale, this.pixels, 4 * k);
       this.pixels[4 * k + 3] = 255;
     }
     this.texture.needsUpdate = true;
     const U = new THREE.Vector3().fromArray(u);
     const V = new THREE.Vector3().fromArray(v);
+    const uh = U.clone().normalize();
+    const vh = V.clone().normalize();
     const side = U.length();
-    const basis = new THREE.Matrix4().makeBasis(U.clone().normalize(), V.clone().normalize(), U.clone().cross(V).normalize());
+    const basis = new THREE.Matrix4().makeBasis(uh, vh, uh.clone().cross(vh));
     this.plane.quaternion.setFromRotationMatrix(basis);
     this.plane.scale.set(side, V.length(), 1);
     this.plane.position.fromArray(origin).addScaledVector(U, 0.5).addScaledVector(V, 0.5);
     // Arrows: the in-plane wind, the fastest ARROW_EVERY × 0.9 cells long, with a head.
     const cell = side / n;
     const length = max > 0 ? (ARROW_EVERY * 0.9 * cell) / max : 0;
-    const uh = U.clone().normalize();
-    const vh = V.clone().normalize();
     const p = this.arrowPositions;
     p.fill(0);
     let o = 0;
