@@ -2,7 +2,7 @@
 // tile's list (checked by brute force), lists run front to back, blobs behind are dropped.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { binBlobs, TRUNCATION } from '../web/src/views/tiles.js';
+import { binBlobs, TRUNCATION } from '../web/src/engine/tiles.js';
 
 const view = {
   position: [0.2, 1, 4],
@@ -21,7 +21,13 @@ function blobs(n) {
     sigma[i] = 0.02 + 0.08 * ((i * 7) % 11) / 11;
   }
   positions.set([0, 1, 5], 0); // behind the camera
-  return { positions, sigma, count: n };
+  // Packed as the core packs a frame: centre and σ in the first four of eight words.
+  const floats = new Float32Array(8 * n);
+  for (let i = 0; i < n; i++) {
+    floats.set(positions.subarray(3 * i, 3 * i + 3), 8 * i);
+    floats[8 * i + 3] = sigma[i];
+  }
+  return { positions, sigma, floats, count: n };
 }
 
 test('every blob a pixel ray meets is in that pixel tile, front to back', () => {

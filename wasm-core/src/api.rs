@@ -7,7 +7,10 @@
 use crate::blob_list::{BlobList, Encoding};
 use crate::field::{FieldParams, Synthesis, TurbulentField};
 use crate::gas::Blob;
-use crate::render::{encode_png, merge_blobs, LinearImage, RenderOptions, Renderer};
+use crate::render::volume::{light_columns, splat, Towards, VoxelGrid};
+use crate::render::{
+    encode_png, merge_blobs, LinearImage, PackedFrame, RenderBlob, RenderOptions, Renderer,
+};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
@@ -136,11 +139,16 @@ pub fn scene_field_params(scene_json: &str) -> Result<String, JsError> {
     serde_json::to_string(&scene.field_params()).map_err(js_error)
 }
 
-/// A running scene: wind and gas advanced in fixed steps. Blob data comes out as whole
-/// `Float32Array`s (copies of the core's structure of arrays).
+/// A running scene: wind and gas advanced in fixed steps. Blob data comes out as whole typed
+/// arrays: per frame one packed buffer (`packFrame`, see `render::frame`) and its description
+/// (`frameInfo`).
 #[wasm_bindgen]
 pub struct SceneSimulation {
     inner: Simulation,
+    /// `frameInfo()` of the last `packFrame()` or `marchFrame()`.
+    info: Vec<f32>,
+    /// The shadow grid of the last `marchFrame()`.
+    grid: Vec<f32>,
 }
 
 #[wasm_bindgen]
@@ -150,7 +158,7 @@ impl SceneSimulation {
     pub fn new(scene_json: &str) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let inner = Simulation::new(scene).map_err(js_error)?;
-        Ok(Self { inner })
+        Ok(Self::wrap(inner))
     }
 
     /// Builds a simulation on an existing field, which must have the scene's field parameters.
@@ -159,7 +167,7 @@ impl SceneSimulation {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let field = (scene.field.amplitude > 0.0).then(|| field.inner.clone());
         let inner = Simulation::with_field(scene, field).map_err(js_error)?;
-        Ok(Self { inner })
+        Ok(Self::wrap(inner))
     }
 
     /// Runs `n` fixed steps.
@@ -282,6 +290,101 @@ impl SceneSimulation {
         Ok(out)
     }
 
+    /// The current blobs packed for the browser's views: `render::frame`'s eight words per blob,
+    /// sorted into σ classes (`frameInfo()` describes them). One whole buffer per frame.
+    #[wasm_bindgen(js_name = packFrame)]
+    pub fn pack_frame(&mut self) -> Vec<u32> {
+        let frame = self.packed();
+        self.info = frame.info();
+        frame.words
+    }
+
+    /// The last packed frame's description: `[count, lo.xyz, hi.xyz, emissive, σ_min, classes,
+    /// then offset, count, σ_max per class]` (`PackedFrame::info`).
+    #[wasm_bindgen(js_name = frameInfo)]
+    pub fn frame_info(&self) -> Vec<f32> {
+        self.info.clone()
+    }
+
+    /// The visible repulsor spheres now, `[x, y, z, radius, r, g, b]` each (m, linear colour), in
+    /// the order they follow the scene's objects in `blobList()`.
+    #[wasm_bindgen(js_name = movingSpheres)]
+    pub fn moving_spheres(&self) -> Vec<f32> {
+        self.inner
+            .wind
+            .visible_spheres(self.inner.time())
+            .iter()
+            .flat_map(|(c, r, rgb)| [c.x, c.y, c.z, *r, rgb[0], rgb[1], rgb[2]])
+            .collect()
+    }
+
+    /// The exact march's input: the blobs merged as `marchList(fraction)` merges them, packed as
+    /// `packFrame` packs (`frameInfo()` describes them), and the shadow grid at `res`³ (read with
+    /// `marchGrid()`; 8 zeros without shadows or lights).
+    #[wasm_bindgen(js_name = marchFrame)]
+    pub fn march_frame(&mut self, fraction: f32, res: u32) -> Result<Vec<u32>, JsError> {
+        let mut list = self.inner.blob_list();
+        if fraction > 0.0 {
+            list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
+        }
+        self.grid = shadow_grid_of(&list, res)?;
+        let medium = Vec3::from_array(list.medium.albedo);
+        let frame = PackedFrame::pack(list.blobs.len(), |i| {
+            let b = &list.blobs[i];
+            RenderBlob {
+                center: Vec3::from_array(b.center),
+                sigma: b.sigma,
+                mass: b.mass,
+                albedo: b.albedo.map_or(medium, Vec3::from_array),
+                emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
+            }
+        });
+        self.info = frame.info();
+        Ok(frame.words)
+    }
+
+    /// The shadow grid of the last `marchFrame()` (`shadowGrid`'s layout).
+    #[wasm_bindgen(js_name = marchGrid)]
+    pub fn march_grid(&self) -> Vec<f32> {
+        self.grid.clone()
+    }
+
+    /// The real-time view's density volume for the current blobs, as `render::volume` computes
+    /// it on the grid of `dims` voxels of side `h` from `lo`: `[ρ, ρΩ_rgb]` per voxel, then
+    /// `[ρ(1−Ω)Q_rgb, 0]` per voxel (x fastest). The twin the browser's GPU volume is tested against.
+    #[wasm_bindgen(js_name = volumeTwin)]
+    pub fn volume_twin(&self, lo: &[f32], h: f32, dims: &[u32]) -> Result<Vec<f32>, JsError> {
+        let grid = Self::grid(lo, h, dims)?;
+        let v = splat(&self.packed(), &grid);
+        Ok([v.density, v.source].concat())
+    }
+
+    /// The light volume on the same grid: for each voxel of the half-resolution grid, the column
+    /// ∫ρ ds towards each of the scene's first four lights (`render::volume::light_columns`,
+    /// steps of `step × h`), four floats per voxel.
+    #[wasm_bindgen(js_name = lightTwin)]
+    pub fn light_twin(
+        &self,
+        lo: &[f32],
+        h: f32,
+        dims: &[u32],
+        step: f32,
+    ) -> Result<Vec<f32>, JsError> {
+        let grid = Self::grid(lo, h, dims)?;
+        if !(step.is_finite() && step > 0.0) {
+            return Err(JsError::new("lightTwin: step must be positive"));
+        }
+        let lights: Vec<Towards> = self
+            .inner
+            .scene
+            .render
+            .lights
+            .iter()
+            .map(Towards::of)
+            .collect();
+        Ok(light_columns(&splat(&self.packed(), &grid), &lights, step).1)
+    }
+
     /// The blob list for the GPU ray march (JSON): blobs closer than `fraction × σ` merged by
     /// moments (`render::lod`); `fraction` ≤ 0 gives the exact list.
     #[wasm_bindgen(js_name = marchList)]
@@ -291,6 +394,50 @@ impl SceneSimulation {
             list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
         }
         serde_json::to_string(&list).unwrap_or_default()
+    }
+}
+
+impl SceneSimulation {
+    fn wrap(inner: Simulation) -> Self {
+        Self {
+            inner,
+            info: PackedFrame::default().info(),
+            grid: Vec::new(),
+        }
+    }
+
+    /// The current blobs packed for the GPU (albedo resolved against the medium's).
+    fn packed(&self) -> PackedFrame {
+        let blobs = self.inner.blobs();
+        let medium = Vec3::from_array(self.inner.scene.render.medium.albedo);
+        PackedFrame::pack(blobs.len(), |i| RenderBlob {
+            center: blobs.center(i),
+            sigma: blobs.sigma[i],
+            mass: blobs.mass[i],
+            albedo: blobs.albedo_of(i).map_or(medium, Vec3::from_array),
+            emission: Vec3::from_slice(&blobs.emission[3 * i..3 * i + 3]),
+        })
+    }
+
+    /// The voxel grid `lo` (3 numbers, m), `h` (m), `dims` (3 counts), checked.
+    fn grid(lo: &[f32], h: f32, dims: &[u32]) -> Result<VoxelGrid, JsError> {
+        match (lo, dims) {
+            ([x, y, z], [nx, ny, nz])
+                if lo.iter().all(|v| v.is_finite())
+                    && h.is_finite()
+                    && h > 0.0
+                    && dims.iter().all(|&n| (1..=512).contains(&n)) =>
+            {
+                Ok(VoxelGrid {
+                    lo: Vec3::new(*x, *y, *z),
+                    h,
+                    dims: [*nx as usize, *ny as usize, *nz as usize],
+                })
+            }
+            _ => Err(JsError::new(
+                "voxel grid: lo must be 3 finite numbers, h positive, dims 3 counts from 1 to 512",
+            )),
+        }
     }
 }
 
@@ -375,8 +522,11 @@ impl ReferenceRender {
 pub fn shadow_grid(blob_list_json: &str, res: u32) -> Result<Vec<f32>, JsError> {
     let value: serde_json::Value = serde_json::from_str(blob_list_json)
         .map_err(|e| JsError::new(&format!("blob list: {e}")))?;
-    let list = BlobList::from_value(value).map_err(js_error)?;
-    let renderer = Renderer::new(&list, None, RenderOptions::default()).map_err(js_error)?;
+    shadow_grid_of(&BlobList::from_value(value).map_err(js_error)?, res)
+}
+
+fn shadow_grid_of(list: &BlobList, res: u32) -> Result<Vec<f32>, JsError> {
+    let renderer = Renderer::new(list, None, RenderOptions::default()).map_err(js_error)?;
     let res = res.clamp(2, 96) as usize;
     let lights = renderer.light_count();
     let bounds = renderer.gas_bounds().filter(|_| list.shadows && lights > 0);

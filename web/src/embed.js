@@ -95,6 +95,7 @@ class WindFieldElement extends HTMLElement {
     add('view', () => {
       const s = this.#player.state;
       s.mode = s.mode === 'points' ? 'raymarch' : 'points';
+      this.#player.resize();
     });
   }
 

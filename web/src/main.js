@@ -3,7 +3,7 @@
 
 import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
-import { Player, QUALITY } from './player.js';
+import { MODES, Player, QUALITY } from './player.js';
 import { sceneEditor } from './scene-editor.js';
 import { moved } from './views/guides-layer.js';
 import { SLICE_PLANES } from './views/wind-slice-layer.js';
@@ -15,11 +15,16 @@ const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).hre
 
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
+  profile: new URLSearchParams(location.search).has('profile'),
   onProgress: showProgress,
   onMessage: showMessage,
   onFrame: (frame) => {
     const st = player.stats;
-    $('#status').textContent = `t = ${frame.time.toFixed(2)} s · ${frame.count} blobs · field ${st.fieldMs.toFixed(0)} ms · step ${st.stepMs.toFixed(2)} ms`;
+    const grid = state.mode === 'raymarch' ? player.view.volume.grid : null;
+    const volume = grid ? ` · volume ${grid.dims.join('×')}` : '';
+    const scale = state.mode === 'points' ? '' : ` · resolution ${Math.round(st.scale * 100)} %`;
+    $('#status').textContent = `t = ${frame.time.toFixed(2)} s · ${frame.count} blobs · field ${st.fieldMs.toFixed(0)} ms`
+      + ` · step ${st.stepMs.toFixed(2)} ms · ${st.fps.toFixed(0)} fps${scale}${volume}`;
   },
   onScene: async (scene) => {
     history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
@@ -27,6 +32,8 @@ const player = new Player($('#canvas'), {
   },
 });
 const state = player.state;
+const initialView = new URLSearchParams(location.search).get('view');
+state.mode = MODES.includes(initialView) ? initialView : 'raymarch';
 player.view.showGuides = true;
 const loadScene = (scene) => player.load(scene);
 const advance = (n) => player.advance(n);
@@ -82,8 +89,11 @@ function buildControls() {
   sim.add(actions, 'step').name('step once');
   sim.add(actions, 'reset');
   sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
-  sim.add(state, 'mode', ['points', 'raymarch']).name('view').onChange(() => draw());
+  sim.add(state, 'mode', MODES).name('view').onChange(() => player.resize());
   sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => draw());
+  const resolution = { scale: 'auto' };
+  sim.add(resolution, 'scale', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution')
+    .onChange((v) => { player.resolution.set(v); player.resize(); });
   sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
   sim.add(player.view, 'slicePlane', SLICE_PLANES).name('wind slice').listen().onChange(showSlice);
   sim.add(player.view, 'sliceOffset', -2, 2, 0.01).name('slice offset (m)').onChange(showSlice);
@@ -177,7 +187,7 @@ function wireKeys() {
     if (e.target.closest?.('input, textarea, select')) return;
     if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); }
     if (e.key === '.') advance(1);
-    if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; draw(); }
+    if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; player.resize(); }
     if (e.key === 'g') { player.view.showGuides = !player.view.showGuides; draw(); }
     if (e.key === 'w') {
       const view = player.view;

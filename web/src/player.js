@@ -3,18 +3,22 @@
 
 import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
+import { ResolutionGovernor } from './resolution.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
 
 /**
- * The GPU ray march at each quality: shadow-grid points per axis, and the cell side (in σ)
- * within which blobs are merged by moments for it (`render::lod` in the core).
+ * The exact march at each quality: shadow-grid points per axis, and the cell side (in σ) within
+ * which blobs are merged by moments for it (`render::lod` in the core). The real-time view's
+ * qualities are `VOLUME_QUALITY`.
  */
 export const QUALITY = {
   draft: { shadowGrid: 16, merge: 1 },
   standard: { shadowGrid: 32, merge: 0.5 },
   high: { shadowGrid: 64, merge: 0.25 },
 };
+/** The views (DESIGN §5's capture modes). */
+export const MODES = ['points', 'raymarch', 'exact'];
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
 
@@ -29,16 +33,20 @@ export class Player {
    * @param {HTMLCanvasElement} canvas
    * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
    *          onFrame?: (frame: object) => void, onScene?: (scene: object) => void,
-   *          playing?: boolean}} hooks
+   *          playing?: boolean, profile?: boolean}} hooks (`profile`: time the volume view's
+   *   passes on the GPU, reported by `stats().passes`; slower, for benchmarks)
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'points', quality: 'standard', speed: 1, visible: true };
-    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0 };
+    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0, scale: 1 };
+    /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
+    this.resolution = new ResolutionGovernor();
     this.busy = false;
     this.lastFrame = null;
     this.accumulated = 0;
     this.view = new SceneView(canvas);
+    this.view.volume.profile = Boolean(hooks.profile);
     this.engine = new Engine({
       onError: (m) => hooks.onMessage?.(m),
       onRestart: () => {
@@ -46,6 +54,10 @@ export class Player {
       },
     });
     this.lastTime = performance.now();
+    this.lastDrawn = 0;
+    /** Whether something changed the picture since the last frame (the camera moved, …). */
+    this.dirty = true;
+    this.view.controls.addEventListener('change', () => { this.dirty = true; });
     this.running = true;
     this.resize();
     requestAnimationFrame((t) => this.loop(t));
@@ -61,6 +73,7 @@ export class Player {
     this.stats.fieldMs = info.fieldMs;
     this.view.setCamera(info.scene.render.camera);
     this.view.setRenderSettings(info.scene.render);
+    this.resize();
     this.accumulated = 0;
     await this.advance(0);
     await this.hooks.onScene?.(info.scene);
@@ -84,6 +97,7 @@ export class Player {
     const t0 = performance.now();
     const frame = await this.engine.request('advance', { steps });
     this.lastFrame = frame;
+    this.view.setFrame(frame);
     this.stats.blobs = frame.count;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     await this.draw();
@@ -98,8 +112,8 @@ export class Player {
 
   async draw(size = this.view.size()) {
     if (!this.lastFrame || !this.state.scene) return;
-    // Moving repulsor spheres come with each frame; unchanged objects are not rebuilt.
-    this.view.setRenderSettings({ ...this.state.scene.render, objects: this.lastFrame.objects });
+    this.dirty = false;
+    this.view.setRenderSettings(this.state.scene.render);
     this.view.guides.update(this.state.scene);
     const square = this.view.sliceSquare();
     if (square) {
@@ -108,29 +122,49 @@ export class Player {
     } else {
       this.view.windSlice.hide();
     }
-    if (this.state.mode === 'raymarch') {
+    if (this.state.mode === 'exact') {
       const quality = QUALITY[this.state.quality] ?? QUALITY.standard;
-      const { list, grid } = await this.engine.request('marchList', {
-        camera: this.view.cameraSettings(), image: size, fraction: quality.merge, res: quality.shadowGrid,
+      const frame = await this.engine.request('exactFrame', {
+        view: this.view.viewBasis(), width: size.width, height: size.height, fraction: quality.merge, res: quality.shadowGrid,
       });
-      this.view.raymarch.update(list, grid, this.view.viewBasis(), size.width, size.height);
-    } else {
-      this.view.points.update(this.lastFrame, this.state.scene.render.medium.albedo);
+      this.view.exact.update(frame);
     }
-    this.view.render(this.state.mode);
+    this.view.render(this.state.mode, this.state.quality);
   }
 
+  /** Sizes the canvas's drawing buffer to its box times the resolution scale. */
   resize() {
     const c = this.view.canvas;
-    this.view.resize(Math.max(c.clientWidth, 1), Math.max(c.clientHeight, 1));
+    const scale = this.state.mode === 'points' ? 1 : this.resolution.scale;
+    this.stats.scale = scale;
+    const width = Math.max(Math.round(c.clientWidth * scale), 1);
+    const height = Math.max(Math.round(c.clientHeight * scale), 1);
+    const now = this.view.size();
+    if (now.width !== width || now.height !== height) this.view.resize(width, height);
     this.draw().catch(() => {});
+  }
+
+  /** Redraws at the next animation frame. */
+  invalidate() {
+    this.dirty = true;
+  }
+
+  /**
+   * Counts a frame drawn at `now` (ms) into the frame rate (frames in a row only: the first
+   * after a pause starts afresh) and lets the resolution follow it.
+   */
+  #drawn(now) {
+    const interval = (now - this.lastDrawn) / 1000;
+    this.lastDrawn = now;
+    if (!(interval > 0 && interval < 1)) return;
+    this.stats.fps = this.stats.fps > 0 ? 0.8 * this.stats.fps + 0.2 / interval : 1 / interval;
+    if (this.state.mode !== 'points' && this.resolution.observe(now, this.stats.fps)) this.resize();
   }
 
   loop(now) {
     if (!this.running) return;
     const dt = Math.min((now - this.lastTime) / 1000, 0.1);
     this.lastTime = now;
-    this.stats.fps = 0.9 * this.stats.fps + 0.1 * (dt > 0 ? 1 / dt : 0);
     if (this.state.scene && !this.busy && this.state.visible) {
       let steps = 0;
       if (this.state.playing) {
@@ -139,10 +173,13 @@ export class Player {
         steps = Math.min(Math.floor(this.accumulated / h), MAX_STEPS_PER_FRAME);
         this.accumulated -= steps * h;
       }
-      this.busy = true;
-      (steps > 0 ? this.advance(steps) : this.draw())
-        .catch((e) => this.hooks.onMessage?.(e.message))
-        .finally(() => { this.busy = false; });
+      if (steps > 0 || this.dirty) {
+        this.busy = true;
+        (steps > 0 ? this.advance(steps) : this.draw())
+          .then(() => this.#drawn(performance.now()))
+          .catch((e) => this.hooks.onMessage?.(e.message))
+          .finally(() => { this.busy = false; });
+      }
     }
     requestAnimationFrame((t) => this.loop(t));
   }
@@ -219,7 +256,7 @@ export class Player {
       pause: () => { this.state.playing = false; },
       play: () => { this.state.playing = true; },
       step: (n = 1) => this.exclusive(() => this.advance(n)),
-      stats: () => ({ ...this.stats }),
+      stats: () => ({ ...this.stats, ...(this.view.volume.timings && { passes: { ...this.view.volume.timings } }) }),
       exportBlobs: (size) => this.exportBlobs(size),
       captureGPU: (options) => this.captureGPU(options),
       renderReference: (options) => this.renderReference(options),

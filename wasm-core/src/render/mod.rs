@@ -12,13 +12,16 @@
 //! the ray with Lambert shading shadowed by the gas; other rays end in the background.
 
 mod bvh;
+pub mod frame;
 mod gaussian;
 mod geometry;
 pub mod image;
 pub mod lod;
+pub mod volume;
 
 pub use bvh::Bvh;
-pub use gaussian::{Chord, RenderBlob, TRUNCATION};
+pub use frame::PackedFrame;
+pub use gaussian::{erf, Chord, RenderBlob, TRUNCATION};
 pub use geometry::CameraRays;
 pub use image::{decode_png, encode_png, psnr, LinearImage};
 pub use lod::merge_blobs;

@@ -1,12 +1,25 @@
-// Screen tiles for the GPU ray march: each blob's truncated sphere is projected to the screen
-// and its index appended to every tile it may cover, nearest blobs first. A pixel then visits
-// only the blobs of its tile, so the cost per pixel follows local, not total, blob count.
+// Screen tiles for the exact GPU march, built in the engine worker: each blob's truncated
+// sphere is projected to the screen and its index appended to every tile it may cover, nearest
+// blobs first. A pixel then visits only the blobs of its tile, so the cost per pixel follows
+// local, not total, blob count.
 
 /** Blobs are truncated at this many σ (as in the reference renderer). */
 export const TRUNCATION = 4.5;
+/** Screen tile side (pixels). */
+export const TILE = 16;
+/** Width (texels) of the exact march's index textures; the worker pads their data to whole rows. */
+export const TEX_WIDTH = 1024;
+
+/** `data` padded with zeros to a multiple of `row` elements (a copy; at least one row). */
+export function padRows(data, row) {
+  const out = new Float32Array(Math.max(1, Math.ceil(data.length / row)) * row);
+  out.set(data);
+  return out;
+}
 
 /**
- * @param {{positions: Float32Array, sigma: Float32Array, count: number}} blobs
+ * @param {{floats: Float32Array, count: number}} blobs the packed frame seen as floats (eight a
+ *   blob: centre x, y, z and σ first; `render::frame` in the core)
  * @param {{position: number[], forward: number[], right: number[], up: number[], tanHalf: number}} view
  *   camera basis (unit vectors) and tan(fov_y / 2)
  * @param {number} width @param {number} height pixels; tile rows count from the bottom (GL)
@@ -21,10 +34,11 @@ export function binBlobs(blobs, view, width, height, tile) {
   const [ox, oy, oz] = view.position;
   const rects = [];
   for (let i = 0; i < blobs.count; i++) {
-    const cx = blobs.positions[3 * i] - ox;
-    const cy = blobs.positions[3 * i + 1] - oy;
-    const cz = blobs.positions[3 * i + 2] - oz;
-    const r = TRUNCATION * blobs.sigma[i];
+    const f = blobs.floats;
+    const cx = f[8 * i] - ox;
+    const cy = f[8 * i + 1] - oy;
+    const cz = f[8 * i + 2] - oz;
+    const r = TRUNCATION * f[8 * i + 3];
     const z = cx * view.forward[0] + cy * view.forward[1] + cz * view.forward[2];
     if (z + r <= 0) continue; // wholly behind the camera
     let x0 = 0;

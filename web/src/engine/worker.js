@@ -7,11 +7,14 @@
 // { type: 'fatal', error } if the core cannot start, and { type: 'crashed', error } if it traps
 // (a Rust panic or running out of memory leaves the instance unusable: the page restarts us).
 // Requests that arrive before the core is ready wait for it, in order.
-// Typed arrays in results are transferred, never copied through JSON.
+// Typed arrays in results are transferred, never copied through JSON. A frame is whole buffers
+// only: the packed blobs (`render::frame` in the core), their description and the moving
+// spheres; nothing per blob is an object or a string.
 
 import init, {
-  FieldSynthesis, ReferenceRender, SceneSimulation, sceneFieldParams, shadowGrid, validateScene,
+  FieldSynthesis, ReferenceRender, SceneSimulation, sceneFieldParams, validateScene,
 } from '../../pkg/windfield.js';
+import { binBlobs, padRows, TEX_WIDTH, TILE } from './tiles.js';
 
 const STAGES = [
   'filtering white noise', 'x transform (u₁, u₂)', 'y transform (u₁, u₂)', 'z transform (u₁, u₂)',
@@ -72,23 +75,18 @@ function requireSim() {
   return sim;
 }
 
-/** The blobs of the current state as flat arrays (transferred). */
+/**
+ * The current state as whole buffers (transferred): `blobs` the packed frame (Uint32Array, eight
+ * words a blob, whole rows), `info` its description (Float32Array, `frameInfo`), `spheres` the
+ * visible repulsor spheres (Float32Array, x y z radius r g b each).
+ */
 function frame() {
   const s = requireSim();
-  const result = {
-    count: s.count(),
-    time: s.time(),
-    positions: s.positions(),
-    sigma: s.sigma(),
-    mass: s.mass(),
-    albedo: s.albedo(),
-    emission: s.emission(),
-    age: s.age(),
-    counts: JSON.parse(s.counts()),
-    objects: JSON.parse(s.objects()),
-  };
-  const transfer = ['positions', 'sigma', 'mass', 'albedo', 'emission', 'age'].map((k) => result[k].buffer);
-  return { result, transfer };
+  const blobs = s.packFrame();
+  const info = s.frameInfo();
+  const spheres = s.movingSpheres();
+  const result = { count: info[0], time: s.time(), blobs, info, spheres };
+  return { result, transfer: [blobs.buffer, info.buffer, spheres.buffer] };
 }
 
 /** A blob list (JSON) seen from `camera` at `image`'s size, either kept from the scene if absent. */
@@ -122,12 +120,35 @@ const handlers = {
     const data = requireSim().windSlice(new Float32Array(origin), new Float32Array(u), new Float32Array(v), n, n);
     return { result: data, transfer: [data.buffer] };
   },
-  marchList: ({ camera, image, fraction, res }) => {
-    // The ray march's input in one round trip: the merged blob list and its shadow grid.
-    const json = requireSim().marchList(fraction);
-    const list = inView(json, camera, image);
-    const grid = list.shadows && list.lights.length ? shadowGrid(json, res) : null;
-    return { result: { list, grid }, transfer: grid ? [grid.buffer] : [] };
+  exactFrame: ({ view, width, height, fraction, res }) => {
+    // The exact march's input in one round trip: the merged blobs packed, the shadow grid and
+    // the screen tiles, each padded to whole texture rows.
+    const s = requireSim();
+    const blobs = s.marchFrame(fraction, res);
+    const info = s.frameInfo();
+    const grid = s.marchGrid();
+    const count = info[0];
+    const tiles = binBlobs({ floats: new Float32Array(blobs.buffer, 0, 8 * count), count }, view, width, height, TILE);
+    const result = {
+      count,
+      blobs,
+      info,
+      grid: grid.slice(0, 8),
+      columns: padRows(grid.subarray(8), TEX_WIDTH),
+      heads: padRows(tiles.heads, 4 * TEX_WIDTH),
+      list: padRows(tiles.list, TEX_WIDTH),
+      tilesX: tiles.tilesX,
+    };
+    const transfer = ['blobs', 'info', 'grid', 'columns', 'heads', 'list'].map((k) => result[k].buffer);
+    return { result, transfer };
+  },
+  volumeTwin: ({ lo, h, dims, step }) => {
+    // The core's twin of the real-time view's volumes for the current blobs (tests compare it
+    // with the GPU's).
+    const s = requireSim();
+    const volume = s.volumeTwin(new Float32Array(lo), h, new Uint32Array(dims));
+    const light = s.lightTwin(new Float32Array(lo), h, new Uint32Array(dims), step);
+    return { result: { volume, light }, transfer: [volume.buffer, light.buffer] };
   },
   reference: ({ id, list, width, height }) => {
     const render = new ReferenceRender(JSON.stringify(list), width, height);

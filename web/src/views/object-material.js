@@ -1,9 +1,12 @@
 // The opaque objects' material: Lambert shading shadowed by the gas, as DESIGN §4 defines it —
-// colour ⊙ Σ_k max(0, n·l_k) S_k L_k, with S_k from the same shadow grid the ray march uses
-// (its uniforms are shared, so both always see the same frame).
+// colour ⊙ Σ_k max(0, n·l_k) S_k L_k, with S_k from whichever gas view is drawn: the exact
+// march's shadow grid or the real-time view's light volume (the shared gas uniforms say which),
+// so objects and gas always see the same frame.
 
 import * as THREE from 'three';
-import { SHADOW_GLSL } from './raymarch-layer.js';
+import { GRID_SHADOW_GLSL } from './exact-layer.js';
+import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
+import { VOLUME_SHADOW_GLSL } from './volume/march-glsl.js';
 
 const vertexShader = /* glsl */ `
 out vec3 vWorld;
@@ -23,31 +26,33 @@ precision highp sampler2D;
 in vec3 vWorld;
 in vec3 vNormal;
 uniform vec3 baseColor;
+uniform int shadowSource;  // 0 none, 1 shadow grid, 2 light volume
 out vec4 fragColor;
-${SHADOW_GLSL}
+${LIGHTS_GLSL}
+${GRID_SHADOW_GLSL}
+${VOLUME_SHADOW_GLSL}
 void main() {
   vec3 n = normalize(vNormal) * (gl_FrontFacing ? 1.0 : -1.0);
   vec3 x = vWorld + n * 1e-4;
   vec3 lit = vec3(0.0);
-  for (int l = 0; l < 4; l++) {
+  for (int l = 0; l < ${MAX_LIGHTS}; l++) {
     if (l >= lightCount) break;
-    vec3 toLight = lightType[l] == 0 ? normalize(lightVec[l] - x) : lightVec[l];
+    float dist;
+    vec3 toLight = towardsLight(l, x, dist);
     float c = max(dot(n, toLight), 0.0);
-    if (c > 0.0) lit += c * exp(-kappa * shadowColumn(l, x)) * lightColor[l];
+    if (c == 0.0) continue;
+    float column = 0.0;
+    if (hasShadows && shadowSource == 1) column = shadowColumn(l, x);
+    if (hasShadows && shadowSource == 2) column = volumeColumn(l, x, toLight, dist);
+    lit += c * exp(-kappa * column) * lightColor[l];
   }
-  // Linear into the ray march's target; the canvas's encoding when drawn directly.
+  // Linear into the marches' opaque target; the canvas's encoding when drawn directly.
   fragColor = linearToOutputTexel(vec4(baseColor * lit, 1.0));
 }
 `;
 
-/**
- * A material of linear colour `color` whose lights and gas shadows come from `shared` (the ray
- * march's uniforms).
- */
-export function shadowedLambert(color, shared) {
-  const uniforms = { baseColor: { value: new THREE.Vector3().fromArray(color) } };
-  for (const name of ['shadowTex', 'gridMin', 'gridMax', 'gridRes', 'hasShadows', 'lightCount', 'lightType', 'lightVec', 'lightColor', 'kappa']) {
-    uniforms[name] = shared[name];
-  }
+/** A material of linear colour `color` whose lights and gas shadows come from `gas`. */
+export function shadowedLambert(color, gas) {
+  const uniforms = { ...gas, baseColor: { value: new THREE.Vector3().fromArray(color) } };
   return new THREE.ShaderMaterial({ glslVersion: THREE.GLSL3, vertexShader, fragmentShader, uniforms, side: THREE.DoubleSide });
 }

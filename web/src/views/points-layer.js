@@ -1,70 +1,95 @@
-// Points preview (paper §6: the animator sees blob centres): one soft sprite per blob, its size
-// the projected σ, its brightness from mass, its colour the blob's albedo or emission.
+// The points view (paper §6: the animator sees the blobs) drawn as gas: one soft sprite per
+// blob, read from the packed frame on the GPU. A sprite is the blob's column seen face on: its
+// optical depth at distance r from the centre is κ_t m/(2πσ²) · exp(−r²/2σ²) (the line
+// integral of Eq. 13 through the blob), its opacity 1 − exp(−that), its colour the light the
+// blob scatters (albedo times the lights, unshadowed) plus its emitted source (1 − Ω)Q.
+// Sprites are composited in emission order, without sorting or shadows: a preview, not the
+// image; the real-time view and the stills are.
 
 import * as THREE from 'three';
+import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
+import { BLOB_GLSL } from './volume/glsl.js';
+
+/** Sprites reach this many σ from the centre. */
+const REACH = 3;
+/** Smallest sprite (pixels): a blob smaller than this spreads its opacity over it. */
+const MIN_SIZE = 2;
 
 const vertexShader = /* glsl */ `
-attribute float sigma;
-attribute float mass;
-attribute vec3 tint;
+precision highp float;
+precision highp int;
+${BLOB_GLSL}
+${LIGHTS_GLSL}
 uniform float pixelsPerUnit;
-uniform float massScale;
-varying vec3 vColor;
-varying float vAlpha;
+out vec3 vColor;
+out float vDepth;   // κ_t m/(2πσ²) at the centre, spread over the sprite if it was enlarged
+out float vReach;   // the sprite's radius in σ
 void main() {
-  vec4 mv = modelViewMatrix * vec4(position, 1.0);
+  vec3 c;
+  float sigma, mass;
+  vec3 albedo, source;
+  fetchBlob(gl_VertexID, c, sigma, mass, albedo, source);
+  vec4 mv = modelViewMatrix * vec4(c, 1.0);
   gl_Position = projectionMatrix * mv;
-  gl_PointSize = clamp(2.5 * sigma * pixelsPerUnit / max(-mv.z, 1e-3), 2.0, 96.0);
-  vColor = tint;
-  vAlpha = clamp(mass * massScale, 0.08, 1.0);
+  float size = 2.0 * ${REACH.toFixed(1)} * sigma * pixelsPerUnit / max(-mv.z, 1e-4);
+  float shown = max(size, ${MIN_SIZE.toFixed(1)});
+  gl_PointSize = shown;
+  vReach = ${REACH.toFixed(1)} * shown / max(size, 1e-6);
+  float k = (kappa.r + kappa.g + kappa.b) / 3.0;
+  vDepth = k * mass / (6.2831853 * sigma * sigma) * min(1.0, (size * size) / (shown * shown));
+  vec3 L = vec3(0.0);
+  for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+    if (l >= lightCount) break;
+    L += lightColor[l];
+  }
+  vColor = albedo * L + source;
+  if (mass <= 0.0) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
 `;
 
 const fragmentShader = /* glsl */ `
-varying vec3 vColor;
-varying float vAlpha;
+precision highp float;
+in vec3 vColor;
+in float vDepth;
+in float vReach;
+out vec4 outColor;
 void main() {
-  vec2 p = gl_PointCoord * 2.0 - 1.0;
+  vec2 p = (gl_PointCoord * 2.0 - 1.0) * vReach;
   float r2 = dot(p, p);
-  if (r2 > 1.0) discard;
-  gl_FragColor = vec4(vColor, vAlpha * exp(-3.0 * r2));
+  if (r2 > vReach * vReach) discard;
+  float alpha = 1.0 - exp(-vDepth * exp(-0.5 * r2));
+  outColor = vec4(linearToOutputTexel(vec4(vColor, 1.0)).rgb * alpha, alpha);
 }
 `;
 
 export class PointsLayer {
-  constructor() {
+  /** @param {object} gas the shared gas uniforms @param {import('./blob-texture.js').BlobTexture} blobs */
+  constructor(gas, blobs) {
+    this.blobs = blobs;
+    // No attributes: each vertex finds its blob from gl_VertexID.
     this.geometry = new THREE.BufferGeometry();
+    this.geometry.setDrawRange(0, 0);
     this.material = new THREE.ShaderMaterial({
+      glslVersion: THREE.GLSL3,
       vertexShader,
       fragmentShader,
       transparent: true,
       depthWrite: false,
-      blending: THREE.NormalBlending,
-      uniforms: { pixelsPerUnit: { value: 500 }, massScale: { value: 1 } },
+      blending: THREE.CustomBlending,
+      blendSrc: THREE.OneFactor,
+      blendDst: THREE.OneMinusSrcAlphaFactor,
+      blendSrcAlpha: THREE.OneFactor,
+      blendDstAlpha: THREE.OneMinusSrcAlphaFactor,
+      uniforms: { ...gas, blobTex: { value: null }, pixelsPerUnit: { value: 500 } },
     });
     this.points = new THREE.Points(this.geometry, this.material);
     this.points.frustumCulled = false;
   }
 
-  /** Shows a frame of the worker's flat arrays; `mediumAlbedo` colours blobs without their own. */
-  update(frame, mediumAlbedo) {
-    const n = frame.count;
-    const tint = new Float32Array(3 * n);
-    let maxMass = 0;
-    for (let i = 0; i < n; i++) {
-      const emissive = frame.emission[3 * i] + frame.emission[3 * i + 1] + frame.emission[3 * i + 2] > 0;
-      const own = frame.albedo[3 * i] >= 0;
-      for (let c = 0; c < 3; c++) {
-        tint[3 * i + c] = emissive ? frame.emission[3 * i + c] : own ? frame.albedo[3 * i + c] : mediumAlbedo[c];
-      }
-      maxMass = Math.max(maxMass, frame.mass[i]);
-    }
-    this.geometry.setAttribute('position', new THREE.BufferAttribute(frame.positions, 3));
-    this.geometry.setAttribute('sigma', new THREE.BufferAttribute(frame.sigma, 1));
-    this.geometry.setAttribute('mass', new THREE.BufferAttribute(frame.mass, 1));
-    this.geometry.setAttribute('tint', new THREE.BufferAttribute(tint, 3));
-    this.geometry.setDrawRange(0, n);
-    this.material.uniforms.massScale.value = maxMass > 0 ? 1 / maxMass : 1;
+  /** Shows the blobs of the blob texture. */
+  update() {
+    this.material.uniforms.blobTex.value = this.blobs.texture;
+    this.geometry.setDrawRange(0, this.blobs.count);
   }
 
   setViewport(heightPx, fovYDeg) {

@@ -1,10 +1,16 @@
 // The 3-D view: perspective camera with orbit controls, opaque objects drawn by three.js, and
-// the gas drawn as points or ray marched, composited over the objects with correct depth.
+// the gas drawn in one of three ways (DESIGN §5): `points` (a sprite a blob), `raymarch` (the
+// real-time volume view) or `exact` (the per-chord march), the marches composited over the
+// objects with correct depth. Every view reads the frame's blobs from one texture.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { BlobTexture } from './blob-texture.js';
+import { ExactMarchLayer } from './exact-layer.js';
+import { gasUniforms, setLights } from './gas-uniforms.js';
 import { PointsLayer } from './points-layer.js';
-import { RaymarchLayer } from './raymarch-layer.js';
+import { classSigma } from './volume/grid.js';
+import { VolumeLayer } from './volume/volume-layer.js';
 import { GuidesLayer } from './guides-layer.js';
 import { WindSliceLayer, sliceGeometry } from './wind-slice-layer.js';
 import { modelMesh } from './models.js';
@@ -24,9 +30,17 @@ export class SceneView {
     this.scene = new THREE.Scene();
     this.objects = new THREE.Group();
     this.scene.add(this.objects);
-    this.points = new PointsLayer();
+    /** Repulsor spheres, which move every frame. */
+    this.spheres = new THREE.Group();
+    this.scene.add(this.spheres);
+    this.spheresKey = '';
+    /** Uniforms every gas-aware shader shares; the layers add their own entries to it. */
+    this.gas = gasUniforms();
+    this.blobs = new BlobTexture();
+    this.exact = new ExactMarchLayer(this.gas);
+    this.volume = new VolumeLayer(this.gas, this.blobs);
+    this.points = new PointsLayer(this.gas, this.blobs);
     this.scene.add(this.points.points);
-    this.raymarch = new RaymarchLayer();
     this.target = null;
     this.settingsKey = '';
     this.background = [0, 0, 0];
@@ -88,11 +102,11 @@ export class SceneView {
   }
 
   /**
-   * Rebuilds the objects and three.js lights when the render settings change. With
+   * Rebuilds the objects and sets the lights and medium when the render settings change. With
    * `standIns`, cylinders that name a model are drawn as the plain cylinders the CPU still uses.
    */
   setRenderSettings(settings, { standIns = this.standIns } = {}) {
-    const key = JSON.stringify([settings.objects, settings.lights, settings.medium, settings.background, standIns]);
+    const key = JSON.stringify([settings.objects, settings.lights, settings.medium, settings.background, settings.shadows, settings.image, standIns]);
     if (key === this.settingsKey) return;
     this.settingsKey = key;
     this.background = settings.background;
@@ -102,10 +116,38 @@ export class SceneView {
       child.geometry?.dispose();
       child.material?.dispose();
     }
-    for (const o of settings.objects) this.objects.add(objectMesh(o, standIns, this.raymarch.material.uniforms));
-    // Lights reach the objects through the shared uniforms; set them now so the points view
-    // shades the objects before the first ray-march frame.
-    this.raymarch.setLights(settings.lights, settings.medium);
+    for (const o of settings.objects) this.objects.add(objectMesh(o, standIns, this.gas));
+    setLights(this.gas, settings.lights, settings.medium);
+    this.gas.hasShadows.value = Boolean(settings.shadows) && settings.lights.length > 0;
+    this.gas.srgb.value = (settings.image?.encoding ?? 'srgb') === 'srgb';
+    this.spheresKey = '';
+    this.volume.invalidate();
+  }
+
+  /**
+   * A new frame from the worker: the packed blobs for every view and the repulsor spheres
+   * (`spheres`: x y z radius r g b each), moved in place.
+   */
+  setFrame(frame) {
+    this.blobs.upload(frame.blobs, frame.count);
+    this.volume.setFrame(frameInfo(frame.info));
+    this.points.update();
+    const s = frame.spheres;
+    const n = s.length / 7;
+    const key = `${n}|${Array.from({ length: n }, (_, i) => s.slice(7 * i + 3, 7 * i + 7).join()).join(';')}`;
+    if (key !== this.spheresKey) {
+      this.spheresKey = key;
+      for (const child of [...this.spheres.children]) {
+        this.spheres.remove(child);
+        child.geometry.dispose();
+        child.material.dispose();
+      }
+      for (let i = 0; i < n; i++) {
+        const sphere = { type: 'sphere', center: [0, 0, 0], radius: s[7 * i + 3], color: Array.from(s.subarray(7 * i + 4, 7 * i + 7)) };
+        this.spheres.add(objectMesh(sphere, false, this.gas));
+      }
+    }
+    this.spheres.children.forEach((mesh, i) => mesh.position.fromArray(s, 7 * i));
   }
 
   resize(width, height) {
@@ -122,21 +164,30 @@ export class SceneView {
     return { width: this.canvas.width, height: this.canvas.height };
   }
 
-  /** Draws one frame in `mode` ('points' or 'raymarch'). */
-  render(mode) {
-    if (mode === 'raymarch') {
+  /** Draws one frame in `mode` ('points', 'raymarch' or 'exact'; `quality` for `raymarch`). */
+  render(mode, quality) {
+    const gas = this.gas;
+    if (mode === 'points') {
+      gas.shadowSource.value = 0;
+      this.points.points.visible = true;
+      this.renderer.render(this.scene, this.camera);
+    } else {
+      const layer = mode === 'exact' ? this.exact : this.volume;
+      gas.shadowSource.value = mode === 'exact' ? 1 : 2;
+      // The volumes first: the objects read their shadows from the light volume.
+      if (mode === 'raymarch') this.volume.prepare(this.renderer, quality);
       this.points.points.visible = false;
       this.renderer.setRenderTarget(this.target);
       this.scene.background = null;
       this.renderer.setClearColor(0x000000, 0);
       this.renderer.render(this.scene, this.camera);
       this.renderer.setRenderTarget(null);
-      this.raymarch.setOpaque(this.objects.children.some((c) => c.isMesh) ? this.target : null, this.camera.near, this.camera.far);
-      this.raymarch.render(this.renderer);
+      const hasMeshes = this.objects.children.length + this.spheres.children.length > 0;
+      layer.setOpaque(hasMeshes ? this.target : null, this.camera.near, this.camera.far);
+      const size = this.size();
+      layer.setView(this.viewBasis(), size.width, size.height, this.background);
+      layer.render(this.renderer);
       this.scene.background = new THREE.Color().setRGB(...this.background, THREE.LinearSRGBColorSpace);
-    } else {
-      this.points.points.visible = true;
-      this.renderer.render(this.scene, this.camera);
     }
     this.guides.setVisible(this.showGuides);
     if (this.showGuides) {
@@ -148,8 +199,28 @@ export class SceneView {
   }
 }
 
-function objectMesh(o, standIns, shared) {
-  const material = shadowedLambert(o.color, shared);
+/**
+ * `frameInfo` (the core's `PackedFrame::info`) as an object; each σ class {index, offset, count,
+ * sigmaMax, sigmaLow (its lower bound σ_min √2^index)}.
+ */
+export function frameInfo(info) {
+  const classes = [];
+  for (let k = 0; k < info[9]; k++) {
+    const [index, offset, count, sigmaMax] = info.subarray(10 + 4 * k, 14 + 4 * k);
+    classes.push({ index, offset, count, sigmaMax, sigmaLow: classSigma(info[8], index) });
+  }
+  return {
+    count: info[0],
+    lo: Array.from(info.subarray(1, 4)),
+    hi: Array.from(info.subarray(4, 7)),
+    emissive: info[7] > 0,
+    sigmaMin: info[8],
+    classes,
+  };
+}
+
+function objectMesh(o, standIns, gas) {
+  const material = shadowedLambert(o.color, gas);
   const model = o.type === 'cylinder' && !standIns ? modelMesh(o, material) : null;
   if (model) return model;
   if (o.type === 'sphere') {

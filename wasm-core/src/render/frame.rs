@@ -1,0 +1,277 @@
+//! The frame the browser's views draw from: every blob packed into eight 32-bit words, sorted
+//! into classes of σ, with the bounds of the gas. One whole buffer crosses from the engine
+//! worker to the page per frame (DESIGN §1); the page uploads it to the GPU unchanged.
+//!
+//! Words per blob ([`WORDS_PER_BLOB`]), little-endian as typed arrays see them:
+//!
+//! | word | content |
+//! |---|---|
+//! | 0–2 | centre x, y, z (f32 bits, m) |
+//! | 3 | σ (f32 bits, m) |
+//! | 4 | mass m (f32 bits; ρ integrates to it, Eq. 13) |
+//! | 5 | albedo Ω r, g (two IEEE half floats, r in the low 16 bits: GLSL `unpackHalf2x16`) |
+//! | 6 | albedo Ω b, emitted source (1 − Ω) Q r (halves) |
+//! | 7 | emitted source (1 − Ω) Q g, b (halves) |
+//!
+//! A blob without an albedo of its own carries the medium's; the source term of DESIGN §4 is
+//! ρ [Ω L + (1 − Ω) Q], so the packed (1 − Ω) Q is what a view adds to Ω L. Blobs without mass
+//! are left out.
+//!
+//! Classes: class k holds the blobs with σ in [σ_k, σ_{k+1}), σ_k = σ_min √2^k (the last class
+//! takes everything wider), so that each pass of the real-time view draws only the blobs it
+//! needs (`render::volume`: the particle mesh deposits a blob of class k into mesh classes k and
+//! k + 1).
+
+use super::gaussian::RenderBlob;
+use glam::Vec3;
+use half::f16;
+
+/// 32-bit words per packed blob.
+pub const WORDS_PER_BLOB: usize = 8;
+/// The words are padded with zeros to a multiple of this many blobs: whole rows of the page's
+/// blob texture (1,024 blobs a row), so that the texture changes size only now and then.
+pub const PACK_ALIGN: usize = 8192;
+/// Number of σ classes (a factor √2 apart; the last is open above).
+pub const SIGMA_CLASSES: usize = 16;
+/// The gas bounds enclose every blob's centre ± this many σ: the real-time view's splat
+/// footprint (its weights are renormalised over it, so no mass is lost).
+pub const FOOTPRINT: f32 = 3.0;
+
+/// σ_k = σ_min √2^k, the lower bound of class k (m).
+pub fn class_sigma(sigma_min: f32, k: usize) -> f32 {
+    sigma_min * std::f32::consts::SQRT_2.powi(k as i32)
+}
+
+/// One σ class of a packed frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SigmaClass {
+    /// Its number k: σ in [σ_k, σ_{k+1}).
+    pub index: usize,
+    /// First blob of the class (in blobs, not words).
+    pub offset: usize,
+    pub count: usize,
+    /// Widest σ in the class (m).
+    pub sigma_max: f32,
+}
+
+/// A packed frame: the words and what the page needs to draw them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PackedFrame {
+    /// [`WORDS_PER_BLOB`] words per blob, class after class, then zeros up to a multiple of
+    /// [`PACK_ALIGN`] blobs.
+    pub words: Vec<u32>,
+    /// Blobs packed.
+    pub count: usize,
+    /// Bounds of every centre ± [`FOOTPRINT`] σ (m); None without blobs.
+    pub bounds: Option<(Vec3, Vec3)>,
+    /// Whether any blob has an emitted source (1 − Ω) Q ≠ 0.
+    pub emissive: bool,
+    /// Narrowest σ (m); 0 without blobs.
+    pub sigma_min: f32,
+    /// Non-empty classes, narrowest first.
+    pub classes: Vec<SigmaClass>,
+}
+
+/// The two halves of `a` (low 16 bits) and `b` (high) in one word.
+fn halves(a: f32, b: f32) -> u32 {
+    u32::from(f16::from_f32(a).to_bits()) | (u32::from(f16::from_f32(b).to_bits()) << 16)
+}
+
+impl PackedFrame {
+    /// Packs the blobs that `blob(i)` gives for i in 0..n (albedo already resolved: the
+    /// blob's own or the medium's), dropping those without mass.
+    pub fn pack(n: usize, blob: impl Fn(usize) -> RenderBlob) -> Self {
+        let kept: Vec<RenderBlob> = (0..n)
+            .map(&blob)
+            .filter(|b| b.mass > 0.0 && b.sigma > 0.0)
+            .collect();
+        let Some(sigma_min) = kept.iter().map(|b| b.sigma).reduce(f32::min) else {
+            return Self::default();
+        };
+        let class_of = |sigma: f32| -> usize {
+            ((2.0 * (sigma / sigma_min).log2()).floor().max(0.0) as usize).min(SIGMA_CLASSES - 1)
+        };
+        let mut counts = [0usize; SIGMA_CLASSES];
+        let mut widest = [0.0f32; SIGMA_CLASSES];
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let mut emissive = false;
+        for b in &kept {
+            let k = class_of(b.sigma);
+            counts[k] += 1;
+            widest[k] = widest[k].max(b.sigma);
+            let r = Vec3::splat(FOOTPRINT * b.sigma);
+            lo = lo.min(b.center - r);
+            hi = hi.max(b.center + r);
+            emissive |= (Vec3::ONE - b.albedo) * b.emission != Vec3::ZERO;
+        }
+        let mut next = [0usize; SIGMA_CLASSES];
+        let mut classes = Vec::new();
+        let mut offset = 0;
+        for k in 0..SIGMA_CLASSES {
+            next[k] = offset;
+            if counts[k] > 0 {
+                classes.push(SigmaClass {
+                    index: k,
+                    offset,
+                    count: counts[k],
+                    sigma_max: widest[k],
+                });
+            }
+            offset += counts[k];
+        }
+        let mut words = vec![0u32; WORDS_PER_BLOB * kept.len().next_multiple_of(PACK_ALIGN)];
+        for b in &kept {
+            let k = class_of(b.sigma);
+            let w = &mut words[WORDS_PER_BLOB * next[k]..WORDS_PER_BLOB * (next[k] + 1)];
+            next[k] += 1;
+            let q = (Vec3::ONE - b.albedo) * b.emission;
+            w[0] = b.center.x.to_bits();
+            w[1] = b.center.y.to_bits();
+            w[2] = b.center.z.to_bits();
+            w[3] = b.sigma.to_bits();
+            w[4] = b.mass.to_bits();
+            w[5] = halves(b.albedo.x, b.albedo.y);
+            w[6] = halves(b.albedo.z, q.x);
+            w[7] = halves(q.y, q.z);
+        }
+        Self {
+            words,
+            count: kept.len(),
+            bounds: Some((lo, hi)),
+            emissive,
+            sigma_min,
+            classes,
+        }
+    }
+
+    /// The frame's description as floats: `[count, lo.xyz, hi.xyz, emissive (0/1), σ_min,
+    /// classes, then index, offset, count, σ_max per class]` (bounds 0 without blobs).
+    pub fn info(&self) -> Vec<f32> {
+        let (lo, hi) = self.bounds.unwrap_or((Vec3::ZERO, Vec3::ZERO));
+        let mut out = vec![
+            self.count as f32,
+            lo.x,
+            lo.y,
+            lo.z,
+            hi.x,
+            hi.y,
+            hi.z,
+            f32::from(u8::from(self.emissive)),
+            self.sigma_min,
+            self.classes.len() as f32,
+        ];
+        for c in &self.classes {
+            out.extend_from_slice(&[c.index as f32, c.offset as f32, c.count as f32, c.sigma_max]);
+        }
+        out
+    }
+
+    /// Blob `i` as packed (colours rounded to half precision).
+    pub fn blob(&self, i: usize) -> RenderBlob {
+        let w = &self.words[WORDS_PER_BLOB * i..WORDS_PER_BLOB * (i + 1)];
+        let lo = |x: u32| f16::from_bits(x as u16).to_f32();
+        let hi = |x: u32| f16::from_bits((x >> 16) as u16).to_f32();
+        RenderBlob {
+            center: Vec3::new(
+                f32::from_bits(w[0]),
+                f32::from_bits(w[1]),
+                f32::from_bits(w[2]),
+            ),
+            sigma: f32::from_bits(w[3]),
+            mass: f32::from_bits(w[4]),
+            albedo: Vec3::new(lo(w[5]), hi(w[5]), lo(w[6])),
+            // The emitted source (1 − Ω) Q, not Q: see the module's comment.
+            emission: Vec3::new(hi(w[6]), lo(w[7]), hi(w[7])),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn blob(x: f32, sigma: f32, mass: f32) -> RenderBlob {
+        RenderBlob {
+            center: Vec3::new(x, 2.0 * x, -x),
+            sigma,
+            mass,
+            albedo: Vec3::new(0.25, 0.5, 0.75),
+            emission: Vec3::new(2.0, 0.0, 4.0),
+        }
+    }
+
+    #[test]
+    fn packs_every_massive_blob_into_its_sigma_class() {
+        let blobs = [
+            blob(0.0, 0.01, 1.0),
+            blob(1.0, 0.05, 2.0),
+            blob(2.0, 0.015, 3.0),
+            blob(3.0, 0.02, 0.0), // no mass: left out
+            blob(4.0, 0.019, 4.0),
+        ];
+        let f = PackedFrame::pack(blobs.len(), |i| blobs[i]);
+        assert_eq!(f.count, 4);
+        assert_eq!(f.words.len(), PACK_ALIGN * WORDS_PER_BLOB);
+        assert!(f.words[4 * WORDS_PER_BLOB..].iter().all(|&w| w == 0));
+        // σ_min = 0.01: [0.01, 0.0141) class 0 (two blobs in input order), 0.019 class 1, 0.05
+        // class 4 (5 = √2^4.64).
+        let shape: Vec<(usize, usize, usize, f32)> = f
+            .classes
+            .iter()
+            .map(|c| (c.index, c.offset, c.count, c.sigma_max))
+            .collect();
+        assert_eq!(
+            shape,
+            vec![(0, 0, 1, 0.01), (1, 1, 2, 0.019), (4, 3, 1, 0.05)]
+        );
+        let masses: Vec<f32> = (0..4).map(|i| f.blob(i).mass).collect();
+        assert_eq!(masses, vec![1.0, 3.0, 4.0, 2.0]);
+        let b = f.blob(3);
+        assert_eq!(b.center, Vec3::new(1.0, 2.0, -1.0));
+        assert_eq!(b.sigma, 0.05);
+        assert_eq!(b.albedo, Vec3::new(0.25, 0.5, 0.75));
+        // (1 − Ω) Q, exact in half precision here.
+        assert_eq!(b.emission, Vec3::new(1.5, 0.0, 1.0));
+        assert!(f.emissive);
+    }
+
+    #[test]
+    fn bounds_hold_every_footprint_and_info_describes_the_frame() {
+        let blobs = [blob(0.0, 0.1, 1.0), blob(1.0, 0.2, 1.0)];
+        let f = PackedFrame::pack(2, |i| blobs[i]);
+        let (lo, hi) = f.bounds.unwrap();
+        assert!(lo.abs_diff_eq(Vec3::new(-0.3, -0.3, -1.6), 1e-6), "{lo}");
+        assert!(hi.abs_diff_eq(Vec3::new(1.6, 2.6, 0.3), 1e-6), "{hi}");
+        let info = f.info();
+        assert_eq!(info[0], 2.0);
+        assert_eq!(&info[1..7], &[lo.x, lo.y, lo.z, hi.x, hi.y, hi.z]);
+        assert_eq!(info[7], 1.0);
+        assert_eq!(info[8], 0.1);
+        assert_eq!(info[9], 2.0);
+        assert_eq!(&info[10..], &[0.0, 0.0, 1.0, 0.1, 2.0, 1.0, 1.0, 0.2]);
+    }
+
+    #[test]
+    fn an_empty_frame_has_no_bounds() {
+        let f = PackedFrame::pack(0, |_| unreachable!());
+        assert_eq!(f.count, 0);
+        assert!(f.bounds.is_none());
+        assert_eq!(f.info(), vec![0.0; 10]);
+    }
+
+    #[test]
+    fn the_widest_blobs_share_the_last_class() {
+        let blobs: Vec<RenderBlob> = (0..20)
+            .map(|k| blob(k as f32, 0.001 * 2f32.powi(k), 1.0))
+            .collect();
+        let f = PackedFrame::pack(blobs.len(), |i| blobs[i]);
+        // Factors of 2 are two classes apart: classes 0, 2, …, 14 hold one blob each, the last
+        // (15) the twelve widest.
+        assert_eq!(f.classes.len(), SIGMA_CLASSES / 2 + 1);
+        let last = f.classes.last().unwrap();
+        assert_eq!(last.index, SIGMA_CLASSES - 1);
+        assert_eq!(last.count, 20 - SIGMA_CLASSES / 2);
+        assert_eq!(last.sigma_max, 0.001 * 2f32.powi(19));
+    }
+}

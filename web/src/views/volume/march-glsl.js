@@ -1,0 +1,85 @@
+// GLSL of the real-time view's ray march: the light volume read at any point (objects included),
+// and the march through the density volume with jittered steps.
+
+import { GRID_GLSL } from './glsl.js';
+import { MAX_LIGHTS } from '../gas-uniforms.js';
+
+/** Gas shadows from the light volume: `volumeColumn(l, x)`, ∫ρ ds from x towards light l. */
+export const VOLUME_SHADOW_GLSL = /* glsl */ `
+${GRID_GLSL}
+uniform sampler3D lightVolume;
+uniform Grid grid;
+uniform Grid lightGrid;
+
+// Inside the density grid's box, the light volume at x; outside, where the path to the light
+// enters the box (no gas lies outside), or 0 if it never does.
+float volumeColumn(int l, vec3 x, vec3 toLight, float toLightDistance) {
+  vec3 lo = grid.lo;
+  vec3 hi = grid.lo + grid.h * vec3(grid.dims);
+  if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) {
+    vec3 inv = 1.0 / toLight;
+    vec3 a = (lo - x) * inv;
+    vec3 b = (hi - x) * inv;
+    vec3 tMin = min(a, b);
+    vec3 tMax = max(a, b);
+    float near = max(max(tMin.x, tMin.y), max(tMin.z, 0.0));
+    float far = min(min(tMax.x, tMax.y), min(tMax.z, toLightDistance));
+    if (near > far) return 0.0;
+    x += toLight * near;
+  }
+  return sampleVolume(lightVolume, lightGrid, x)[l];
+}
+`;
+
+export const MAX_MARCH_STEPS = 1024;
+
+/** The march: front-to-back compositing of the voxel density (DESIGN §4 on the volume). */
+export const MARCH_GLSL = /* glsl */ `
+uniform sampler3D densityVolume;
+uniform sampler3D sourceVolume;
+uniform bool emissive;
+uniform float stepScale;
+
+// Interleaved gradient noise: a fixed jitter per pixel in [0, 1).
+float jitter(vec2 px) {
+  return fract(52.9829189 * fract(dot(px, vec2(0.06711056, 0.00583715))));
+}
+
+// Composites the gas along camPos + s·rd for s in [0, sMax) onto (rad, T).
+void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T) {
+  vec3 lo = grid.lo;
+  vec3 hi = grid.lo + grid.h * vec3(grid.dims);
+  vec3 inv = 1.0 / rd;
+  vec3 a = (lo - camPos) * inv;
+  vec3 b = (hi - camPos) * inv;
+  vec3 tMin = min(a, b);
+  vec3 tMax = max(a, b);
+  float s0 = max(max(tMin.x, tMin.y), max(tMin.z, 0.0));
+  float s1 = min(min(tMax.x, tMax.y), min(tMax.z, sMax));
+  if (s1 <= s0) return;
+  float ds = stepScale * grid.h;
+  float j = jitter(gl_FragCoord.xy);
+  for (int k = 0; k < ${MAX_MARCH_STEPS}; k++) {
+    float s = s0 + (float(k) + j) * ds;
+    if (s >= s1) break;
+    vec3 x = camPos + rd * s;
+    vec4 d = sampleVolume(densityVolume, grid, x);
+    if (d.x <= 0.0) continue;
+    vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));
+    vec3 albedo = d.yzw / d.x;
+    vec3 L = vec3(0.0);
+    for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+      if (l >= lightCount) break;
+      float dist;
+      vec3 toLight = towardsLight(l, x, dist);
+      vec3 S = hasShadows ? exp(-kappa * volumeColumn(l, x, toLight, dist)) : vec3(1.0);
+      L += phase(dot(rd, toLight)) * S * lightColor[l];
+    }
+    vec3 C = albedo * L;
+    if (emissive) C += sampleVolume(sourceVolume, grid, x).rgb / d.x;
+    rad += T * absorbed * C;
+    T *= 1.0 - absorbed;
+    if (max(T.r, max(T.g, T.b)) < 1e-4) break;
+  }
+}
+`;

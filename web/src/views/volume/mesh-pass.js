@@ -1,0 +1,239 @@
+// The particle mesh (the real-time view's path for blobs at least DIRECT_LIMIT voxels wide), as
+// `render::volume::splat` in the core does it: per mesh class k (σ_k = σ_min √2^k), every blob
+// of σ classes k − 1 and k deposits its share of mass — the split between classes k and k + 1
+// that keeps its variance — on the eight voxels around its centre (cloud in cell), and the
+// class's mesh is then blurred along x, y and z by the kernel of variance σ_k² − h²/6, the last
+// pass adding into the density atlas. The work is eight voxels a blob plus three passes over the
+// grid a class: it does not grow with the blobs' widths.
+
+import * as THREE from 'three';
+import { BLOB_GLSL, GRID_GLSL } from './glsl.js';
+import { blurKernel, classSigma, DIRECT_LIMIT, MAX_BLUR_RADIUS } from './grid.js';
+
+const depositVertex = /* glsl */ `
+precision highp float;
+precision highp int;
+${BLOB_GLSL}
+${GRID_GLSL}
+uniform Grid grid;
+uniform int atlasCols;
+uniform vec2 atlasSize;
+uniform int classOffset;
+uniform float sigmaLow;   // σ_k of the drawn σ class k
+uniform bool upper;       // deposit the share of mesh class k + 1 (else k)
+flat out vec3 vFraction;  // trilinear fractions towards the next voxel
+flat out float vScale;    // share of density of the slice, before the xy weights
+flat out vec3 vAlbedo;
+flat out vec3 vSource;
+flat out ivec2 vCorner;
+
+void main() {
+  int blob = classOffset + gl_VertexID / 2;
+  int s = gl_VertexID % 2;
+  vec3 c;
+  float sigma, mass;
+  fetchBlob(blob, c, sigma, mass, vAlbedo, vSource);
+  gl_PointSize = 2.0;
+  float s0 = sigmaLow * sigmaLow;
+  float s1 = 2.0 * s0;
+  float lower = clamp((s1 - sigma * sigma) / (s1 - s0), 0.0, 1.0);
+  float share = upper ? 1.0 - lower : lower;
+  if (sigma < ${DIRECT_LIMIT.toFixed(2)} * grid.h || mass <= 0.0 || share <= 0.0) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  vec3 top = vec3(grid.dims - 1);
+  vec3 g = clamp((c - grid.lo) / grid.h - 0.5, vec3(0.0), top);
+  vec3 i0 = min(floor(g), max(top - 1.0, vec3(0.0)));
+  vFraction = g - i0;
+  float wz = s == 0 ? 1.0 - vFraction.z : vFraction.z;
+  int k = int(i0.z) + s;
+  vScale = share * wz * mass / (grid.h * grid.h * grid.h);
+  vec2 corner = vec2(float((k % atlasCols) * grid.dims.x), float((k / atlasCols) * grid.dims.y)) + i0.xy;
+  vCorner = ivec2(corner);
+  gl_Position = vec4((corner + 1.0) / atlasSize * 2.0 - 1.0, 0.0, 1.0);
+}
+`;
+
+const depositFragment = /* glsl */ `
+precision highp float;
+precision highp int;
+flat in vec3 vFraction;
+flat in float vScale;
+flat in vec3 vAlbedo;
+flat in vec3 vSource;
+flat in ivec2 vCorner;
+layout(location = 0) out vec4 outDensity;
+layout(location = 1) out vec4 outSource;
+void main() {
+  ivec2 q = ivec2(gl_FragCoord.xy) - vCorner;
+  vec2 w = mix(1.0 - vFraction.xy, vFraction.xy, vec2(q));
+  float rho = vScale * w.x * w.y;
+  outDensity = vec4(rho, rho * vAlbedo);
+  outSource = vec4(rho * vSource, 0.0);
+}
+`;
+
+const blurVertex = /* glsl */ `
+void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }
+`;
+
+const blurFragment = /* glsl */ `
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+${GRID_GLSL}
+uniform Grid grid;
+uniform int atlasCols;
+uniform sampler2D meshDensity;
+uniform sampler2D meshSource;
+uniform bool emissive;
+uniform int axis;
+uniform int radius;
+uniform float kernel[${2 * MAX_BLUR_RADIUS + 1}];
+layout(location = 0) out vec4 outDensity;
+layout(location = 1) out vec4 outSource;
+
+ivec2 texel(ivec3 v) {
+  return ivec2((v.z % atlasCols) * grid.dims.x + v.x, (v.z / atlasCols) * grid.dims.y + v.y);
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  ivec2 tile = px / grid.dims.xy;
+  ivec3 v = ivec3(px - tile * grid.dims.xy, tile.y * atlasCols + tile.x);
+  outDensity = vec4(0.0);
+  outSource = vec4(0.0);
+  if (tile.x >= atlasCols || v.z >= grid.dims.z) return;
+  int n = grid.dims[axis];
+  for (int i = 0; i <= ${2 * MAX_BLUR_RADIUS}; i++) {
+    if (i > 2 * radius) break;
+    ivec3 from = v;
+    from[axis] += i - radius;
+    if (from[axis] < 0 || from[axis] >= n) continue;
+    float w = kernel[i];
+    ivec2 at = texel(from);
+    outDensity += w * texelFetch(meshDensity, at, 0);
+    if (emissive) outSource += w * texelFetch(meshSource, at, 0);
+  }
+}
+`;
+
+const ADD = {
+  blending: THREE.CustomBlending,
+  blendEquation: THREE.AddEquation,
+  blendSrc: THREE.OneFactor,
+  blendDst: THREE.OneFactor,
+  blendSrcAlpha: THREE.OneFactor,
+  blendDstAlpha: THREE.OneFactor,
+};
+
+export class MeshPass {
+  /**
+   * @param {object} shared uniforms: blobTex, grid, atlasCols, atlasSize
+   */
+  constructor(shared) {
+    this.shared = shared;
+    this.camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    // One deposit draw a σ class (k − 1 upper share, k lower share), reused frame to frame.
+    this.depositScene = new THREE.Scene();
+    this.deposits = [];
+    this.blur = new THREE.ShaderMaterial({
+      glslVersion: THREE.GLSL3,
+      vertexShader: blurVertex,
+      fragmentShader: blurFragment,
+      uniforms: {
+        grid: shared.grid, atlasCols: shared.atlasCols,
+        meshDensity: { value: null }, meshSource: { value: null }, emissive: { value: false },
+        axis: { value: 0 }, radius: { value: 1 }, kernel: { value: new Array(2 * MAX_BLUR_RADIUS + 1).fill(0) },
+      },
+      depthTest: false,
+      depthWrite: false,
+    });
+    this.blurAdd = this.blur.clone();
+    Object.assign(this.blurAdd, ADD);
+    this.blurAdd.uniforms = this.blur.uniforms;
+    this.quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), this.blur);
+    this.quad.frustumCulled = false;
+    this.blurScene = new THREE.Scene();
+    this.blurScene.add(this.quad);
+  }
+
+  #deposit(i) {
+    while (this.deposits.length <= i) {
+      // No attributes: each vertex finds its blob from gl_VertexID (instancing a one-vertex
+      // draw costs a software renderer per instance).
+      const geometry = new THREE.BufferGeometry();
+      const material = new THREE.ShaderMaterial({
+        glslVersion: THREE.GLSL3,
+        vertexShader: depositVertex,
+        fragmentShader: depositFragment,
+        uniforms: { ...this.shared, classOffset: { value: 0 }, sigmaLow: { value: 1 }, upper: { value: false } },
+        ...ADD,
+        depthTest: false,
+        depthWrite: false,
+      });
+      const points = new THREE.Points(geometry, material);
+      points.frustumCulled = false;
+      this.depositScene.add(points);
+      this.deposits.push(points);
+    }
+    return this.deposits[i];
+  }
+
+  /** Mesh classes that receive blobs: one past every σ class that holds a blob this wide. */
+  static classes(frame, h) {
+    const out = new Set();
+    for (const c of frame.classes) {
+      if (c.sigmaMax < DIRECT_LIMIT * h) continue;
+      out.add(c.index);
+      out.add(c.index + 1);
+    }
+    return [...out].sort((a, b) => a - b);
+  }
+
+  /**
+   * Adds the wide blobs of `frame` ({classes, sigmaMin, emissive}) into `target` through the
+   * mesh, using `a` and `b` (atlases like `target`) as scratch.
+   */
+  render(renderer, frame, h, target, a, b) {
+    const u = this.blur.uniforms;
+    u.emissive.value = frame.emissive;
+    const autoClear = renderer.autoClear;
+    renderer.autoClear = false;
+    for (const k of MeshPass.classes(frame, h)) {
+      // Deposit: σ class k − 1's upper shares and class k's lower shares.
+      let used = 0;
+      for (const c of frame.classes) {
+        if (c.index !== k && c.index !== k - 1) continue;
+        const points = this.#deposit(used++);
+        const m = points.material.uniforms;
+        m.classOffset.value = c.offset;
+        m.sigmaLow.value = classSigma(frame.sigmaMin, c.index);
+        m.upper.value = c.index === k - 1;
+        points.geometry.setDrawRange(0, 2 * c.count);
+        points.visible = true;
+      }
+      for (let i = used; i < this.deposits.length; i++) this.deposits[i].visible = false;
+      renderer.setRenderTarget(a);
+      renderer.setClearColor(0x000000, 0);
+      renderer.clear(true, false, false);
+      renderer.render(this.depositScene, this.camera);
+      // Blur x (a → b), y (b → a), z (a → target, added).
+      const kernel = blurKernel(classSigma(frame.sigmaMin, k), h);
+      u.radius.value = (kernel.length - 1) / 2;
+      u.kernel.value.fill(0);
+      kernel.forEach((w, i) => { u.kernel.value[i] = w; });
+      const passes = [[0, a, b, this.blur], [1, b, a, this.blur], [2, a, target, this.blurAdd]];
+      for (const [axis, from, to, material] of passes) {
+        u.axis.value = axis;
+        u.meshDensity.value = from.textures[0];
+        u.meshSource.value = from.textures[frame.emissive ? 1 : 0];
+        this.quad.material = material;
+        renderer.setRenderTarget(to);
+        renderer.render(this.blurScene, this.camera);
+      }
+    }
+    renderer.autoClear = autoClear;
+  }
+}

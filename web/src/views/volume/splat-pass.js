@@ -1,0 +1,161 @@
+// The direct splat (the real-time view's first pass, for blobs narrower than DIRECT_LIMIT
+// voxels): every such blob adds its average over each voxel of its footprint to the density
+// atlas, renormalised over the footprint so the mass is kept, exactly as `render::volume::splat`
+// in the core does. One point sprite per (blob, slice): the sprite covers the footprint's rows
+// and columns in that slice's tile; its fragments are voxels. Additive blending into one or two
+// float targets: [ρ, ρΩ] and [ρ(1 − Ω)Q, 0] (DESIGN §4's density-weighted source). Blobs are
+// drawn class by class (`frameInfo`), each class with as many slices per blob as its widest
+// needs; wider blobs are culled here and go through the particle mesh (`mesh-pass.js`).
+
+import * as THREE from 'three';
+import { BLOB_GLSL, ERF_GLSL, GRID_GLSL } from './glsl.js';
+import { DIRECT_LIMIT, FOOTPRINT } from './grid.js';
+
+const vertexShader = /* glsl */ `
+precision highp float;
+precision highp int;
+${BLOB_GLSL}
+${ERF_GLSL}
+${GRID_GLSL}
+uniform Grid grid;
+uniform int atlasCols;   // slice k is the tile at column k mod atlasCols, row ⌊k / atlasCols⌋
+uniform vec2 atlasSize;  // texels
+uniform int classOffset;
+uniform int slices;
+flat out vec3 vCentre;
+flat out float vInvWidth;
+flat out float vScale;
+flat out ivec4 vRange;   // first and last voxel in x and y
+flat out ivec2 vCorner;  // atlas texel of the footprint's first voxel
+flat out vec3 vAlbedo;
+flat out vec3 vSource;
+
+// Σ over voxels first..last of Φ(x_{i+1}) − Φ(x_i), Φ = ½ erf((x − c)/(σ√2)), inv = 1/(σ√2).
+float total(float lo, float h, float c, float inv, float first, float last) {
+  return 0.5 * (erf1((lo + (last + 1.0) * h - c) * inv) - erf1((lo + first * h - c) * inv));
+}
+
+void main() {
+  int blob = classOffset + gl_VertexID / slices;
+  int s = gl_VertexID % slices;
+  vec3 c;
+  float sigma, mass;
+  fetchBlob(blob, c, sigma, mass, vAlbedo, vSource);
+  vec3 top = vec3(grid.dims - 1);
+  vec3 first = clamp(floor((c - ${FOOTPRINT.toFixed(1)} * sigma - grid.lo) / grid.h), vec3(0.0), top);
+  vec3 last = clamp(floor((c + ${FOOTPRINT.toFixed(1)} * sigma - grid.lo) / grid.h), vec3(0.0), top);
+  float k = first.z + float(s);
+  gl_PointSize = 1.0;
+  if (k > last.z || mass <= 0.0 || sigma >= ${DIRECT_LIMIT.toFixed(2)} * grid.h) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: no fragments
+    return;
+  }
+  float inv = 0.70710678 / sigma;
+  float nx = total(grid.lo.x, grid.h, c.x, inv, first.x, last.x);
+  float ny = total(grid.lo.y, grid.h, c.y, inv, first.y, last.y);
+  float nz = total(grid.lo.z, grid.h, c.z, inv, first.z, last.z);
+  float wz = total(grid.lo.z, grid.h, c.z, inv, k, k) / nz;
+  if (!(nx > 1e-12 && ny > 1e-12 && nz > 1e-12)) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
+  vCentre = c;
+  vInvWidth = inv;
+  vScale = mass / (grid.h * grid.h * grid.h) * wz / (nx * ny);
+  vRange = ivec4(first.xy, last.xy);
+  int slice = int(k);
+  vec2 corner = vec2(float((slice % atlasCols) * grid.dims.x), float((slice / atlasCols) * grid.dims.y)) + first.xy;
+  vCorner = ivec2(corner);
+  float size = max(last.x - first.x, last.y - first.y) + 1.0;
+  gl_PointSize = size;
+  gl_Position = vec4((corner + 0.5 * size) / atlasSize * 2.0 - 1.0, 0.0, 1.0);
+}
+`;
+
+const fragmentShader = /* glsl */ `
+precision highp float;
+precision highp int;
+${ERF_GLSL}
+${GRID_GLSL}
+uniform Grid grid;
+flat in vec3 vCentre;
+flat in float vInvWidth;
+flat in float vScale;
+flat in ivec4 vRange;
+flat in ivec2 vCorner;
+flat in vec3 vAlbedo;
+flat in vec3 vSource;
+layout(location = 0) out vec4 outDensity;
+layout(location = 1) out vec4 outSource;
+
+// The blob's average over voxel i along one axis (unnormalised).
+float share(float lo, float h, float c, float i) {
+  return 0.5 * (erf1((lo + (i + 1.0) * h - c) * vInvWidth) - erf1((lo + i * h - c) * vInvWidth));
+}
+
+void main() {
+  ivec2 q = ivec2(gl_FragCoord.xy) - vCorner;
+  ivec2 v = vRange.xy + q;
+  if (v.x > vRange.z || v.y > vRange.w) discard;
+  float rho = vScale * share(grid.lo.x, grid.h, vCentre.x, float(v.x)) * share(grid.lo.y, grid.h, vCentre.y, float(v.y));
+  outDensity = vec4(rho, rho * vAlbedo);
+  outSource = vec4(rho * vSource, 0.0);
+}
+`;
+
+export class SplatPass {
+  /** @param {{blobTex: {value: THREE.Texture}, grid: {value: object}, atlasCols: {value: number}, atlasSize: {value: number[]}}} shared uniforms */
+  constructor(shared) {
+    this.shared = shared;
+    this.scene = new THREE.Scene();
+    this.camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.draws = [];
+  }
+
+  #draw(i) {
+    while (this.draws.length <= i) {
+      // No attributes: each vertex finds its blob and slice from gl_VertexID.
+      const geometry = new THREE.BufferGeometry();
+      const material = new THREE.ShaderMaterial({
+        glslVersion: THREE.GLSL3,
+        vertexShader,
+        fragmentShader,
+        uniforms: { ...this.shared, classOffset: { value: 0 }, slices: { value: 1 } },
+        blending: THREE.CustomBlending,
+        blendEquation: THREE.AddEquation,
+        blendSrc: THREE.OneFactor,
+        blendDst: THREE.OneFactor,
+        blendSrcAlpha: THREE.OneFactor,
+        blendDstAlpha: THREE.OneFactor,
+        depthTest: false,
+        depthWrite: false,
+      });
+      const points = new THREE.Points(geometry, material);
+      points.frustumCulled = false;
+      this.scene.add(points);
+      this.draws.push(points);
+    }
+    return this.draws[i];
+  }
+
+  /**
+   * Splats the narrow blobs of the frame's `classes` (from `frameInfo`: {offset, count,
+   * sigmaMax}) into `target` (cleared first) on voxels of side `h`.
+   */
+  render(renderer, target, classes, h) {
+    classes = classes.filter((c) => c.sigmaLow < DIRECT_LIMIT * h);
+    classes.forEach((cls, i) => {
+      const points = this.#draw(i);
+      const slices = Math.floor((2 * FOOTPRINT * Math.min(cls.sigmaMax, DIRECT_LIMIT * h)) / h) + 2;
+      points.visible = true;
+      points.material.uniforms.classOffset.value = cls.offset;
+      points.material.uniforms.slices.value = slices;
+      points.geometry.setDrawRange(0, cls.count * slices);
+    });
+    for (let i = classes.length; i < this.draws.length; i++) this.draws[i].visible = false;
+    renderer.setRenderTarget(target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear(true, false, false);
+    if (classes.length) renderer.render(this.scene, this.camera);
+  }
+}
