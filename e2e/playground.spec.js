@@ -9,7 +9,8 @@ import { cliPath } from '../tests/support/core.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 
-async function open(page, url = './') {
+/** Opens the playground (its view as points unless `url` asks otherwise: the tests capture). */
+async function open(page, url = './?view=points') {
   await page.goto(url);
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
@@ -62,10 +63,10 @@ test('step(n) is deterministic: same scene, same blobs', async ({ page }) => {
   expect(b).toEqual(a);
 });
 
-test('both GPU views draw something', async ({ page }) => {
+test('every GPU view draws something', async ({ page }) => {
   await open(page);
   await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(120); });
-  for (const mode of ['points', 'raymarch']) {
+  for (const mode of ['points', 'raymarch', 'exact']) {
     const url = await page.evaluate((m) => window.windfield.captureGPU({ mode: m, width: 160, height: 120 }), mode);
     expect(url.startsWith('data:image/png;base64,')).toBe(true);
     const { rgb } = decodePng(dataUrlBytes(url));
@@ -76,7 +77,7 @@ test('both GPU views draw something', async ({ page }) => {
   }
 });
 
-test('the GPU ray march matches the WASM reference still (≥ 30 dB)', async ({ page }) => {
+test('the real-time view and the exact march match the WASM reference still (≥ 30 dB)', async ({ page }) => {
   await open(page);
   const decode = (url) => decodePng(dataUrlBytes(url)).rgb;
   const colourful = await page.evaluate(() => {
@@ -86,29 +87,37 @@ test('the GPU ray march matches the WASM reference still (≥ 30 dB)', async ({ 
       { ...s.emitters[0], center: [0.25, 0, 0], albedo: [0, 0, 0], emission: [0.3, 0.6, 1.2] },
     ];
     s.render.medium.phase = { type: 'henyey-greenstein', g: 0.5 };
+    // Four lights, the most the GPU views take.
     s.render.lights = [
       { type: 'point', position: [2, 3, 2], color: [1.5, 1.4, 1.3] },
       { type: 'directional', direction: [0.5, -1, -0.3], color: [0.3, 0.35, 0.5] },
+      { type: 'point', position: [-2, 0.5, 1], color: [0.6, 0.2, 0.1] },
+      { type: 'directional', direction: [0, 0.2, -1], color: [0.1, 0.3, 0.15] },
     ];
     return s;
   });
   for (const scene of [null, colourful]) {
-    const { gpu, ref } = await page.evaluate(async (sc) => {
+    const { views, ref } = await page.evaluate(async (sc) => {
       const w = window.windfield;
       w.pause();
       if (sc) await w.setScene(sc);
       await w.step(150);
       return {
-        gpu: await w.captureGPU({ mode: 'raymarch', width: 160, height: 120 }),
+        views: {
+          raymarch: await w.captureGPU({ mode: 'raymarch', width: 160, height: 120 }),
+          exact: await w.captureGPU({ mode: 'exact', width: 160, height: 120 }),
+        },
         ref: await w.renderReference({ width: 160, height: 120 }),
       };
     }, scene);
-    const p = psnr(decode(gpu), decode(ref));
-    expect(p, scene ? 'coloured scene' : 'default scene').toBeGreaterThanOrEqual(30);
+    for (const [mode, gpu] of Object.entries(views)) {
+      const p = psnr(decode(gpu), decode(ref));
+      expect(p, `${mode}, ${scene ? 'coloured scene' : 'default scene'}`).toBeGreaterThanOrEqual(30);
+    }
   }
 });
 
-test('a dense plume, merged for the ray march, matches the exact reference still', async ({ page }) => {
+test('a dense plume, merged for the exact march, matches the exact reference still', async ({ page }) => {
   await open(page);
   const { gpu, ref, blobs } = await page.evaluate(async () => {
     const w = window.windfield;
@@ -122,8 +131,8 @@ test('a dense plume, merged for the ray march, matches the exact reference still
     const size = { width: 160, height: 120 };
     return {
       gpu: {
-        standard: await w.captureGPU({ mode: 'raymarch', ...size, quality: 'standard' }),
-        high: await w.captureGPU({ mode: 'raymarch', ...size, quality: 'high' }),
+        standard: await w.captureGPU({ mode: 'exact', ...size, quality: 'standard' }),
+        high: await w.captureGPU({ mode: 'exact', ...size, quality: 'high' }),
       },
       ref: await w.renderReference(size),
       blobs: w.stats().blobs,

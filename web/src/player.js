@@ -6,6 +6,7 @@ import { recordWebM } from './recorder.js';
 import { ResolutionGovernor } from './resolution.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
+import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
 
 /**
  * The exact march at each quality: shadow-grid points per axis, and the cell side (in σ) within
@@ -223,6 +224,28 @@ export class Player {
     });
   }
 
+  /**
+   * The real-time view's volumes for the current frame at `quality`, as the GPU holds them and
+   * as the core's twin computes them on the same grid (`render::volume`): {grid, gpu: {density,
+   * source, light}, twin: {density, source, light}} (see `VolumeLayer.read`). For tests.
+   */
+  inspectVolume({ quality = this.state.quality } = {}) {
+    return this.exclusive(async () => {
+      const volume = this.view.volume;
+      if (!volume.prepare(this.view.renderer, quality)) return null;
+      const gpu = volume.read(this.view.renderer);
+      const grid = structuredClone(volume.grid);
+      const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
+      const twin = await this.engine.request('volumeTwin', { lo: grid.lo, h: grid.h, dims: grid.dims, step: q.column });
+      const voxels = grid.dims[0] * grid.dims[1] * grid.dims[2];
+      return {
+        grid,
+        gpu,
+        twin: { density: twin.volume.subarray(0, 4 * voxels), source: twin.volume.subarray(4 * voxels), light: twin.light },
+      };
+    });
+  }
+
   /** The WASM reference still of the current view at `width × height`; a PNG data URL. */
   async renderReference({ width = 320, height = 240 } = {}) {
     const list = await this.exportBlobs({ width, height });
@@ -261,6 +284,7 @@ export class Player {
       captureGPU: (options) => this.captureGPU(options),
       renderReference: (options) => this.renderReference(options),
       recordWebM: (options) => this.recordWebM(options),
+      inspectVolume: (options) => this.inspectVolume(options),
     };
   }
 

@@ -2,9 +2,11 @@
 // blob, read from the packed frame on the GPU. A sprite is the blob's column seen face on: its
 // optical depth at distance r from the centre is κ_t m/(2πσ²) · exp(−r²/2σ²) (the line
 // integral of Eq. 13 through the blob), its opacity 1 − exp(−that), its colour the light the
-// blob scatters (albedo times the lights, unshadowed) plus its emitted source (1 − Ω)Q.
-// Sprites are composited in emission order, without sorting or shadows: a preview, not the
-// image; the real-time view and the stills are.
+// blob scatters plus its emitted source (1 − Ω)Q. Without shadows every sprite would scatter
+// the lights' full strength and a dense plume would burn out to white; the scattered part is
+// compressed as x / (1 + x) instead, a stand-in for the self-shadowing the marches compute.
+// Sprites are composited in emission order, without sorting: a preview, not the image; the
+// real-time view and the stills are.
 
 import * as THREE from 'three';
 import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
@@ -42,7 +44,8 @@ void main() {
     if (l >= lightCount) break;
     L += lightColor[l];
   }
-  vColor = albedo * L + source;
+  vec3 scattered = albedo * L;
+  vColor = scattered / (1.0 + scattered) + source;
   if (mass <= 0.0) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
 `;

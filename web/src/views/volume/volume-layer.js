@@ -259,6 +259,33 @@ export class VolumeLayer extends MarchQuad {
     return true;
   }
 
+  /**
+   * The volumes of the last build as the GPU holds them (for tests; slow): `density` [ρ, ρΩ]
+   * per voxel, `source` [ρ(1 − Ω)Q, 0] per voxel if emissive, `light` the four columns per
+   * voxel of the light grid (x fastest, then y, then z, as the core's twin).
+   */
+  read(renderer) {
+    const layers = (target, dims) => {
+      const [nx, ny, nz] = dims;
+      const out = new Float32Array(4 * nx * ny * nz);
+      const slice = new Float32Array(4 * nx * ny);
+      for (let k = 0; k < nz; k++) {
+        renderer.setRenderTarget(target, k);
+        renderer.readRenderTargetPixels(target, 0, 0, nx, ny, slice);
+        out.set(slice, 4 * nx * ny * k);
+      }
+      return out;
+    };
+    const grid = this.grid;
+    const result = {
+      density: layers(this.density, grid.dims),
+      source: this.info.emissive ? layers(this.source, grid.dims) : null,
+      light: layers(this.columns, halved(grid).dims),
+    };
+    renderer.setRenderTarget(null);
+    return result;
+  }
+
   dispose() {
     for (const t of [this.atlas, ...this.scratch, this.density, this.source, this.columns]) t?.dispose();
   }

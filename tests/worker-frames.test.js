@@ -1,0 +1,56 @@
+// What crosses from the engine worker to the page per frame (DESIGN §1): whole typed arrays and
+// plain numbers only — no JSON strings, no per-blob objects — each array transferred, and the
+// packed blobs decode to the same blobs the blob list holds.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { loadCore, root } from './support/core.js';
+import { createHandlers } from '../web/src/engine/handlers.js';
+
+const core = await loadCore();
+const scene = JSON.parse(readFileSync(`${root}public/scenes/psychedelic-steam.json`, 'utf8'));
+const view = { position: [0, 1, 3], forward: [0, 0, -1], right: [1, 0, 0], up: [0, 1, 0], tanHalf: Math.tan(Math.PI / 9) };
+
+/** Asserts a per-frame result holds only numbers and typed arrays, every array transferred. */
+function assertWholeBuffers(name, { result, transfer }) {
+  for (const [key, value] of Object.entries(result)) {
+    const ok = (typeof value === 'number' && Number.isFinite(value)) || ArrayBuffer.isView(value);
+    assert.ok(ok, `${name}.${key} is ${typeof value}: only numbers and typed arrays may cross per frame`);
+    if (ArrayBuffer.isView(value)) assert.ok(transfer.includes(value.buffer), `${name}.${key} is not transferred`);
+  }
+  // What a postMessage would carry: the transfer list moves the arrays, nothing is copied.
+  const before = Object.values(result).filter(ArrayBuffer.isView).reduce((n, a) => n + a.byteLength, 0);
+  const moved = structuredClone(result, { transfer });
+  assert.equal(Object.values(result).filter((a) => ArrayBuffer.isView(a) && a.byteLength > 0).length, 0, `${name}: arrays detached once sent`);
+  return { moved, bytes: before };
+}
+
+test('frames are whole typed arrays, and the packed blobs are the blob list', () => {
+  const handlers = createHandlers(core, () => {});
+  handlers.load({ id: 1, scene });
+  const { moved: frame, bytes } = assertWholeBuffers('advance', handlers.advance({ steps: 60 }));
+  assert.ok(frame.count > 1000, `${frame.count} blobs`);
+  assert.ok(frame.blobs instanceof Uint32Array && frame.info instanceof Float32Array && frame.spheres instanceof Float32Array);
+  // Eight words a blob, padded to whole texture rows (1,024 blobs a row).
+  assert.equal(frame.blobs.length % (8 * 1024), 0);
+  assert.ok(bytes < 32 * (frame.count + 8192) + 4096, `${bytes} bytes for ${frame.count} blobs`);
+  // The packed centres, σ and masses are the blob list's, class by class.
+  const list = handlers.blobList({}).result;
+  assert.equal(list.blobs.length, frame.count);
+  const floats = new Float32Array(frame.blobs.buffer);
+  const key = (c, s, m) => `${c.map((v) => Math.fround(v)).join()}|${Math.fround(s)}|${Math.fround(m)}`;
+  const packed = new Set();
+  for (let i = 0; i < frame.count; i++) {
+    packed.add(key(Array.from(floats.subarray(8 * i, 8 * i + 3)), floats[8 * i + 3], floats[8 * i + 4]));
+  }
+  for (const b of list.blobs) assert.ok(packed.has(key(b.center, b.sigma, b.mass)), 'a blob of the list is missing from the frame');
+  assertWholeBuffers('reset', handlers.reset({}));
+});
+
+test('the exact march\'s frame is whole typed arrays too', () => {
+  const handlers = createHandlers(core, () => {});
+  handlers.load({ id: 1, scene });
+  handlers.advance({ steps: 30 });
+  const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16 }));
+  assert.ok(moved.count > 0 && moved.heads.length % (4 * 1024) === 0 && moved.list.length % 1024 === 0);
+});

@@ -1,0 +1,93 @@
+//! The real-time view's volumes (`render::volume`, the twin of the browser's GPU passes) against
+//! the exact model of DESIGN §4 on a preset's plume: the density volume holds the blobs' mass,
+//! and the light volume's shadow columns match the reference renderer's exact columns ∫ρ ds
+//! towards the light at points inside the gas.
+
+use glam::Vec3;
+use windfield::render::volume::{column, light_columns, splat, Towards, VoxelGrid};
+use windfield::render::{PackedFrame, RenderBlob, RenderOptions, Renderer};
+use windfield::{Scene, Simulation};
+
+/// A preset simulated for `seconds`: its blob list and packed frame.
+fn preset(name: &str, seconds: f64) -> (windfield::blob_list::BlobList, PackedFrame) {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("../public/scenes/{name}.json"));
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut sim = Simulation::new(Scene::from_value(value).unwrap()).unwrap();
+    sim.run(sim.steps_for(seconds));
+    let list = sim.blob_list();
+    let medium = Vec3::from_array(list.medium.albedo);
+    let frame = PackedFrame::pack(list.blobs.len(), |i| {
+        let b = &list.blobs[i];
+        RenderBlob {
+            center: Vec3::from_array(b.center),
+            sigma: b.sigma,
+            mass: b.mass,
+            albedo: b.albedo.map_or(medium, Vec3::from_array),
+            emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
+        }
+    });
+    (list, frame)
+}
+
+/// The browser's standard grid for a frame: about 2^20 voxels over its bounds, no finer than
+/// its narrowest σ (`fitGrid` in `web/src/views/volume/grid.js`).
+fn standard_grid(frame: &PackedFrame) -> VoxelGrid {
+    let (lo, hi) = frame.bounds.unwrap();
+    let extent = hi - lo;
+    let h = (extent.x * extent.y * extent.z / (1u32 << 20) as f32)
+        .cbrt()
+        .max(frame.sigma_min);
+    let dims = [0, 1, 2].map(|a| ((extent[a] / h).ceil() as usize).max(2));
+    let size = h * Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
+    VoxelGrid {
+        lo: (lo + hi) / 2.0 - size / 2.0,
+        h,
+        dims,
+    }
+}
+
+#[test]
+fn a_preset_plume_keeps_its_mass_in_the_volume() {
+    for (name, seconds) in [("steam-mug", 3.0), ("sphere-smoke", 4.0), ("morph", 1.5)] {
+        let (list, frame) = preset(name, seconds);
+        let mass: f64 = list.blobs.iter().map(|b| f64::from(b.mass)).sum();
+        let volume = splat(&frame, &standard_grid(&frame));
+        let ratio = volume.mass() / mass;
+        println!("{name}: {} blobs, volume mass / blob mass = {ratio:.6}", frame.count);
+        assert!((ratio - 1.0).abs() < 0.01, "{name}: {ratio}");
+    }
+}
+
+#[test]
+fn shadow_columns_match_the_exact_ones_inside_the_gas() {
+    for (name, seconds) in [("steam-mug", 3.0), ("sphere-smoke", 4.0)] {
+        let (list, frame) = preset(name, seconds);
+        let grid = standard_grid(&frame);
+        let volume = splat(&frame, &grid);
+        let light = Towards::of(&list.lights[0]);
+        let renderer = Renderer::new(&list, Some((4, 4)), RenderOptions::default()).unwrap();
+        // Every 97th blob's centre: points inside the gas, from the plume's base to its top.
+        let mut errors: Vec<f32> = Vec::new();
+        let mut scale = 0.0f32;
+        let (light_grid, columns) = light_columns(&volume, &[light], 1.0);
+        let mut stored: Vec<f32> = Vec::new();
+        for b in list.blobs.iter().step_by(97) {
+            let x = Vec3::from_array(b.center);
+            let exact = renderer.column_to_light(x, 0);
+            errors.push(column(&volume, light, x, 1.0) - exact);
+            stored.push(light_grid.sample(&columns, 4, 0, x) - exact);
+            scale = scale.max(exact);
+        }
+        let rms = |e: &[f32]| (e.iter().map(|v| v * v).sum::<f32>() / e.len() as f32).sqrt();
+        let (direct, interpolated) = (rms(&errors) / scale, rms(&stored) / scale);
+        println!(
+            "{name}: {} points, largest column {scale:.4}; RMS error / largest: at the point {direct:.4}, from the light volume {interpolated:.4}",
+            errors.len()
+        );
+        // The columns through the voxel density, and as the light volume interpolates them.
+        assert!(direct < 0.02, "{name}: {direct}");
+        assert!(interpolated < 0.05, "{name}: {interpolated}");
+    }
+}
