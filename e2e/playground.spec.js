@@ -377,3 +377,24 @@ test('the wind slice draws the wind on a plane over the view and stays out of ca
   expect(decodePng(dataUrlBytes(await canvasShot(page))).rgb).toEqual(plain);
   expect(errors).toEqual([]);
 });
+
+test('the real-time view shows its resolution and volume; a fixed resolution sizes the canvas', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page, './');
+  await page.evaluate(() => window.windfield.pause());
+  await expect(page.locator('#status')).toContainText(/resolution \d+ %/);
+  await expect(page.locator('#status')).toContainText(/volume \d+×\d+×\d+/);
+  const sim = await openFolder(page, 'Simulation');
+  await sim.locator('.lil-controller', { hasText: 'resolution' }).locator('select').selectOption({ label: '50 %' });
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().scale)).toBe(0.5);
+  const sizes = await page.evaluate(() => {
+    const c = document.querySelector('#canvas');
+    return { buffer: [c.width, c.height], box: [c.clientWidth, c.clientHeight] };
+  });
+  expect(sizes.buffer).toEqual(sizes.box.map((n) => Math.round(n * 0.5)));
+  // Captures keep the size asked for, whatever the view's resolution.
+  const shot = await page.evaluate(() => window.windfield.captureGPU({ mode: 'raymarch', width: 96, height: 72 }));
+  const { width, height } = decodePng(dataUrlBytes(shot));
+  expect([width, height]).toEqual([96, 72]);
+  expect(errors).toEqual([]);
+});

@@ -127,3 +127,20 @@ fn golden_presets() {
         compare(&format!("preset-{name}"), w, h, &rgb);
     }
 }
+
+/// The plumes are many small blobs (the paper's look): each holds at least 20,000 blobs at
+/// t = 4 s, and the morph's two shapes together hold as many.
+#[test]
+fn presets_hold_many_blobs() {
+    for (name, _) in PRESETS {
+        let path = presets_dir().join(format!("{name}.json"));
+        let value: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let mut sim = Simulation::new(Scene::from_value(value).unwrap()).unwrap();
+        let seconds = if name == "morph" { 0.0 } else { 4.0 };
+        sim.run(sim.steps_for(seconds));
+        let count = sim.blobs().len();
+        println!("{name}: {count} blobs at t = {seconds} s");
+        assert!(count >= 20_000, "{name}: {count} blobs at t = {seconds} s");
+    }
+}

@@ -86,8 +86,9 @@ fn shadow_columns_match_the_exact_ones_inside_the_gas() {
             "{name}: {} points, largest column {scale:.4}; RMS error / largest: at the point {direct:.4}, from the light volume {interpolated:.4}",
             errors.len()
         );
-        // The columns through the voxel density, and as the light volume interpolates them.
+        // The columns through the voxel density, and as the light volume (half the density's
+        // resolution) interpolates them.
         assert!(direct < 0.02, "{name}: {direct}");
-        assert!(interpolated < 0.05, "{name}: {interpolated}");
+        assert!(interpolated < 0.08, "{name}: {interpolated}");
     }
 }

@@ -1,11 +1,12 @@
 // <wind-field>: an embeddable player. Attributes: `src` (scene JSON URL), `preset` (a name in
-// scenes/), `controls` (show play/pause/step/view buttons), `autoplay` (start playing). Each
+// scenes/), `controls` (show play/pause/step/view buttons), `autoplay` (start playing), `view`
+// (`raymarch`, the real-time volume view, by default; `points`; `exact`). Each
 // element owns its worker and canvas, carries DESIGN §5's methods (`ready`, `getScene()`,
 // `setScene()`, `pause()`, `play()`, `step(n)`, `stats()`, `exportBlobs()`, `captureGPU()`,
 // `renderReference()`), is sized by CSS, and pauses while off-screen. Importing this module
 // defines the element and nothing else.
 
-import { Player } from './player.js';
+import { MODES, Player } from './player.js';
 
 const STYLE = `
 :host { display: block; position: relative; width: 100%; aspect-ratio: 4 / 3; background: #0b0e11; color: #e6e9ec;
@@ -52,6 +53,8 @@ class WindFieldElement extends HTMLElement {
       onProgress: (p) => { bar.style.width = p >= 1 ? '0' : `${Math.round(p * 100)}%`; },
       onMessage: (text) => { message.textContent = text; message.hidden = false; },
     });
+    const view = this.getAttribute('view');
+    if (MODES.includes(view)) this.#player.state.mode = view;
     this.#api = this.#player.api(this.ready);
     if (this.hasAttribute('controls')) this.#buildControls(root.querySelector('.controls'));
     const resize = new ResizeObserver(() => this.#player.resize());

@@ -39,7 +39,7 @@ export class Player {
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
-    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'points', quality: 'standard', speed: 1, visible: true };
+    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
     this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0, scale: 1 };
     /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
     this.resolution = new ResolutionGovernor();
