@@ -1,6 +1,8 @@
 // Browser benchmarks over the built site (dist/) in Debian's chromium with SwiftShader:
-// navigation to first frame, worker step time at 50k blobs, GPU ray-march frame time at 1k and
-// 16k blobs (320×240), and the gzipped JS and WASM sizes. Prints {name, value, unit} objects.
+// navigation to first frame; the worker's step, packing and frame size at 100,000 blobs; the
+// real-time view's frame at 10,000 and 100,000 blobs of one plume (640×360) against the points
+// view's and the exact march's. SwiftShader runs shaders on the CPU: compare the ratios, not the
+// times. Prints {name, value, unit} objects.
 import { chromium } from '@playwright/test';
 import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync, statSync } from 'node:fs';
@@ -50,45 +52,47 @@ export async function benchBrowser() {
     });
     emit('first_frame_ms', firstFrame, 'ms');
 
-    const sceneWith = (count) => page.evaluate(async (n) => {
+    // One plume, 5 s of emission, at `count` blobs: the same volume whatever the count.
+    const plume = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));
+    const plumeOf = (count) => page.evaluate(async ({ scene, n }) => {
       const w = window.windfield;
       w.pause();
-      const s = w.getScene();
-      s.emitters[0].rate = n * 2;
-      s.gas.max_blobs = n;
-      s.gas.dissipation = 0;
-      s.gas.min_mass = 0;
-      await w.setScene(s);
-      await w.step(Math.ceil(0.55 / s.simulation.dt));
+      scene.emitters[0].rate = n / 5;
+      scene.gas.max_blobs = n;
+      await w.setScene(scene);
+      await w.step(Math.round(5 / scene.simulation.dt));
       return w.stats().blobs;
-    }, count);
+    }, { scene: structuredClone(plume), n: count });
 
-    const n50 = await sceneWith(50_000);
-    const stepMs = await page.evaluate(async () => {
-      const t = [];
+    const n100 = await plumeOf(100_000);
+    const worker = await page.evaluate(async () => {
+      const w = window.windfield;
+      const step = [];
+      const pack = [];
       for (let i = 0; i < 7; i++) {
-        await window.windfield.step(1);
-        t.push(window.windfield.stats().stepMs);
+        await w.step(1);
+        step.push(w.stats().stepMs);
+        pack.push(w.stats().packMs);
       }
-      return t.sort((a, b) => a - b)[3];
+      const mid = (t) => t.sort((a, b) => a - b)[3];
+      return { step: mid(step), pack: mid(pack), bytes: w.stats().frameBytes };
     });
-    emit(`worker_step_${Math.round(n50 / 1000)}k_ms`, stepMs, 'ms');
+    const k = `${Math.round(n100 / 1000)}k`;
+    emit(`worker_step_${k}_ms`, worker.step + worker.pack, 'ms');
+    emit(`worker_pack_${k}_ms`, worker.pack, 'ms');
+    emit(`frame_bytes_${k}`, worker.bytes, 'bytes');
 
-    const frameMs = {};
-    for (const n of [1000, 16000]) {
-      await sceneWith(n);
-      frameMs[n] = await page.evaluate(async () => {
-        const t = [];
-        for (let i = 0; i < 5; i++) {
-          const s = performance.now();
-          await window.windfield.captureGPU({ mode: 'raymarch', width: 320, height: 240 });
-          t.push(performance.now() - s);
-        }
-        return t.sort((a, b) => a - b)[2];
-      });
-      emit(`raymarch_320x240_${n / 1000}k_ms`, frameMs[n], 'ms');
-    }
-    emit('raymarch_16k_over_1k', frameMs[16000] / frameMs[1000], 'ratio');
+    const frame = (mode) => page.evaluate((m) => window.windfield.timeFrames({ mode: m, width: 640, height: 360, frames: 5, quality: 'standard' }), mode);
+    const view = {};
+    view[100] = await frame('raymarch');
+    const points100 = await frame('points');
+    await plumeOf(10_000);
+    view[10] = await frame('raymarch');
+    emit('view_frame_640x360_10k_ms', view[10], 'ms');
+    emit('view_frame_640x360_100k_ms', view[100], 'ms');
+    emit('view_100k_over_10k', view[100] / view[10], 'ratio');
+    emit('points_frame_640x360_100k_ms', points100, 'ms');
+    emit('view_over_points_100k', view[100] / points100, 'ratio');
   } finally {
     await browser.close();
     try {

@@ -131,6 +131,33 @@ impl Blobs {
         self.own_velocity |= other.own_velocity;
     }
 
+    /// Keeps the blobs whose `keep[i]` is true, in order, moving them down in place (no
+    /// allocation): the common case of removal and capping, where nothing splits.
+    pub fn retain(&mut self, keep: &[bool]) {
+        fn compact<T: Copy>(v: &mut Vec<T>, width: usize, keep: &[bool]) {
+            let mut to = 0;
+            for (i, &k) in keep.iter().enumerate() {
+                if k {
+                    if to != i {
+                        v.copy_within(width * i..width * (i + 1), width * to);
+                    }
+                    to += 1;
+                }
+            }
+            v.truncate(width * to);
+        }
+        compact(&mut self.position, 3, keep);
+        compact(&mut self.sigma, 1, keep);
+        compact(&mut self.mass, 1, keep);
+        compact(&mut self.albedo, 3, keep);
+        compact(&mut self.emission, 3, keep);
+        compact(&mut self.sigma0, 1, keep);
+        compact(&mut self.mass0, 1, keep);
+        compact(&mut self.birth, 1, keep);
+        compact(&mut self.velocity0, 3, keep);
+        compact(&mut self.velocity_time, 1, keep);
+    }
+
     /// The full state of blob `i`.
     pub fn get(&self, i: usize) -> Blob {
         let rgb = |v: &[f32]| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
@@ -264,12 +291,17 @@ impl Gas {
         let position = &mut b.position[..3 * n];
         let x_at = |p: &[f32], i: usize| load3(p, 3 * i);
         let dtf = dt as f32;
-        // The blob's own velocity v0·exp(−age/τ) at `time` (m/s).
-        let own = |i: usize, time: f64| {
+        // The blob's own velocity v0·exp(−age/τ) at t, and the factor exp(−dt/(2τ)) that takes it
+        // to t + dt/2 (m/s): one exponential a blob, and one for each run of equal τ.
+        let mut half_step = (f32::NAN, 1.0f32);
+        let mut own = |i: usize| {
+            let tau = b.velocity_time[i];
+            if tau != half_step.0 {
+                half_step = (tau, (-0.5 * dtf / tau).exp());
+            }
             let v0 = Vec3A::from_slice(&b.velocity0[3 * i..3 * i + 3]);
-            v0 * (-((time - b.birth[i]) as f32) / b.velocity_time[i]).exp()
+            (v0 * (-((t - b.birth[i]) as f32) / tau).exp(), half_step.1)
         };
-        let th = t + 0.5 * dt;
         match (integrator, b.own_velocity) {
             (Integrator::Euler, false) => (0..n).for_each(|i| {
                 let x = x_at(position, i);
@@ -277,7 +309,7 @@ impl Gas {
             }),
             (Integrator::Euler, true) => (0..n).for_each(|i| {
                 let x = x_at(position, i);
-                let k1 = f0.velocity_a(x) + own(i, t);
+                let k1 = f0.velocity_a(x) + own(i).0;
                 (x + k1 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
             }),
             (Integrator::Rk2, false) => (0..n).for_each(|i| {
@@ -287,8 +319,9 @@ impl Gas {
             }),
             (Integrator::Rk2, true) => (0..n).for_each(|i| {
                 let x = x_at(position, i);
-                let xm = x + (f0.velocity_a(x) + own(i, t)) * (0.5 * dtf);
-                let k2 = fh.velocity_a(xm) + own(i, th);
+                let (v, to_half) = own(i);
+                let xm = x + (f0.velocity_a(x) + v) * (0.5 * dtf);
+                let k2 = fh.velocity_a(xm) + v * to_half;
                 (x + k2 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
             }),
         }
@@ -426,6 +459,21 @@ impl Gas {
             return;
         }
         self.counts.capped += cutoff as u64;
+        if counts[cutoff..].iter().all(|&c| c <= 1) {
+            // Removal and capping only: compact in place.
+            let keep: Vec<bool> = (0..n).map(|i| i >= cutoff && counts[i] == 1).collect();
+            self.counts.dissipated += keep[cutoff..].iter().filter(|&&k| !k).count() as u64;
+            self.blobs.retain(&keep);
+            let mut to = 0;
+            for (i, &k) in keep.iter().enumerate() {
+                if k {
+                    self.decayed[to] = self.decayed[i];
+                    to += 1;
+                }
+            }
+            self.decayed.truncate(to);
+            return;
+        }
         let old = std::mem::take(&mut self.blobs);
         let old_decayed = std::mem::take(&mut self.decayed);
         // A child's factor is its mass now, carried back to the epoch.

@@ -55,7 +55,10 @@ fn a_preset_plume_keeps_its_mass_in_the_volume() {
         let mass: f64 = list.blobs.iter().map(|b| f64::from(b.mass)).sum();
         let volume = splat(&frame, &standard_grid(&frame));
         let ratio = volume.mass() / mass;
-        println!("{name}: {} blobs, volume mass / blob mass = {ratio:.6}", frame.count);
+        println!(
+            "{name}: {} blobs, volume mass / blob mass = {ratio:.6}",
+            frame.count
+        );
         assert!((ratio - 1.0).abs() < 0.01, "{name}: {ratio}");
     }
 }

@@ -4,6 +4,7 @@
 import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
 import { ResolutionGovernor } from './resolution.js';
+import { waitForGpu } from './views/gpu-sync.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
@@ -40,7 +41,7 @@ export class Player {
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
-    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, frameMs: 0, fps: 0, scale: 1 };
+    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
     /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
     this.resolution = new ResolutionGovernor();
     this.busy = false;
@@ -101,6 +102,8 @@ export class Player {
     this.view.setFrame(frame);
     this.stats.blobs = frame.count;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
+    this.stats.packMs = frame.packMs;
+    this.stats.frameBytes = frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
     await this.draw();
     this.stats.frameMs = performance.now() - t0;
     this.hooks.onFrame?.(frame);
@@ -246,6 +249,25 @@ export class Player {
     });
   }
 
+  /**
+   * The median time (ms) of drawing the current state `frames` times in `mode` at `width ×
+   * height`, each frame from scratch (the real-time view's volumes rebuilt, as after a step) and
+   * finished on the GPU. For benchmarks.
+   */
+  timeFrames({ mode = 'raymarch', width = 640, height = 360, frames = 5, quality = this.state.quality } = {}) {
+    return this.offscreen({ mode, quality, width, height }, async () => {
+      const times = [];
+      for (let i = 0; i <= frames; i++) {
+        this.view.volume.invalidate();
+        const t0 = performance.now();
+        await this.draw({ width, height });
+        waitForGpu(this.view.renderer);
+        if (i > 0) times.push(performance.now() - t0);
+      }
+      return times.sort((a, b) => a - b)[Math.floor(times.length / 2)];
+    });
+  }
+
   /** The WASM reference still of the current view at `width × height`; a PNG data URL. */
   async renderReference({ width = 320, height = 240 } = {}) {
     const list = await this.exportBlobs({ width, height });
@@ -285,6 +307,7 @@ export class Player {
       renderReference: (options) => this.renderReference(options),
       recordWebM: (options) => this.recordWebM(options),
       inspectVolume: (options) => this.inspectVolume(options),
+      timeFrames: (options) => this.timeFrames(options),
     };
   }
 

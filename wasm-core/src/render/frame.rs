@@ -17,10 +17,11 @@
 //! ρ [Ω L + (1 − Ω) Q], so the packed (1 − Ω) Q is what a view adds to Ω L. Blobs without mass
 //! are left out.
 //!
-//! Classes: class k holds the blobs with σ in [σ_k, σ_{k+1}), σ_k = σ_min √2^k (the last class
-//! takes everything wider), so that each pass of the real-time view draws only the blobs it
-//! needs (`render::volume`: the particle mesh deposits a blob of class k into mesh classes k and
-//! k + 1).
+//! Classes: class k holds the blobs with σ in [σ_k, σ_{k+1}), σ_k = √2^(k − [`CLASS_BIAS`]) m (the
+//! first and last classes are open below and above), so that each pass of the real-time view
+//! draws only the blobs it needs (`render::volume`: the particle mesh deposits a blob of class
+//! k into mesh classes k and k + 1). The classes are fixed in metres, not relative to the frame,
+//! so a blob keeps its class from frame to frame.
 
 use super::gaussian::RenderBlob;
 use glam::Vec3;
@@ -31,15 +32,23 @@ pub const WORDS_PER_BLOB: usize = 8;
 /// The words are padded with zeros to a multiple of this many blobs: whole rows of the page's
 /// blob texture (1,024 blobs a row), so that the texture changes size only now and then.
 pub const PACK_ALIGN: usize = 8192;
-/// Number of σ classes (a factor √2 apart; the last is open above).
-pub const SIGMA_CLASSES: usize = 16;
+/// Number of σ classes (a factor √2 apart).
+pub const SIGMA_CLASSES: usize = 64;
+/// Class k starts at σ = √2^(k − CLASS_BIAS) m: classes 0 to 63 span 60 nm to 181 m.
+pub const CLASS_BIAS: i32 = 48;
 /// The gas bounds enclose every blob's centre ± this many σ: the real-time view's splat
 /// footprint (its weights are renormalised over it, so no mass is lost).
 pub const FOOTPRINT: f32 = 3.0;
 
-/// σ_k = σ_min √2^k, the lower bound of class k (m).
-pub fn class_sigma(sigma_min: f32, k: usize) -> f32 {
-    sigma_min * std::f32::consts::SQRT_2.powi(k as i32)
+/// σ_k = √2^(k − CLASS_BIAS), the lower bound of class k (m).
+pub fn class_sigma(k: usize) -> f32 {
+    2f32.powf((k as i32 - CLASS_BIAS) as f32 / 2.0)
+}
+
+/// The class of σ (m): ⌊log2 σ²⌋ + CLASS_BIAS, the binary exponent of σ², clamped to the classes.
+pub fn class_of(sigma: f32) -> usize {
+    let exponent = ((sigma * sigma).to_bits() >> 23) as i32 - 127;
+    (exponent + CLASS_BIAS).clamp(0, SIGMA_CLASSES as i32 - 1) as usize
 }
 
 /// One σ class of a packed frame.
@@ -79,31 +88,33 @@ fn halves(a: f32, b: f32) -> u32 {
 
 impl PackedFrame {
     /// Packs the blobs that `blob(i)` gives for i in 0..n (albedo already resolved: the
-    /// blob's own or the medium's), dropping those without mass.
+    /// blob's own or the medium's), dropping those without mass. Two passes over the blobs
+    /// (classes and bounds; words), no allocation but the output.
     pub fn pack(n: usize, blob: impl Fn(usize) -> RenderBlob) -> Self {
-        let kept: Vec<RenderBlob> = (0..n)
-            .map(&blob)
-            .filter(|b| b.mass > 0.0 && b.sigma > 0.0)
-            .collect();
-        let Some(sigma_min) = kept.iter().map(|b| b.sigma).reduce(f32::min) else {
-            return Self::default();
-        };
-        let class_of = |sigma: f32| -> usize {
-            ((2.0 * (sigma / sigma_min).log2()).floor().max(0.0) as usize).min(SIGMA_CLASSES - 1)
-        };
-        let mut counts = [0usize; SIGMA_CLASSES];
-        let mut widest = [0.0f32; SIGMA_CLASSES];
+        let kept = |b: &RenderBlob| b.mass > 0.0 && b.sigma > 0.0;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let mut sigma_min = f32::INFINITY;
         let mut emissive = false;
-        for b in &kept {
+        let mut counts = [0usize; SIGMA_CLASSES];
+        let mut widest = [0.0f32; SIGMA_CLASSES];
+        for i in 0..n {
+            let b = blob(i);
+            if !kept(&b) {
+                continue;
+            }
             let k = class_of(b.sigma);
             counts[k] += 1;
             widest[k] = widest[k].max(b.sigma);
+            sigma_min = sigma_min.min(b.sigma);
             let r = Vec3::splat(FOOTPRINT * b.sigma);
             lo = lo.min(b.center - r);
             hi = hi.max(b.center + r);
             emissive |= (Vec3::ONE - b.albedo) * b.emission != Vec3::ZERO;
+        }
+        let count: usize = counts.iter().sum();
+        if count == 0 {
+            return Self::default();
         }
         let mut next = [0usize; SIGMA_CLASSES];
         let mut classes = Vec::new();
@@ -120,24 +131,36 @@ impl PackedFrame {
             }
             offset += counts[k];
         }
-        let mut words = vec![0u32; WORDS_PER_BLOB * kept.len().next_multiple_of(PACK_ALIGN)];
-        for b in &kept {
+        let mut words = vec![0u32; WORDS_PER_BLOB * count.next_multiple_of(PACK_ALIGN)];
+        // Neighbouring blobs mostly share an emitter's colours: convert each change once.
+        let mut colour = (Vec3::NAN, Vec3::NAN, [0u32; 3]);
+        for i in 0..n {
+            let b = blob(i);
+            if !kept(&b) {
+                continue;
+            }
             let k = class_of(b.sigma);
             let w = &mut words[WORDS_PER_BLOB * next[k]..WORDS_PER_BLOB * (next[k] + 1)];
             next[k] += 1;
-            let q = (Vec3::ONE - b.albedo) * b.emission;
+            if b.albedo != colour.0 || b.emission != colour.1 {
+                let q = (Vec3::ONE - b.albedo) * b.emission;
+                let packed = [
+                    halves(b.albedo.x, b.albedo.y),
+                    halves(b.albedo.z, q.x),
+                    halves(q.y, q.z),
+                ];
+                colour = (b.albedo, b.emission, packed);
+            }
             w[0] = b.center.x.to_bits();
             w[1] = b.center.y.to_bits();
             w[2] = b.center.z.to_bits();
             w[3] = b.sigma.to_bits();
             w[4] = b.mass.to_bits();
-            w[5] = halves(b.albedo.x, b.albedo.y);
-            w[6] = halves(b.albedo.z, q.x);
-            w[7] = halves(q.y, q.z);
+            w[5..8].copy_from_slice(&colour.2);
         }
         Self {
             words,
-            count: kept.len(),
+            count,
             bounds: Some((lo, hi)),
             emissive,
             sigma_min,
@@ -214,8 +237,8 @@ mod tests {
         assert_eq!(f.count, 4);
         assert_eq!(f.words.len(), PACK_ALIGN * WORDS_PER_BLOB);
         assert!(f.words[4 * WORDS_PER_BLOB..].iter().all(|&w| w == 0));
-        // σ_min = 0.01: [0.01, 0.0141) class 0 (two blobs in input order), 0.019 class 1, 0.05
-        // class 4 (5 = √2^4.64).
+        // σ² = 1e-4 (2^-13.3: class 34), 2.25e-4 and 3.6e-4 (2^-12.2, 2^-11.4: class 35 and 36),
+        // 2.5e-3 (2^-8.6: class 39).
         let shape: Vec<(usize, usize, usize, f32)> = f
             .classes
             .iter()
@@ -223,7 +246,12 @@ mod tests {
             .collect();
         assert_eq!(
             shape,
-            vec![(0, 0, 1, 0.01), (1, 1, 2, 0.019), (4, 3, 1, 0.05)]
+            vec![
+                (34, 0, 1, 0.01),
+                (35, 1, 1, 0.015),
+                (36, 2, 1, 0.019),
+                (39, 3, 1, 0.05)
+            ]
         );
         let masses: Vec<f32> = (0..4).map(|i| f.blob(i).mass).collect();
         assert_eq!(masses, vec![1.0, 3.0, 4.0, 2.0]);
@@ -248,8 +276,9 @@ mod tests {
         assert_eq!(&info[1..7], &[lo.x, lo.y, lo.z, hi.x, hi.y, hi.z]);
         assert_eq!(info[7], 1.0);
         assert_eq!(info[8], 0.1);
+        // σ = 0.1: σ² = 2^-6.6, class 41; σ = 0.2: 2^-4.6, class 43.
         assert_eq!(info[9], 2.0);
-        assert_eq!(&info[10..], &[0.0, 0.0, 1.0, 0.1, 2.0, 1.0, 1.0, 0.2]);
+        assert_eq!(&info[10..], &[41.0, 0.0, 1.0, 0.1, 43.0, 1.0, 1.0, 0.2]);
     }
 
     #[test]
@@ -262,16 +291,27 @@ mod tests {
 
     #[test]
     fn the_widest_blobs_share_the_last_class() {
-        let blobs: Vec<RenderBlob> = (0..20)
-            .map(|k| blob(k as f32, 0.001 * 2f32.powi(k), 1.0))
+        // σ = 2^k m for k = −28 … 9: factors of 2 are two classes apart; the narrowest share the
+        // first class and the widest the last.
+        let blobs: Vec<RenderBlob> = (-28..10)
+            .map(|k| blob(k as f32, 2f32.powi(k), 1.0))
             .collect();
         let f = PackedFrame::pack(blobs.len(), |i| blobs[i]);
-        // Factors of 2 are two classes apart: classes 0, 2, …, 14 hold one blob each, the last
-        // (15) the twelve widest.
-        assert_eq!(f.classes.len(), SIGMA_CLASSES / 2 + 1);
+        let first = f.classes[0];
+        assert_eq!((first.index, first.count), (0, 5));
+        assert_eq!(first.sigma_max, 2f32.powi(-24));
         let last = f.classes.last().unwrap();
-        assert_eq!(last.index, SIGMA_CLASSES - 1);
-        assert_eq!(last.count, 20 - SIGMA_CLASSES / 2);
-        assert_eq!(last.sigma_max, 0.001 * 2f32.powi(19));
+        assert_eq!((last.index, last.count), (SIGMA_CLASSES - 1, 2));
+        assert_eq!(f.classes.len(), 2 + 31);
+        for (k, c) in f
+            .classes
+            .iter()
+            .enumerate()
+            .skip(1)
+            .take(f.classes.len() - 2)
+        {
+            assert_eq!(c.index, 2 * (k - 1) + 2, "{c:?}");
+            assert_eq!(class_sigma(c.index), c.sigma_max);
+        }
     }
 }

@@ -12,15 +12,18 @@
 //!   (at most four a side), renormalised over them.
 //! - A wider blob goes through a *particle mesh*: its mass is deposited on the eight voxels
 //!   around its centre with trilinear weights (cloud in cell: mass and centre of mass exact),
-//!   split between the mesh classes k and k + 1 of its σ class (σ_k = σ_min √2^k, see
-//!   `render::frame`) with weights that keep its variance: w σ_k² + (1 − w) σ_{k+1}² = σ².
-//!   Each class's mesh is then blurred along x, y and z by a normalised kernel whose variance
-//!   is σ_k² − h²/6, the cloud-in-cell tent's h²/6 making up the rest ([`blur_kernel`]).
-//!   The work is eight voxels a blob plus a few passes over the grid per class.
+//!   split between the mesh classes k and k + 1 of its σ class (σ_k = √2^(k − 48) m, see
+//!   `render::frame`) with weights that keep its column through the centre, m/(2πσ²):
+//!   w/σ_k² + (1 − w)/σ_{k+1}² = 1/σ², i.e. w = 2σ_k²/σ² − 1. (Keeping the variance instead
+//!   puts up to 23 % too much density at the centre of a blob halfway between two classes;
+//!   keeping the column errs by at most 4 % in peak density and 4 % in width.) Each class's
+//!   mesh is then blurred along x, y and z by a normalised kernel whose variance is
+//!   σ_k² − h²/6, the cloud-in-cell tent's h²/6 making up the rest ([`blur_kernel`]). The work
+//!   is eight voxels a blob plus a few passes over the grid per class.
 //!
-//! Either way a blob inside the grid deposits its mass, mean and (to the kernel's accuracy)
-//! variance: Σ ρ h³ = Σ m up to the tails the blur carries past the grid's faces, which lie at
-//! least [`FOOTPRINT`] σ beyond every centre.
+//! Either way a blob inside the grid deposits its mass and mean: Σ ρ h³ = Σ m up to the tails
+//! the blur carries past the grid's faces, which lie at least [`FOOTPRINT`] σ beyond every
+//! centre.
 //!
 //! **Sampling.** Between voxel centres the volumes are interpolated trilinearly; beyond the
 //! outermost centres they are held (clamp to edge).
@@ -236,10 +239,7 @@ pub fn splat(frame: &PackedFrame, grid: &VoxelGrid) -> DensityVolume {
     let inv_volume = 1.0 / (grid.h * grid.h * grid.h);
     for class in &frame.classes {
         let k = class.index;
-        let (s0, s1) = (
-            class_sigma(frame.sigma_min, k),
-            class_sigma(frame.sigma_min, k + 1),
-        );
+        let (s0, s1) = (class_sigma(k), class_sigma(k + 1));
         for i in class.offset..class.offset + class.count {
             let b = frame.blob(i);
             if b.sigma < DIRECT_LIMIT * grid.h {
@@ -257,7 +257,8 @@ pub fn splat(frame: &PackedFrame, grid: &VoxelGrid) -> DensityVolume {
                 }
                 continue;
             }
-            let lower = ((s1 * s1 - b.sigma * b.sigma) / (s1 * s1 - s0 * s0)).clamp(0.0, 1.0);
+            let lower = (2.0 * s0 * s0 / (b.sigma * b.sigma) - 1.0).clamp(0.0, 1.0);
+            debug_assert!((s1 * s1 - 2.0 * s0 * s0).abs() < 1e-6 * s1 * s1);
             let (i0, f) = grid.cell(b.center);
             for (mesh_class, share) in [(k, lower), (k + 1, 1.0 - lower)] {
                 if share <= 0.0 {
@@ -286,7 +287,7 @@ pub fn splat(frame: &PackedFrame, grid: &VoxelGrid) -> DensityVolume {
         }
     }
     for (mesh_class, mesh) in meshes {
-        let kernel = blur_kernel(class_sigma(frame.sigma_min, mesh_class), grid.h);
+        let kernel = blur_kernel(class_sigma(mesh_class), grid.h);
         let mut m = mesh;
         for axis in 0..3 {
             m = blur_axis(grid, &m, axis, &kernel);
@@ -480,24 +481,32 @@ mod tests {
         assert_eq!(sum(&v.source, 0), 0.0);
     }
 
-    #[test]
-    fn a_wide_blob_gives_its_density_through_the_particle_mesh() {
+    /// A blob's density in the volume against its own at voxel centres near its middle.
+    fn worst_density_error(sigma: f32) -> f32 {
         let g = grid();
         let c = g.centre(25, 30, 12);
-        let sigma = 4.0 * g.h;
         let b = blob(c, sigma, 1.0);
         let v = splat(&PackedFrame::pack(1, |_| b), &g);
-        for (i, j, k) in [(25, 30, 12), (27, 30, 12), (25, 34, 14), (20, 26, 9)] {
-            let p = g.centre(i, j, k);
-            let got = v.density[4 * g.index(i, j, k)];
-            // Cloud in cell and the variance-matched blur: its density to within 3 %.
-            assert!(
-                (got / b.density(p) - 1.0).abs() < 0.03,
-                "{got} vs {}",
-                b.density(p)
-            );
-            assert!((v.rho(p) - got).abs() < 1e-6 * got);
-        }
+        [(25, 30, 12), (27, 30, 12), (25, 34, 14), (20, 26, 9)]
+            .iter()
+            .map(|&(i, j, k)| {
+                let p = g.centre(i, j, k);
+                let got = v.density[4 * g.index(i, j, k)];
+                assert!((v.rho(p) - got).abs() < 1e-5 * got);
+                (got / b.density(p) - 1.0).abs()
+            })
+            .fold(0.0, f32::max)
+    }
+
+    #[test]
+    fn a_wide_blob_gives_its_density_through_the_particle_mesh() {
+        // At a class's σ (√2^k m, here 0.0884 m ≈ 4.4 voxels): the cloud in cell and the
+        // variance-matched blur alone, within 3 %.
+        let at_class = worst_density_error(2f32.powf(-3.5));
+        assert!(at_class < 0.03, "{at_class}");
+        // Between two classes (0.08 m): the two classes' mixture adds up to 4 % at the centre.
+        let between = worst_density_error(0.08);
+        assert!(between < 0.08, "{between}");
     }
 
     #[test]

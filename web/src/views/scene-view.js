@@ -201,13 +201,13 @@ export class SceneView {
 
 /**
  * `frameInfo` (the core's `PackedFrame::info`) as an object; each σ class {index, offset, count,
- * sigmaMax, sigmaLow (its lower bound σ_min √2^index)}.
+ * sigmaMax, sigmaLow (its lower bound, `classSigma(index)`)}.
  */
 export function frameInfo(info) {
   const classes = [];
   for (let k = 0; k < info[9]; k++) {
     const [index, offset, count, sigmaMax] = info.subarray(10 + 4 * k, 14 + 4 * k);
-    classes.push({ index, offset, count, sigmaMax, sigmaLow: classSigma(info[8], index) });
+    classes.push({ index, offset, count, sigmaMax, sigmaLow: classSigma(index) });
   }
   return {
     count: info[0],

@@ -9,9 +9,12 @@ export const DIRECT_LIMIT = 0.5;
 /** Longest blur kernel, voxels either side (`render::volume::MAX_BLUR_RADIUS`). */
 export const MAX_BLUR_RADIUS = 32;
 
-/** σ_k = σ_min √2^k, the lower bound of σ class k (`render::frame::class_sigma`). */
-export function classSigma(sigmaMin, k) {
-  return sigmaMin * Math.SQRT2 ** k;
+/** Class k starts at σ = √2^(k − CLASS_BIAS) m (`render::frame`). */
+export const CLASS_BIAS = 48;
+
+/** σ_k, the lower bound of σ class k (m; `render::frame::class_sigma`). */
+export function classSigma(k) {
+  return 2 ** ((k - CLASS_BIAS) / 2);
 }
 
 /**

@@ -1,7 +1,8 @@
 // The particle mesh (the real-time view's path for blobs at least DIRECT_LIMIT voxels wide), as
-// `render::volume::splat` in the core does it: per mesh class k (σ_k = σ_min √2^k), every blob
-// of σ classes k − 1 and k deposits its share of mass — the split between classes k and k + 1
-// that keeps its variance — on the eight voxels around its centre (cloud in cell), and the
+// `render::volume::splat` in the core does it: per mesh class k (σ_k = √2^(k − 48) m), every
+// blob of σ classes k − 1 and k deposits its share of mass — the split between classes k and
+// k + 1 that keeps its column through the centre, w = 2σ_k²/σ² − 1 — on the eight voxels around
+// its centre (cloud in cell), and the
 // class's mesh is then blurred along x, y and z by the kernel of variance σ_k² − h²/6, the last
 // pass adding into the density atlas. The work is eight voxels a blob plus three passes over the
 // grid a class: it does not grow with the blobs' widths.
@@ -34,9 +35,7 @@ void main() {
   float sigma, mass;
   fetchBlob(blob, c, sigma, mass, vAlbedo, vSource);
   gl_PointSize = 2.0;
-  float s0 = sigmaLow * sigmaLow;
-  float s1 = 2.0 * s0;
-  float lower = clamp((s1 - sigma * sigma) / (s1 - s0), 0.0, 1.0);
+  float lower = clamp(2.0 * sigmaLow * sigmaLow / (sigma * sigma) - 1.0, 0.0, 1.0);
   float share = upper ? 1.0 - lower : lower;
   if (sigma < ${DIRECT_LIMIT.toFixed(2)} * grid.h || mass <= 0.0 || share <= 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
@@ -193,7 +192,7 @@ export class MeshPass {
   }
 
   /**
-   * Adds the wide blobs of `frame` ({classes, sigmaMin, emissive}) into `target` through the
+   * Adds the wide blobs of `frame` ({classes, emissive}) into `target` through the
    * mesh, using `a` and `b` (atlases like `target`) as scratch.
    */
   render(renderer, frame, h, target, a, b) {
@@ -209,7 +208,7 @@ export class MeshPass {
         const points = this.#deposit(used++);
         const m = points.material.uniforms;
         m.classOffset.value = c.offset;
-        m.sigmaLow.value = classSigma(frame.sigmaMin, c.index);
+        m.sigmaLow.value = c.sigmaLow;
         m.upper.value = c.index === k - 1;
         points.geometry.setDrawRange(0, 2 * c.count);
         points.visible = true;
@@ -220,7 +219,7 @@ export class MeshPass {
       renderer.clear(true, false, false);
       renderer.render(this.depositScene, this.camera);
       // Blur x (a → b), y (b → a), z (a → target, added).
-      const kernel = blurKernel(classSigma(frame.sigmaMin, k), h);
+      const kernel = blurKernel(classSigma(k), h);
       u.radius.value = (kernel.length - 1) / 2;
       u.kernel.value.fill(0);
       kernel.forEach((w, i) => { u.kernel.value[i] = w; });

@@ -9,6 +9,7 @@
 
 import * as THREE from 'three';
 import { LIGHTS_GLSL } from '../gas-uniforms.js';
+import { waitForGpu } from '../gpu-sync.js';
 import { MarchQuad, VIEW_RAY_GLSL } from '../march-quad.js';
 import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
@@ -172,18 +173,11 @@ export class VolumeLayer extends MarchQuad {
   /** A stopwatch of GPU passes when profiling: each call returns ms since the last (0 if not). */
   #clock(renderer) {
     if (!this.profile) return () => 0;
-    const gl = renderer.getContext();
-    const pixel = new Uint8Array(4);
-    const finish = () => {
-      const target = renderer.getRenderTarget();
-      renderer.setRenderTarget(null);
-      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-      renderer.setRenderTarget(target);
-      return performance.now();
-    };
-    let last = finish();
+    waitForGpu(renderer);
+    let last = performance.now();
     return () => {
-      const now = finish();
+      waitForGpu(renderer);
+      const now = performance.now();
       const ms = now - last;
       last = now;
       return ms;
