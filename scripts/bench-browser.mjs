@@ -1,16 +1,11 @@
 // Browser benchmarks over the built site (dist/) in Debian's chromium with SwiftShader:
 // navigation to first frame; the worker's step, packing and frame size at 100,000 blobs; the
 // real-time view's frame at 10,000 and 100,000 blobs of one plume (640×360) against the points
-// view's and the exact march's. SwiftShader runs shaders on the CPU: compare the ratios, not the
+// view's. SwiftShader runs shaders on the CPU: compare the ratios, not the
 // times. Prints {name, value, unit} objects.
-import { chromium } from '@playwright/test';
-import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
-import { fileURLToPath } from 'node:url';
-
-const root = fileURLToPath(new URL('..', import.meta.url));
-const PORT = 4179;
+import { root, withSite } from './site.mjs';
 
 /** Gzipped size (KiB) of the files under `dir` whose names match `pattern`. */
 export function gzipKiB(dir, pattern) {
@@ -28,24 +23,7 @@ export async function benchBrowser() {
   const results = [];
   const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
 
-  const server = spawn('npx', ['vite', 'preview', '--config', 'web/vite.config.js', '--host', '127.0.0.1', '--port', String(PORT), '--strictPort'], {
-    cwd: root, stdio: 'ignore', detached: true,
-  });
-  const browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  });
-  try {
-    const page = await browser.newPage({ viewport: { width: 1100, height: 720 } });
-    for (let i = 0; i < 50; i++) {
-      try {
-        await page.goto(`http://127.0.0.1:${PORT}/`);
-        break;
-      } catch {
-        await new Promise((r) => setTimeout(r, 200));
-      }
-    }
-    await page.waitForFunction(() => window.windfield !== undefined);
+  await withSite('', async (page) => {
     const firstFrame = await page.evaluate(async () => {
       await window.windfield.ready;
       return performance.now();
@@ -93,13 +71,6 @@ export async function benchBrowser() {
     emit('view_100k_over_10k', view[100] / view[10], 'ratio');
     emit('points_frame_640x360_100k_ms', points100, 'ms');
     emit('view_over_points_100k', view[100] / points100, 'ratio');
-  } finally {
-    await browser.close();
-    try {
-      process.kill(-server.pid);
-    } catch {
-      // already gone
-    }
-  }
+  });
   return results;
 }

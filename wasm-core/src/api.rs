@@ -328,17 +328,7 @@ impl SceneSimulation {
             list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
         }
         self.grid = shadow_grid_of(&list, res)?;
-        let medium = Vec3::from_array(list.medium.albedo);
-        let frame = PackedFrame::pack(list.blobs.len(), |i| {
-            let b = &list.blobs[i];
-            RenderBlob {
-                center: Vec3::from_array(b.center),
-                sigma: b.sigma,
-                mass: b.mass,
-                albedo: b.albedo.map_or(medium, Vec3::from_array),
-                emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
-            }
-        });
+        let frame = PackedFrame::of_list(&list);
         self.info = frame.info();
         Ok(frame.words)
     }
@@ -516,15 +506,8 @@ impl ReferenceRender {
 }
 
 /// Shadow columns ∫ρ ds towards each light on a `res³` grid over the gas's bounds (padded by a
-/// cell), for the GPU ray march to interpolate: `[min.xyz, max.xyz, res, lights]` then
+/// cell), for the exact march to interpolate: `[min.xyz, max.xyz, res, lights]` then
 /// `lights × res³` columns (x fastest). Empty (8 zeros) without blobs, lights or shadows.
-#[wasm_bindgen(js_name = shadowGrid)]
-pub fn shadow_grid(blob_list_json: &str, res: u32) -> Result<Vec<f32>, JsError> {
-    let value: serde_json::Value = serde_json::from_str(blob_list_json)
-        .map_err(|e| JsError::new(&format!("blob list: {e}")))?;
-    shadow_grid_of(&BlobList::from_value(value).map_err(js_error)?, res)
-}
-
 fn shadow_grid_of(list: &BlobList, res: u32) -> Result<Vec<f32>, JsError> {
     let renderer = Renderer::new(list, None, RenderOptions::default()).map_err(js_error)?;
     let res = res.clamp(2, 96) as usize;

@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 use windfield::render::volume::{column, light_columns, splat, Towards, VoxelGrid};
-use windfield::render::{PackedFrame, RenderBlob, RenderOptions, Renderer};
+use windfield::render::{PackedFrame, RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// A preset simulated for `seconds`: its blob list and packed frame.
@@ -17,17 +17,7 @@ fn preset(name: &str, seconds: f64) -> (windfield::blob_list::BlobList, PackedFr
     let mut sim = Simulation::new(Scene::from_value(value).unwrap()).unwrap();
     sim.run(sim.steps_for(seconds));
     let list = sim.blob_list();
-    let medium = Vec3::from_array(list.medium.albedo);
-    let frame = PackedFrame::pack(list.blobs.len(), |i| {
-        let b = &list.blobs[i];
-        RenderBlob {
-            center: Vec3::from_array(b.center),
-            sigma: b.sigma,
-            mass: b.mass,
-            albedo: b.albedo.map_or(medium, Vec3::from_array),
-            emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
-        }
-    });
+    let frame = PackedFrame::of_list(&list);
     (list, frame)
 }
 

@@ -24,6 +24,7 @@
 //! so a blob keeps its class from frame to frame.
 
 use super::gaussian::RenderBlob;
+use crate::blob_list::BlobList;
 use glam::Vec3;
 use half::f16;
 
@@ -166,6 +167,12 @@ impl PackedFrame {
             sigma_min,
             classes,
         }
+    }
+
+    /// A blob list's blobs packed (colours resolved against its medium's albedo).
+    pub fn of_list(list: &BlobList) -> Self {
+        let medium = Vec3::from_array(list.medium.albedo);
+        Self::pack(list.blobs.len(), |i| RenderBlob::of(&list.blobs[i], medium))
     }
 
     /// The frame's description as floats: `[count, lo.xyz, hi.xyz, emissive (0/1), σ_min,

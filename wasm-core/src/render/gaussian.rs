@@ -5,6 +5,7 @@
 //! m/(4πσ²) · exp(−r²/(2σ²)) · [erf((b − s*)/(σ√2)) − erf((a − s*)/(σ√2))]
 //! (the paper's table T(s) = √(π/2) erf(s/√2)). Blobs are truncated at [`TRUNCATION`] σ.
 
+use crate::blob_list::BlobRecord;
 use glam::Vec3;
 
 /// Blobs are truncated at this many standard deviations.
@@ -39,6 +40,17 @@ pub struct Chord {
 }
 
 impl RenderBlob {
+    /// A blob list's blob, its albedo the blob's own or `medium_albedo`, its emission Q (none: 0).
+    pub fn of(b: &BlobRecord, medium_albedo: Vec3) -> Self {
+        Self {
+            center: Vec3::from_array(b.center),
+            sigma: b.sigma,
+            mass: b.mass,
+            albedo: b.albedo.map_or(medium_albedo, Vec3::from_array),
+            emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
+        }
+    }
+
     /// Truncation radius (m).
     pub fn radius(&self) -> f32 {
         TRUNCATION * self.sigma

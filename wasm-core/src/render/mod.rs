@@ -105,13 +105,7 @@ impl Renderer {
             .blobs
             .iter()
             .filter(|b| b.mass > 0.0)
-            .map(|b| RenderBlob {
-                center: Vec3::from_array(b.center),
-                sigma: b.sigma,
-                mass: b.mass,
-                albedo: b.albedo.map_or(medium_albedo, Vec3::from_array),
-                emission: b.emission.map_or(Vec3::ZERO, Vec3::from_array),
-            })
+            .map(|b| RenderBlob::of(b, medium_albedo))
             .collect();
         let bvh = if options.use_tree {
             Bvh::build(&blobs)

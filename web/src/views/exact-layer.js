@@ -13,7 +13,7 @@ import { TEX_WIDTH, TILE, TRUNCATION } from '../engine/tiles.js';
 import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
 import { BLOB_GLSL, BLOBS_PER_ROW, ERF_GLSL } from './volume/glsl.js';
 import { BlobTexture } from './blob-texture.js';
-import { MarchQuad, VIEW_RAY_GLSL } from './march-quad.js';
+import { MARCH_PREAMBLE, MarchQuad } from './march-quad.js';
 
 
 /**
@@ -62,15 +62,10 @@ float shadowColumn(int l, vec3 x) {
 `;
 
 const fragmentShader = /* glsl */ `
-precision highp float;
-precision highp int;
-precision highp sampler2D;
-in vec2 vUv;
-out vec4 outColor;
+${MARCH_PREAMBLE}
 uniform sampler2D headTex;    // a texel a tile: start, count
 uniform sampler2D listTex;    // blob indices (in .x)
 uniform int tilesX;
-${VIEW_RAY_GLSL}
 
 const int W = ${TEX_WIDTH};
 const float TRUNC = ${TRUNCATION.toFixed(2)};

@@ -3,8 +3,16 @@
 
 import * as THREE from 'three';
 
-/** `viewRay(rd, sMax, behind)`: the pixel's ray, where the opaque pass ends it, what lies there. */
-export const VIEW_RAY_GLSL = /* glsl */ `
+/**
+ * The start of a march's fragment shader: precisions, the quad's `vUv` in, `outColor` out, and
+ * `viewRay(uv, rd, sMax, behind)`: the pixel's ray, where the opaque pass ends it, what lies there.
+ */
+export const MARCH_PREAMBLE = /* glsl */ `
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+in vec2 vUv;
+out vec4 outColor;
 uniform sampler2D opaqueColor;
 uniform sampler2D opaqueDepth;
 uniform bool hasOpaque;
@@ -37,7 +45,7 @@ void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }
 `;
 
 export class MarchQuad {
-  /** @param {string} fragmentShader GLSL 3 (with VIEW_RAY_GLSL) @param {object} uniforms its own */
+  /** @param {string} fragmentShader GLSL 3 (from MARCH_PREAMBLE on) @param {object} uniforms its own */
   constructor(fragmentShader, uniforms) {
     this.material = new THREE.ShaderMaterial({
       glslVersion: THREE.GLSL3,

@@ -11,21 +11,25 @@ uniform sampler3D lightVolume;
 uniform Grid grid;
 uniform Grid lightGrid;
 
+// The part [near, far] of the ray x + s·d, 0 ≤ s ≤ sMax, inside the density grid's box (slab
+// test); near > far if it misses.
+vec2 boxSpan(vec3 x, vec3 d, float sMax) {
+  vec3 inv = 1.0 / d;
+  vec3 a = (grid.lo - x) * inv;
+  vec3 b = (grid.lo + grid.h * vec3(grid.dims) - x) * inv;
+  vec3 tMin = min(a, b);
+  vec3 tMax = max(a, b);
+  return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), min(tMax.z, sMax)));
+}
+
 // Inside the density grid's box, the light volume at x; outside, where the path to the light
 // enters the box (no gas lies outside), or 0 if it never does.
 float volumeColumn(int l, vec3 x, vec3 toLight, float toLightDistance) {
-  vec3 lo = grid.lo;
   vec3 hi = grid.lo + grid.h * vec3(grid.dims);
-  if (any(lessThan(x, lo)) || any(greaterThan(x, hi))) {
-    vec3 inv = 1.0 / toLight;
-    vec3 a = (lo - x) * inv;
-    vec3 b = (hi - x) * inv;
-    vec3 tMin = min(a, b);
-    vec3 tMax = max(a, b);
-    float near = max(max(tMin.x, tMin.y), max(tMin.z, 0.0));
-    float far = min(min(tMax.x, tMax.y), min(tMax.z, toLightDistance));
-    if (near > far) return 0.0;
-    x += toLight * near;
+  if (any(lessThan(x, grid.lo)) || any(greaterThan(x, hi))) {
+    vec2 span = boxSpan(x, toLight, toLightDistance);
+    if (span.x > span.y) return 0.0;
+    x += toLight * span.x;
   }
   return sampleVolume(lightVolume, lightGrid, x)[l];
 }
@@ -47,15 +51,9 @@ float jitter(vec2 px) {
 
 // Composites the gas along camPos + s·rd for s in [0, sMax) onto (rad, T).
 void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T) {
-  vec3 lo = grid.lo;
-  vec3 hi = grid.lo + grid.h * vec3(grid.dims);
-  vec3 inv = 1.0 / rd;
-  vec3 a = (lo - camPos) * inv;
-  vec3 b = (hi - camPos) * inv;
-  vec3 tMin = min(a, b);
-  vec3 tMax = max(a, b);
-  float s0 = max(max(tMin.x, tMin.y), max(tMin.z, 0.0));
-  float s1 = min(min(tMax.x, tMax.y), min(tMax.z, sMax));
+  vec2 span = boxSpan(camPos, rd, sMax);
+  float s0 = span.x;
+  float s1 = span.y;
   if (s1 <= s0) return;
   float ds = stepScale * grid.h;
   float j = jitter(gl_FragCoord.xy);

@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { BLOB_GLSL, GRID_GLSL } from './glsl.js';
 import { blurKernel, classSigma, DIRECT_LIMIT, MAX_BLUR_RADIUS } from './grid.js';
+import { ADDITIVE, additivePoints } from './point-draws.js';
 
 const depositVertex = /* glsl */ `
 precision highp float;
@@ -118,15 +119,6 @@ void main() {
 }
 `;
 
-const ADD = {
-  blending: THREE.CustomBlending,
-  blendEquation: THREE.AddEquation,
-  blendSrc: THREE.OneFactor,
-  blendDst: THREE.OneFactor,
-  blendSrcAlpha: THREE.OneFactor,
-  blendDstAlpha: THREE.OneFactor,
-};
-
 export class MeshPass {
   /**
    * @param {object} shared uniforms: blobTex, grid, atlasCols, atlasSize
@@ -150,7 +142,7 @@ export class MeshPass {
       depthWrite: false,
     });
     this.blurAdd = this.blur.clone();
-    Object.assign(this.blurAdd, ADD);
+    Object.assign(this.blurAdd, ADDITIVE);
     this.blurAdd.uniforms = this.blur.uniforms;
     this.quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), this.blur);
     this.quad.frustumCulled = false;
@@ -160,20 +152,7 @@ export class MeshPass {
 
   #deposit(i) {
     while (this.deposits.length <= i) {
-      // No attributes: each vertex finds its blob from gl_VertexID (instancing a one-vertex
-      // draw costs a software renderer per instance).
-      const geometry = new THREE.BufferGeometry();
-      const material = new THREE.ShaderMaterial({
-        glslVersion: THREE.GLSL3,
-        vertexShader: depositVertex,
-        fragmentShader: depositFragment,
-        uniforms: { ...this.shared, classOffset: { value: 0 }, sigmaLow: { value: 1 }, upper: { value: false } },
-        ...ADD,
-        depthTest: false,
-        depthWrite: false,
-      });
-      const points = new THREE.Points(geometry, material);
-      points.frustumCulled = false;
+      const points = additivePoints(depositVertex, depositFragment, { ...this.shared, classOffset: { value: 0 }, sigmaLow: { value: 1 }, upper: { value: false } });
       this.depositScene.add(points);
       this.deposits.push(points);
     }

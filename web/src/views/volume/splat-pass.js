@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { BLOB_GLSL, ERF_GLSL, GRID_GLSL } from './glsl.js';
 import { DIRECT_LIMIT, FOOTPRINT } from './grid.js';
+import { additivePoints } from './point-draws.js';
 
 const vertexShader = /* glsl */ `
 precision highp float;
@@ -114,24 +115,7 @@ export class SplatPass {
 
   #draw(i) {
     while (this.draws.length <= i) {
-      // No attributes: each vertex finds its blob and slice from gl_VertexID.
-      const geometry = new THREE.BufferGeometry();
-      const material = new THREE.ShaderMaterial({
-        glslVersion: THREE.GLSL3,
-        vertexShader,
-        fragmentShader,
-        uniforms: { ...this.shared, classOffset: { value: 0 }, slices: { value: 1 } },
-        blending: THREE.CustomBlending,
-        blendEquation: THREE.AddEquation,
-        blendSrc: THREE.OneFactor,
-        blendDst: THREE.OneFactor,
-        blendSrcAlpha: THREE.OneFactor,
-        blendDstAlpha: THREE.OneFactor,
-        depthTest: false,
-        depthWrite: false,
-      });
-      const points = new THREE.Points(geometry, material);
-      points.frustumCulled = false;
+      const points = additivePoints(vertexShader, fragmentShader, { ...this.shared, classOffset: { value: 0 }, slices: { value: 1 } });
       this.scene.add(points);
       this.draws.push(points);
     }

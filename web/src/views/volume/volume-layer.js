@@ -10,7 +10,7 @@
 import * as THREE from 'three';
 import { LIGHTS_GLSL } from '../gas-uniforms.js';
 import { waitForGpu } from '../gpu-sync.js';
-import { MarchQuad, VIEW_RAY_GLSL } from '../march-quad.js';
+import { MARCH_PREAMBLE, MarchQuad } from '../march-quad.js';
 import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
@@ -30,15 +30,10 @@ export const VOLUME_QUALITY = {
 };
 
 const fragmentShader = /* glsl */ `
-precision highp float;
-precision highp int;
-precision highp sampler2D;
-in vec2 vUv;
-out vec4 outColor;
+${MARCH_PREAMBLE}
 ${LIGHTS_GLSL}
 ${VOLUME_SHADOW_GLSL}
 ${MARCH_GLSL}
-${VIEW_RAY_GLSL}
 uniform bool hasGas;
 
 void main() {
