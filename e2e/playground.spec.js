@@ -398,3 +398,27 @@ test('the real-time view shows its resolution and volume; a fixed resolution siz
   expect([width, height]).toEqual([96, 72]);
   expect(errors).toEqual([]);
 });
+
+test('runs over the step budget are refused before they start, naming simulation.dt and the time', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  const r = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    const s = w.getScene();
+    s.simulation.dt = 1e-6;
+    await w.setScene(s);
+    const outcome = (p) => p.then(() => 'accepted', (e) => e.message);
+    return {
+      step: await outcome(w.step(2_000_000)),
+      video: await outcome(w.recordWebM({ frames: 1_500_000, width: 32, height: 24 })),
+      negative: await outcome(w.step(-1)),
+      blobs: w.stats().blobs,
+    };
+  });
+  expect(r.step).toMatch(/simulation\.dt: 2 s of simulated time at dt = 1e-6 s is 2000000 steps/);
+  expect(r.video).toMatch(/simulation\.dt: 1\.5 s of simulated time/);
+  expect(r.negative).toMatch(/steps: must be a whole number/);
+  expect(r.blobs).toBe(0);
+  expect(errors).toEqual([]);
+});

@@ -54,3 +54,15 @@ test('the exact march\'s frame is whole typed arrays too', () => {
   const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16 }));
   assert.ok(moved.count > 0 && moved.heads.length % (4 * 1024) === 0 && moved.list.length % 1024 === 0);
 });
+
+test('the worker refuses a run over the step budget, or a step count that is not one, before it starts', () => {
+  const handlers = createHandlers(core, () => {});
+  handlers.load({ id: 1, scene: { ...scene, simulation: { dt: 0.001, integrator: 'rk2' } } });
+  const time = () => handlers.advance({ steps: 0 }).result.time;
+  assert.throws(() => handlers.advance({ steps: 1_000_001 }), /simulation\.dt: 1000\.001 s of simulated time .* 1000001 steps, over the limit of 1000000/);
+  for (const bad of [-1, 1.5, Number.NaN]) assert.throws(() => handlers.advance({ steps: bad }), /steps: must be a whole number/);
+  assert.equal(time(), 0, 'nothing ran');
+  handlers.advance({ steps: 3 });
+  assert.ok(Math.abs(time() - 0.003) < 1e-12);
+  assert.throws(() => handlers.checkSteps({ steps: 2e6 }), /simulation\.dt/);
+});

@@ -175,6 +175,20 @@ impl SceneSimulation {
         self.inner.run(n as u64);
     }
 
+    /// Refuses a run of `steps` fixed steps over the budget (DESIGN §7: 1,000,000), with an
+    /// error naming `simulation.dt` and the time; `steps` must be a whole number, 0 or more.
+    #[wasm_bindgen(js_name = checkSteps)]
+    pub fn check_steps(&self, steps: f64) -> Result<(), JsError> {
+        if !(steps.is_finite() && steps >= 0.0 && steps.fract() == 0.0) {
+            return Err(JsError::new(&format!(
+                "steps: must be a whole number, 0 or more (got {steps})"
+            )));
+        }
+        let dt = self.inner.scene.simulation.dt;
+        self.inner.budgeted_steps(steps * dt).map_err(js_error)?;
+        Ok(())
+    }
+
     /// Simulated time (s).
     pub fn time(&self) -> f64 {
         self.inner.time()

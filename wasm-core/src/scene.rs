@@ -285,10 +285,29 @@ pub struct SimulationSettings {
     pub integrator: Integrator,
 }
 
+/// Most fixed steps one run may take (DESIGN §7): more is refused before it starts.
+pub const MAX_STEPS: u64 = 1_000_000;
+
 impl SimulationSettings {
     /// Fixed steps that make up `seconds` (rounded to the nearest whole step).
     pub fn steps_for(&self, seconds: f64) -> u64 {
         (seconds / self.dt).round().max(0.0) as u64
+    }
+
+    /// The steps of a run of `seconds` (round(T/dt)), or an error naming `simulation.dt` and the
+    /// time when they would exceed [`MAX_STEPS`].
+    pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
+        let steps = (seconds / self.dt).round();
+        if seconds.is_finite() && steps <= MAX_STEPS as f64 {
+            return Ok(steps.max(0.0) as u64);
+        }
+        Err(ParamError::new(
+            "simulation.dt",
+            format!(
+                "{seconds} s of simulated time at dt = {:?} s is {steps:.0} steps, over the limit of {MAX_STEPS}: raise simulation.dt or simulate less time",
+                self.dt
+            ),
+        ))
     }
 }
 
@@ -369,6 +388,8 @@ impl Scene {
         for (i, shape) in self.shapes.iter().enumerate() {
             shape.validate(&format!("shapes[{i}]"))?;
             if let Some(t) = shape.reverse_from {
+                // The run a reversed set keeps is a run like any other (DESIGN §7).
+                self.simulation.budgeted_steps(t)?;
                 reversed_blob_steps += shape.blob_count() as f64 * (t / self.simulation.dt);
             }
         }

@@ -139,6 +139,12 @@ impl Simulation {
         self.scene.simulation.steps_for(seconds)
     }
 
+    /// Steps that make up `seconds`, refused (naming `simulation.dt` and the time) over
+    /// `scene::MAX_STEPS`.
+    pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
+        self.scene.simulation.budgeted_steps(seconds)
+    }
+
     /// One fixed step.
     pub fn step(&mut self) {
         let t = self.time();

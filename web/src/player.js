@@ -282,7 +282,9 @@ export class Player {
    * A WebM of `frames` consecutive fixed steps (one step a frame, from the current state),
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
-  recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
+  async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
+    // One step a frame: the budget of DESIGN §7 holds before anything is recorded.
+    await this.engine.request('checkSteps', { steps: frames });
     return this.offscreen({ mode, width, height }, () => recordWebM({
       canvas: this.view.canvas,
       frames,

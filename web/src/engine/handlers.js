@@ -97,6 +97,7 @@ export function createHandlers(core, progress) {
       return frame();
     },
     advance: ({ steps }) => {
+      requireSim().checkSteps(steps);
       const t0 = performance.now();
       if (steps > 0) requireSim().step(steps);
       const t1 = performance.now();
@@ -106,6 +107,7 @@ export function createHandlers(core, progress) {
       out.result.packMs = performance.now() - t1;
       return out;
     },
+    checkSteps: ({ steps }) => ({ result: requireSim().checkSteps(steps) ?? null }),
     blobList: ({ camera, image }) => ({ result: inView(requireSim().blobList(), camera, image) }),
     windSlice: ({ origin, u, v, n }) => {
       const data = requireSim().windSlice(new Float32Array(origin), new Float32Array(u), new Float32Array(v), n, n);

@@ -3,7 +3,10 @@
 //! ```text
 //! windfield generate --size 32 --epsilon 1 --k-inertial 4 --sigma 1 --seed 1 --out field.npy
 //! windfield stats field.npy --json
+//! windfield render scene.json --frames 0..240 --fps 24 --out frames/f%04d.png --shard 0/4
 //! ```
+
+mod sequence;
 
 use clap::{Args, Parser, Subcommand};
 use std::fs;
@@ -46,7 +49,8 @@ enum Command {
 struct RenderArgs {
     /// A blob list (JSON), or a scene (JSON with "version").
     input: PathBuf,
-    /// Output PNG (8-bit RGB, in the input's image encoding).
+    /// Output PNG (8-bit RGB, in the input's image encoding); with --frames, a pattern with one
+    /// %0Nd for the frame number (frames/f%04d.png).
     #[arg(long)]
     out: PathBuf,
     /// Image width in pixels (overrides the input's).
@@ -56,8 +60,20 @@ struct RenderArgs {
     #[arg(long)]
     height: Option<u32>,
     /// For a scene: seconds to simulate before rendering (default 0).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "frames")]
     seconds: Option<f64>,
+    /// For a scene: a sequence, frames k in the half-open range A..B, frame k at t = k/fps.
+    #[arg(long)]
+    frames: Option<String>,
+    /// With --frames: frames per second of the sequence.
+    #[arg(long, requires = "frames")]
+    fps: Option<f64>,
+    /// With --frames: render only the frames with k mod N = I (I/N, 0 ≤ I < N).
+    #[arg(long, requires = "frames")]
+    shard: Option<String>,
+    /// With --frames: render frames that are already complete again.
+    #[arg(long, requires = "frames")]
+    force: bool,
 }
 
 #[derive(Args)]
@@ -115,7 +131,7 @@ struct StatsArgs {
 }
 
 /// A failure: bad input (exit 2) or a failed read or write (exit 1).
-enum Failure {
+pub enum Failure {
     Input(String),
     Io(String),
 }
@@ -178,7 +194,7 @@ fn resolve_spectrum(
 }
 
 /// Writes through a temporary file and renames it, so a failure leaves no partial output.
-fn write_atomically(
+pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<fs::File>) -> std::io::Result<()>,
 ) -> Result<(), Failure> {
@@ -280,8 +296,11 @@ fn simulate(args: SimulateArgs) -> Result<(), Failure> {
     check_seconds(args.seconds)?;
     let scene = read_scene(&args.scene)?;
     let mut sim = Simulation::new(scene).map_err(|e| Failure::Input(e.to_string()))?;
+    let steps = sim
+        .budgeted_steps(args.seconds)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let start = std::time::Instant::now();
-    sim.run(sim.steps_for(args.seconds));
+    sim.run(steps);
     let list = sim.blob_list();
     let text = serde_json::to_string(&list).expect("blob lists serialise");
     write_atomically(&args.out, |w| std::io::Write::write_all(w, text.as_bytes()))?;
@@ -314,7 +333,8 @@ fn blob_list_for(args: &RenderArgs) -> Result<BlobList, Failure> {
         check_seconds(seconds)?;
         let scene = Scene::from_value(value).map_err(bad)?;
         let mut sim = Simulation::new(scene).map_err(bad)?;
-        sim.run(sim.steps_for(seconds));
+        let steps = sim.budgeted_steps(seconds).map_err(bad)?;
+        sim.run(steps);
         Ok(sim.blob_list())
     } else {
         if args.seconds.is_some() {
@@ -326,7 +346,45 @@ fn blob_list_for(args: &RenderArgs) -> Result<BlobList, Failure> {
     }
 }
 
+/// `render --frames`: a scene's sequence (the `sequence` module).
+fn render_sequence(args: &RenderArgs, frames: &str) -> Result<(), Failure> {
+    let size = match (args.width, args.height) {
+        (None, None) => None,
+        (Some(w), Some(h)) => Some((w, h)),
+        _ => {
+            return Err(Failure::Input(
+                "--width, --height: give both or neither with --frames".into(),
+            ))
+        }
+    };
+    let job = sequence::Sequence::parse(
+        frames,
+        args.fps,
+        &args.out,
+        args.shard.as_deref(),
+        args.force,
+        size,
+    )?;
+    let path = &args.input;
+    let text =
+        fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| Failure::Input(format!("{}: not valid JSON: {e}", path.display())))?;
+    if value.get("version").is_none() {
+        return Err(Failure::Input(format!(
+            "--frames: needs a scene to simulate; {} is a blob list",
+            path.display()
+        )));
+    }
+    let scene =
+        Scene::from_value(value).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?;
+    job.run(scene)
+}
+
 fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
+    if let Some(frames) = &args.frames {
+        return render_sequence(&args, frames);
+    }
     let list = blob_list_for(&args)?;
     let size = match (args.width, args.height) {
         (None, None) => None,
