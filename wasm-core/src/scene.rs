@@ -372,10 +372,12 @@ impl Scene {
         }
         self.field_params().validate()?;
         let f = &self.field;
+        // Periods far below a millimetre or a millisecond put world points at lattice
+        // coordinates and speeds beyond single precision.
         for (i, &l) in f.period.iter().enumerate() {
-            check::positive(&format!("field.period[{i}]"), l, 1e4)?;
+            check::range(&format!("field.period[{i}]"), l, 1e-3, 1e4)?;
         }
-        check::positive("field.time_period", f.time_period, 1e6)?;
+        check::range("field.time_period", f.time_period, 1e-3, 1e6)?;
         check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
         for (i, w) in self.wind.iter().enumerate() {
             validate_primitive(&format!("wind[{i}]"), w)?;
