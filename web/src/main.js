@@ -230,5 +230,6 @@ const ready = initialScene().then(() => {
 window.windfield = {
   ...player.api(ready),
   fieldStats: (spectrum) => player.engine.request('fieldStats', { spectrum }),
+  health: () => player.engine.request('health'),
   sample: (x, y, z, t) => player.engine.request('sample', { x, y, z, t }),
 };

@@ -41,7 +41,7 @@ export class Player {
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
-    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
+    this.stats = { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
     /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
     this.resolution = new ResolutionGovernor();
     this.busy = false;
@@ -101,6 +101,7 @@ export class Player {
     this.lastFrame = frame;
     this.view.setFrame(frame);
     this.stats.blobs = frame.count;
+    this.stats.time = frame.time;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     this.stats.packMs = frame.packMs;
     this.stats.frameBytes = frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
@@ -154,15 +155,17 @@ export class Player {
   }
 
   /**
-   * Counts a frame drawn at `now` (ms) into the frame rate (frames in a row only: the first
-   * after a pause starts afresh) and lets the resolution follow it.
+   * Counts a frame drawn from `start` to `end` (ms) into the frame rate and lets the resolution
+   * follow it: a frame begun right after the last one counts from that one's end (the loop's
+   * pace); the first after an idle spell counts its own duration.
    */
-  #drawn(now) {
-    const interval = (now - this.lastDrawn) / 1000;
-    this.lastDrawn = now;
-    if (!(interval > 0 && interval < 1)) return;
-    this.stats.fps = this.stats.fps > 0 ? 0.8 * this.stats.fps + 0.2 / interval : 1 / interval;
-    if (this.state.mode !== 'points' && this.resolution.observe(now, this.stats.fps)) this.resize();
+  #drawn(start, end) {
+    const busy = start - this.lastDrawn < 100;
+    const seconds = (busy ? end - this.lastDrawn : end - start) / 1000;
+    this.lastDrawn = end;
+    if (!(seconds > 0)) return;
+    this.stats.fps = this.stats.fps > 0 && busy ? 0.8 * this.stats.fps + 0.2 / seconds : 1 / seconds;
+    if (this.state.mode !== 'points' && this.resolution.observe(end, this.stats.fps)) this.resize();
   }
 
   loop(now) {
@@ -179,8 +182,9 @@ export class Player {
       }
       if (steps > 0 || this.dirty) {
         this.busy = true;
+        const start = performance.now();
         (steps > 0 ? this.advance(steps) : this.draw())
-          .then(() => this.#drawn(performance.now()))
+          .then(() => this.#drawn(start, performance.now()))
           .catch((e) => this.hooks.onMessage?.(e.message))
           .finally(() => { this.busy = false; });
       }
@@ -301,6 +305,11 @@ export class Player {
       getScene: () => structuredClone(this.state.scene),
       setScene: (scene) => this.load(scene),
       pause: () => { this.state.playing = false; },
+      setView: (mode) => {
+        if (!MODES.includes(mode)) throw new Error(`setView: the view must be one of ${MODES.join(', ')} (got ${mode})`);
+        this.state.mode = mode;
+        this.resize();
+      },
       play: () => { this.state.playing = true; },
       step: (n = 1) => this.exclusive(() => this.advance(n)),
       stats: () => ({ ...this.stats, ...(this.view.volume.timings && { passes: { ...this.view.volume.timings } }) }),

@@ -17,9 +17,9 @@ const STAGES = [
 
 /**
  * The request handlers over `core` (the WASM module's exports, initialised); `progress(id,
- * value, stage)` reports a request's progress.
+ * value, stage)` reports a request's progress; `memory()` is the core's linear memory (bytes).
  */
-export function createHandlers(core, progress) {
+export function createHandlers(core, progress, memory = () => 0) {
   /** The current field, its parameters (JSON) and synthesis time. */
   let field = null;
   let fieldKey = '';
@@ -106,6 +106,14 @@ export function createHandlers(core, progress) {
       out.result.stepMs = steps > 0 ? (t1 - t0) / steps : 0;
       out.result.packMs = performance.now() - t1;
       return out;
+    },
+    health: () => {
+      // For long runs: the core's memory, the blob count, and blobs whose centre is not finite.
+      const s = requireSim();
+      const p = s.positions();
+      let nonFinite = 0;
+      for (let i = 0; i < p.length; i++) if (!Number.isFinite(p[i])) nonFinite += 1;
+      return { result: { wasmBytes: memory(), blobs: s.count(), nonFinite } };
     },
     checkSteps: ({ steps }) => ({ result: requireSim().checkSteps(steps) ?? null }),
     blobList: ({ camera, image }) => ({ result: inView(requireSim().blobList(), camera, image) }),

@@ -12,14 +12,15 @@
 import init, * as core from '../../pkg/windfield.js';
 import { createHandlers } from './handlers.js';
 
-const ready = init().catch((err) => {
+let memory = null;
+const ready = init().then((wasm) => { memory = wasm.memory; }, (err) => {
   self.postMessage({ type: 'fatal', error: `could not start the WASM core: ${err?.message ?? err}` });
   throw err;
 });
 
 const handlers = createHandlers(core, (id, value, stage) => {
   self.postMessage({ id, type: 'progress', progress: value, stage });
-});
+}, () => memory?.buffer.byteLength ?? 0);
 
 self.onmessage = async (event) => {
   const msg = event.data;
