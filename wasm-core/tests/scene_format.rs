@@ -150,12 +150,12 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/field/period/2", json!(0)),
             "field.period[2]",
-            "greater than 0",
+            "between 0.001 and 10000",
         ),
         (
             set("/field/time_period", json!(-8)),
             "field.time_period",
-            "greater than 0",
+            "between 0.001 and 1000000 ",
         ),
         (
             set("/field/amplitude", json!(-1)),
