@@ -3,7 +3,7 @@
 
 import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
-import { ResolutionGovernor } from './resolution.js';
+import { ResolutionGovernor, startScale } from './resolution.js';
 import { waitForGpu } from './views/gpu-sync.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
@@ -41,9 +41,12 @@ export class Player {
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
-    this.stats = { blobs: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
-    /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
-    this.resolution = new ResolutionGovernor();
+    this.stats = { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
+    /**
+     * Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`),
+     * starting lower on phone-sized screens.
+     */
+    this.resolution = new ResolutionGovernor({ start: startScale(window.innerWidth, window.innerHeight) });
     this.busy = false;
     this.lastFrame = null;
     this.accumulated = 0;
@@ -101,6 +104,7 @@ export class Player {
     this.lastFrame = frame;
     this.view.setFrame(frame);
     this.stats.blobs = frame.count;
+    this.stats.time = frame.time;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     this.stats.packMs = frame.packMs;
     this.stats.frameBytes = frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
