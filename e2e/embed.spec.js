@@ -254,3 +254,20 @@ test('attributes are mirrored as properties; changing preset or src loads the ne
   expect(out.viewButton).toBe('View: points');
   expect(errors).toEqual([]);
 });
+
+test('with reduced motion an autoplay player waits at its poster time with its play button', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.emulateMedia({ reducedMotion: 'reduce' });
+  await bare(page, 'calm', '<wind-field id="p" preset="default" autoplay poster-time="0.5" style="width: 240px"></wind-field>');
+  const time = await page.evaluate(async () => {
+    const el = document.querySelector('#p');
+    await el.ready;
+    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+    return el.stats().time;
+  });
+  expect(time).toBeCloseTo(30 * 0.016666, 6);
+  await expect(page.locator('#p').locator('button.play')).toBeVisible();
+  await page.locator('#p').locator('button.play').click();
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().time)).toBeGreaterThan(time);
+  expect(errors).toEqual([]);
+});

@@ -119,6 +119,7 @@ class WindFieldElement extends HTMLElement {
   /** Whether the scene should play: null follows `autoplay` (and the reduced-motion setting). */
   #playing = null;
   #failed = false;
+  #messageTimer = 0;
 
   constructor() {
     super();
@@ -277,7 +278,12 @@ class WindFieldElement extends HTMLElement {
         p.bar.style.width = `${Math.round(progress * 100)}%`;
         this.#showStatus(`${stage} (${Math.round(progress * 100)} %)`);
       },
-      onMessage: (text) => this.#showMessage(text),
+      // The engine's messages (a failed worker restarts with the scene) fade; a failed load's stay.
+      onMessage: (text) => {
+        this.#showMessage(text);
+        clearTimeout(this.#messageTimer);
+        this.#messageTimer = setTimeout(() => { if (!this.#failed) this.#parts.message.hidden = true; }, 8000);
+      },
     });
     // Vertical swipes scroll the page; horizontal ones (and mice) orbit.
     p.canvas.style.touchAction = 'pan-y';
@@ -325,7 +331,10 @@ class WindFieldElement extends HTMLElement {
       const scene = await player.loadUrl(this.#sceneUrl().href);
       const playing = this.#wantsPlaying();
       const steps = playing ? 0 : Math.round(this.posterTime / scene.simulation.dt);
-      if (steps > 0) await player.exclusive(() => player.advance(steps));
+      if (steps > 0) {
+        this.#showStatus(`Simulating ${this.posterTime} s…`);
+        await player.exclusive(() => player.advance(steps));
+      }
       player.state.playing = this.#wantsPlaying();
     }).then(() => {
       if (ticket !== this.#ticket || session !== this.#session) return;
