@@ -271,3 +271,19 @@ test('with reduced motion an autoplay player waits at its poster time with its p
   await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().time)).toBeGreaterThan(time);
   expect(errors).toEqual([]);
 });
+
+test('without WebGL a player reports an error instead of an endless wait', async ({ page }) => {
+  await page.addInitScript(() => {
+    HTMLCanvasElement.prototype.getContext = () => null;
+  });
+  await bare(page, 'nogl', '<wind-field id="p" preset="default" loading="eager" style="width: 240px"></wind-field>');
+  const out = await page.evaluate(async () => {
+    const el = document.querySelector('#p');
+    const event = new Promise((r) => el.addEventListener('error', (e) => r(e.detail.message), { once: true }));
+    const ready = await el.ready.then(() => 'resolved', (e) => e.message);
+    return { ready, event: await event, alert: el.shadowRoot.querySelector('[role=alert]').textContent };
+  });
+  expect(out.ready).toMatch(/^could not start the player/);
+  expect(out.event).toBe(out.ready);
+  expect(out.alert).toBe(out.ready);
+});

@@ -95,8 +95,17 @@ function deferred() {
   return d;
 }
 
-const STRING_PROPS = { src: 'src', preset: 'preset', poster: 'poster', alt: 'alt' };
-const BOOLEAN_PROPS = { controls: 'controls', autoplay: 'autoplay' };
+/** The properties that mirror attributes. */
+const PROPERTIES = ['src', 'preset', 'poster', 'alt', 'controls', 'autoplay', 'loading', 'posterTime', 'view'];
+
+/** `text` URL-decoded, or as it is when it is not valid URL encoding. */
+function decoded(text) {
+  try {
+    return decodeURIComponent(text);
+  } catch {
+    return text;
+  }
+}
 
 class WindFieldElement extends HTMLElement {
   static get observedAttributes() {
@@ -191,7 +200,7 @@ class WindFieldElement extends HTMLElement {
 
   connectedCallback() {
     // Properties set before the element was defined shadow the accessors: pass them on.
-    for (const name of [...Object.keys(STRING_PROPS), ...Object.keys(BOOLEAN_PROPS), 'loading', 'posterTime', 'view']) {
+    for (const name of PROPERTIES) {
       if (Object.prototype.hasOwnProperty.call(this, name)) {
         const value = this[name];
         delete this[name];
@@ -257,7 +266,13 @@ class WindFieldElement extends HTMLElement {
     loadPlayerCode().then(({ Player }) => {
       if (session !== this.#session) return;
       this.#starting = false;
-      this.#mount(Player);
+      try {
+        this.#mount(Player);
+      } catch (err) {
+        // No WebGL2, most often: the player cannot draw here.
+        this.#fail(new Error(`could not start the player: ${err?.message ?? err}`));
+        return;
+      }
       this.#loadScene();
     }, (err) => {
       if (session !== this.#session) return;
@@ -311,7 +326,7 @@ class WindFieldElement extends HTMLElement {
   #sceneName() {
     const src = this.getAttribute('src');
     if (src) {
-      const file = decodeURIComponent(new URL(src, document.baseURI).pathname.split('/').pop() || src);
+      const file = decoded(new URL(src, document.baseURI).pathname.split('/').pop() || src);
       return `the scene ${file.replace(/\.json$/i, '')}`;
     }
     return `the ${this.getAttribute('preset') || 'default'} scene`;
