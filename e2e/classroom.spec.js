@@ -1,6 +1,7 @@
 // The classroom page and the exports: the spectrum plot's data is what `windfield stats`
-// reports for the same field; the Figure 1 demo conserves mass; the side-by-side players run
-// three variants; PNG, WebM and blob-list exports are valid files.
+// reports for the same field; the Figure 1 demo conserves mass, shows the square at fixed times
+// and replays its first seconds; the side-by-side players run three variants; PNG, WebM and
+// blob-list exports are valid files.
 import { test, expect } from '@playwright/test';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -41,6 +42,10 @@ test('classroom: Figure 1 conserves mass; the side-by-side players run three var
   await page.goto('./classroom.html');
   await page.waitForFunction(() => window.classroom?.ready);
   await page.evaluate(() => window.classroom.ready);
+  // The players load as they near the viewport.
+  expect(await page.evaluate(() => document.querySelector('#carried').loaded)).toBe(false);
+  await page.evaluate(() => document.querySelector('#carried').scrollIntoView());
+  await page.evaluate(() => window.classroom.sideBySide);
   const masses = await page.evaluate(() => {
     const d = window.classroom.figure1;
     const before = d.gridMass();
@@ -58,6 +63,39 @@ test('classroom: Figure 1 conserves mass; the side-by-side players run three var
   expect(variants[1][0]).toBeGreaterThan(0);
   expect(variants[1][1]).toBe(false);
   expect(variants[2][1]).toBe(true);
+  expect(errors).toEqual([]);
+});
+
+test('classroom: Figure 1 shows the square at fixed times, grid and blobs, and its live panels loop', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.goto('./classroom.html');
+  await page.waitForFunction(() => window.classroom?.snapshots);
+  await page.evaluate(() => window.classroom.snapshots);
+  // Each snapshot: its density's spread in luminance, and how far it is from the one before.
+  const panels = await page.evaluate(() => ['grid', 'blobs'].map((model) => [0, 1, 2, 3, 4].map((k) => {
+    const c = document.querySelector(`#fig1-${model}-${k}`);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const lum = [];
+    for (let i = 0; i < d.length; i += 4) lum.push(0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2]);
+    return { label: c.getAttribute('aria-label'), lum };
+  })));
+  const std = (a) => {
+    const m = a.reduce((s, v) => s + v, 0) / a.length;
+    return Math.sqrt(a.reduce((s, v) => s + (v - m) ** 2, 0) / a.length);
+  };
+  const meanDiff = (a, b) => a.reduce((s, v, i) => s + Math.abs(v - b[i]), 0) / a.length;
+  for (const [row, model] of [[0, 'grid'], [1, 'blobs']]) {
+    expect(panels[row].map((p) => p.label)).toEqual(['0', '0.25', '0.5', '1', '2'].map((t) => `${model} at t = ${t} s`));
+    for (let k = 0; k < 5; k++) {
+      // Not a uniform haze: the square's remains stand out at every time shown.
+      expect(std(panels[row][k].lum), `${model} at snapshot ${k}`).toBeGreaterThan(5);
+      // And each snapshot shows a later state than the one before.
+      if (k > 0) expect(meanDiff(panels[row][k].lum, panels[row][k - 1].lum), `${model} ${k - 1} → ${k}`).toBeGreaterThan(1);
+    }
+  }
+  // The live panels play the first seconds again and again.
+  await expect.poll(() => page.evaluate(() => window.classroom.figure1Loops), { timeout: 60_000 }).toBeGreaterThan(0);
+  expect(await page.evaluate(() => window.classroom.figure1.time())).toBeLessThanOrEqual(2 + 1e-9);
   expect(errors).toEqual([]);
 });
 

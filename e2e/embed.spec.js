@@ -1,13 +1,61 @@
 // <wind-field>: several players per page, each with DESIGN §5's methods; the built
-// dist/embed.js works from a bare page; players off-screen do not run.
+// dist/embed.js is a small loader that fetches the player's code only when a player nears the
+// viewport (once for all of them); without autoplay a player shows its scene at poster-time
+// with a play button; ready/error events; attributes mirrored as properties and live changes.
 import { test, expect } from '@playwright/test';
+import { gzipSync } from 'node:zlib';
 import { collectErrors } from './helpers.js';
+
+/** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
+async function bare(page, name, body) {
+  await page.route(`**/${name}.html`, (route) => route.fulfill({
+    contentType: 'text/html',
+    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
+      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
+  }));
+  await page.goto(`./${name}.html`);
+  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
+}
+
+/** Records every script and WASM response: {url, gzip (bytes gzipped)}. */
+function recordCode(page) {
+  const fetched = [];
+  page.on('response', async (response) => {
+    const url = response.url();
+    if (!/^https?:/.test(url) || !/\.(m?js|wasm)(\?|$)/.test(url)) return;
+    const body = await response.body().catch(() => Buffer.alloc(0));
+    fetched.push({ url, gzip: gzipSync(body, { level: 9 }).length });
+  });
+  return fetched;
+}
+
+/** Luminance spread (max − min over pixels) of a player's canvas. */
+function canvasSpread(page, selector) {
+  return page.evaluate((sel) => {
+    const src = document.querySelector(sel).shadowRoot.querySelector('canvas');
+    const c = document.createElement('canvas');
+    c.width = 96;
+    c.height = 72;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(src, 0, 0, 96, 72);
+    const d = ctx.getImageData(0, 0, 96, 72).data;
+    let min = 255;
+    let max = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      const y = 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2];
+      min = Math.min(min, y);
+      max = Math.max(max, y);
+    }
+    return max - min;
+  }, selector);
+}
 
 test('two embedded players on the docs page both run', async ({ page }) => {
   const errors = collectErrors(page);
   await page.goto('./embed.html');
   const counts = await page.evaluate(async () => {
-    const players = [...document.querySelectorAll('wind-field')];
+    const players = [...document.querySelectorAll('#a, #b')];
+    for (const p of players) p.scrollIntoView();
     await Promise.all(players.map((p) => p.ready));
     for (const p of players) p.pause();
     await players[0].step(30);
@@ -21,24 +69,221 @@ test('two embedded players on the docs page both run', async ({ page }) => {
   expect(errors).toEqual([]);
 });
 
-test('the built embed.js defines the element on a bare page; off-screen players wait', async ({ page }) => {
+test('a lazy player 5,000 px below the fold fetches only the loader until scrolled to, then runs', async ({ page }) => {
   const errors = collectErrors(page);
-  await page.route('**/bare.html', (route) => route.fulfill({
-    contentType: 'text/html',
-    body: `<!doctype html><meta charset="utf-8"><link rel="icon" href="data:,">
-      <script type="module" src="./embed.js"></script>
-      <wind-field id="near" preset="default" autoplay style="width: 320px"></wind-field>
-      <div style="height: 4000px"></div>
-      <wind-field id="far" preset="default" autoplay style="width: 320px"></wind-field>`,
-  }));
-  await page.goto('./bare.html');
-  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
-  await page.evaluate(() => Promise.all([...document.querySelectorAll('wind-field')].map((p) => p.ready)));
-  await page.waitForTimeout(1500);
-  const [near, far] = await page.evaluate(() => ['#near', '#far'].map((s) => document.querySelector(s).stats().blobs));
-  expect(near).toBeGreaterThan(0);
-  expect(far).toBe(0);
+  const fetched = recordCode(page);
+  await bare(page, 'lazy', `<p style="height: 5000px">Text above the player.</p>
+    <wind-field id="far" preset="default" autoplay style="width: 320px"></wind-field>`);
+  await page.waitForLoadState('networkidle');
+  const before = fetched.map((f) => ({ ...f }));
+  const kib = before.reduce((sum, f) => sum + f.gzip, 0) / 1024;
+  test.info().annotations.push({ type: 'code before scrolling', description: `${kib.toFixed(1)} KiB gzipped: ${before.map((f) => f.url.split('/').pop()).join(', ')}` });
+  expect(before.map((f) => new URL(f.url).pathname)).toEqual(['/embed.js']);
+  expect(kib).toBeLessThanOrEqual(50);
+  expect(await page.evaluate(() => document.querySelector('#far').loaded)).toBe(false);
+  expect(page.workers()).toHaveLength(0);
+
   await page.evaluate(() => document.querySelector('#far').scrollIntoView());
+  await page.evaluate(() => document.querySelector('#far').ready);
   await expect.poll(() => page.evaluate(() => document.querySelector('#far').stats().blobs)).toBeGreaterThan(0);
+  const after = fetched.map((f) => new URL(f.url).pathname);
+  expect(after.some((p) => /^\/wind-field\/player-.*\.js$/.test(p))).toBe(true);
   expect(errors).toEqual([]);
+});
+
+test('off-screen players wait; players share one import of the player code', async ({ page }) => {
+  const errors = collectErrors(page);
+  const fetched = recordCode(page);
+  await bare(page, 'two', `<wind-field id="near" preset="default" autoplay style="width: 320px"></wind-field>
+    <div style="height: 4000px"></div>
+    <wind-field id="far" preset="default" autoplay style="width: 320px"></wind-field>
+    <wind-field id="eager" preset="default" loading="eager" style="width: 320px"></wind-field>`);
+  await page.evaluate(() => Promise.all(['#near', '#eager'].map((s) => document.querySelector(s).ready)));
+  // The near and the eager player run (the eager one off-screen, paused at its poster time);
+  // the far lazy one has not even started a worker.
+  expect(await page.evaluate(() => document.querySelector('#far').loaded)).toBe(false);
+  expect(page.workers()).toHaveLength(2);
+  await expect.poll(() => page.evaluate(() => document.querySelector('#near').stats().blobs)).toBeGreaterThan(0);
+  expect(await page.evaluate(() => document.querySelector('#far').stats().blobs)).toBe(0);
+  await page.evaluate(() => document.querySelector('#far').scrollIntoView());
+  await page.evaluate(() => document.querySelector('#far').ready);
+  await expect.poll(() => page.evaluate(() => document.querySelector('#far').stats().blobs)).toBeGreaterThan(0);
+  const chunks = fetched.filter((f) => /\/wind-field\/player-.*\.js$/.test(f.url));
+  expect(chunks).toHaveLength(1);
+  expect(errors).toEqual([]);
+});
+
+test('without autoplay a player shows its scene at poster-time with a play button', async ({ page }) => {
+  const errors = collectErrors(page);
+  await bare(page, 'poster', `<wind-field id="p" preset="default" style="width: 320px"></wind-field>
+    <wind-field id="one" preset="default" poster-time="1" style="width: 160px"></wind-field>`);
+  const ready = await page.evaluate(async () => {
+    const els = ['#p', '#one'].map((s) => document.querySelector(s));
+    await Promise.all(els.map((e) => e.ready));
+    return els.map((e) => ({ time: e.stats().time, dt: e.getScene().simulation.dt, blobs: e.stats().blobs }));
+  });
+  expect(ready[0].time).toBeCloseTo(Math.round(3 / ready[0].dt) * ready[0].dt, 6);
+  expect(ready[1].time).toBeCloseTo(Math.round(1 / ready[1].dt) * ready[1].dt, 6);
+  expect(ready[0].blobs).toBeGreaterThan(ready[1].blobs);
+  // The poster frame is drawn: the gas, not an empty box.
+  expect(await canvasSpread(page, '#p')).toBeGreaterThan(30);
+  // Paused at its poster time until asked to play.
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  expect(await page.evaluate(() => document.querySelector('#p').stats().time)).toBe(ready[0].time);
+  const play = page.locator('#p').locator('button.play');
+  await expect(play).toBeVisible();
+  await expect(play).toHaveAccessibleName('Play the default scene');
+  // Reached by the keyboard: the first tab stop of the page, started with Enter.
+  await page.keyboard.press('Tab');
+  await expect(play).toBeFocused();
+  await page.keyboard.press('Enter');
+  await expect(play).toBeHidden();
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().time)).toBeGreaterThan(ready[0].time);
+  expect(errors).toEqual([]);
+});
+
+test('a poster image shows until the scene is ready', async ({ page }) => {
+  const errors = collectErrors(page);
+  await bare(page, 'image', `<p style="height: 3000px">Text.</p>
+    <wind-field id="p" preset="default" poster="./favicon.svg" style="width: 320px"></wind-field>`);
+  const poster = page.locator('#p').locator('img.poster');
+  await expect(poster).toHaveAttribute('src', /favicon\.svg$/);
+  await expect.poll(() => poster.evaluate((img) => img.complete && img.naturalWidth > 0)).toBe(true);
+  expect(await poster.evaluate((img) => !img.hidden)).toBe(true);
+  await page.evaluate(() => document.querySelector('#p').scrollIntoView());
+  await page.evaluate(() => document.querySelector('#p').ready);
+  await expect(poster).toBeHidden();
+  expect(errors).toEqual([]);
+});
+
+test('ready and error events; methods wait for the scene or reject clearly', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.route('**/bad-scene.json', (route) => route.fulfill({
+    contentType: 'application/json',
+    body: JSON.stringify({ version: 1, field: { size: [32, 33, 32, 32] } }),
+  }));
+  await bare(page, 'events', '<p style="height: 3000px">Text.</p>');
+  const out = await page.evaluate(async () => {
+    const make = (attrs) => {
+      const el = document.createElement('wind-field');
+      for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
+      const events = [];
+      el.addEventListener('ready', (e) => events.push({ type: 'ready', version: e.detail.scene.version }));
+      el.addEventListener('error', (e) => events.push({ type: 'error', message: e.detail.message }));
+      document.body.append(el);
+      return { el, events };
+    };
+    const settle = (p) => p.then(() => 'resolved', (e) => `rejected: ${e.message}`);
+    const good = make({ preset: 'default', loading: 'eager', 'poster-time': '0' });
+    const missing = make({ src: './no-such-scene.json', loading: 'eager' });
+    const bad = make({ src: './bad-scene.json', loading: 'eager' });
+    const results = await Promise.all([good, missing, bad].map((x) => settle(x.el.ready)));
+    // A method on a failed player rejects with its error.
+    const step = await settle(missing.el.step(1));
+    // A player far below the fold: step() waits until it is scrolled to, then runs.
+    const lazy = make({ preset: 'default', 'poster-time': '0' });
+    let stepped = false;
+    const waiting = lazy.el.step(5).then(() => { stepped = true; });
+    await new Promise((r) => setTimeout(r, 300));
+    const before = { stepped, loaded: lazy.el.loaded, scene: lazy.el.getScene() };
+    lazy.el.scrollIntoView();
+    await waiting;
+    // A detached element rejects at once.
+    const detached = await settle(document.createElement('wind-field').step(1));
+    return {
+      results, step, before, after: { stepped, time: lazy.el.stats().time },
+      events: [good.events, missing.events, bad.events],
+      message: missing.el.shadowRoot.querySelector('[role=alert]').textContent,
+      loaded: good.el.loaded,
+      detached,
+    };
+  });
+  expect(out.results[0]).toBe('resolved');
+  expect(out.loaded).toBe(true);
+  expect(out.events[0]).toEqual([{ type: 'ready', version: 1 }]);
+  // (vite preview answers a missing file with its index page: not JSON.)
+  expect(out.results[1]).toMatch(/^rejected: .*no-such-scene\.json/);
+  expect(out.events[1]).toEqual([{ type: 'error', message: out.results[1].replace('rejected: ', '') }]);
+  expect(out.message).toContain('no-such-scene.json');
+  expect(out.step).toBe(out.results[1]);
+  expect(out.results[2]).toContain('field.size[1]');
+  expect(out.events[2].map((e) => e.type)).toEqual(['error']);
+  expect(out.before).toEqual({ stepped: false, loaded: false, scene: null });
+  expect(out.after.stepped).toBe(true);
+  expect(out.after.time).toBeGreaterThan(0);
+  expect(out.detached).toMatch(/^rejected: <wind-field> is not in a document/);
+  // The only console errors: a host's report of a missing file.
+  expect(errors.filter((e) => !/404/.test(e))).toEqual([]);
+});
+
+test('attributes are mirrored as properties; changing preset or src loads the new scene', async ({ page }) => {
+  const errors = collectErrors(page);
+  await bare(page, 'live', '<wind-field id="p" preset="default" loading="eager" poster-time="0" style="width: 240px"></wind-field>');
+  const out = await page.evaluate(async () => {
+    const el = document.querySelector('#p');
+    await el.ready;
+    const props = {
+      preset: el.preset, src: el.src, loading: el.loading, posterTime: el.posterTime, view: el.view,
+      autoplay: el.autoplay, controls: el.controls,
+    };
+    el.controls = true;
+    el.posterTime = 0.5;
+    el.view = 'points';
+    const reflected = ['controls', 'poster-time', 'view'].map((a) => el.getAttribute(a));
+    const loadedScene = new Promise((r) => el.addEventListener('ready', (e) => r(e.detail.scene), { once: true }));
+    el.preset = 'cigarette';
+    const cigarette = await loadedScene;
+    await el.ready;
+    const afterPreset = { emitters: el.getScene().emitters.length, object: el.getScene().render.objects[0]?.type, time: el.stats().time };
+    el.src = './scenes/default.json';
+    await new Promise((r) => el.addEventListener('ready', r, { once: true }));
+    return {
+      props, reflected, cigarette: cigarette.emitters.length, afterPreset,
+      afterSrc: { emitters: el.getScene().emitters.length, objects: el.getScene().render.objects.length },
+      label: el.shadowRoot.querySelector('canvas').getAttribute('aria-label'),
+      viewButton: el.shadowRoot.querySelector('.controls [data-action="view"]').textContent,
+    };
+  });
+  expect(out.props).toEqual({ preset: 'default', src: null, loading: 'eager', posterTime: 0, view: 'raymarch', autoplay: false, controls: false });
+  expect(out.reflected).toEqual(['', '0.5', 'points']);
+  expect(out.cigarette).toBe(2);
+  expect(out.afterPreset.emitters).toBe(2);
+  expect(out.afterPreset.object).toBe('cylinder');
+  expect(out.afterSrc).toEqual({ emitters: 1, objects: 0 });
+  expect(out.label).toBe('Gas in a turbulent wind: the scene default');
+  expect(out.viewButton).toBe('View: points');
+  expect(errors).toEqual([]);
+});
+
+test('with reduced motion an autoplay player waits at its poster time with its play button', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.emulateMedia({ reducedMotion: 'reduce' });
+  await bare(page, 'calm', '<wind-field id="p" preset="default" autoplay poster-time="0.5" style="width: 240px"></wind-field>');
+  const time = await page.evaluate(async () => {
+    const el = document.querySelector('#p');
+    await el.ready;
+    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+    return el.stats().time;
+  });
+  expect(time).toBeCloseTo(30 * 0.016666, 6);
+  await expect(page.locator('#p').locator('button.play')).toBeVisible();
+  await page.locator('#p').locator('button.play').click();
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().time)).toBeGreaterThan(time);
+  expect(errors).toEqual([]);
+});
+
+test('without WebGL a player reports an error instead of an endless wait', async ({ page }) => {
+  await page.addInitScript(() => {
+    HTMLCanvasElement.prototype.getContext = () => null;
+  });
+  await bare(page, 'nogl', '<wind-field id="p" preset="default" loading="eager" style="width: 240px"></wind-field>');
+  const out = await page.evaluate(async () => {
+    const el = document.querySelector('#p');
+    const event = new Promise((r) => el.addEventListener('error', (e) => r(e.detail.message), { once: true }));
+    const ready = await el.ready.then(() => 'resolved', (e) => e.message);
+    return { ready, event: await event, alert: el.shadowRoot.querySelector('[role=alert]').textContent };
+  });
+  expect(out.ready).toMatch(/^could not start the player/);
+  expect(out.event).toBe(out.ready);
+  expect(out.alert).toBe(out.ready);
 });

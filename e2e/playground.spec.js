@@ -422,3 +422,71 @@ test('runs over the step budget are refused before they start, naming simulation
   expect(r.blobs).toBe(0);
   expect(errors).toEqual([]);
 });
+
+test.describe('on a phone', () => {
+  test.use({ viewport: { width: 390, height: 844 }, hasTouch: true });
+
+  /** The canvas's box, its container's, and its drawing buffer. */
+  const boxes = (page) => page.evaluate(() => {
+    const c = document.querySelector('#canvas');
+    const r = (el) => { const b = el.getBoundingClientRect(); return [b.left, b.top, b.width, b.height]; };
+    return { canvas: r(c), view: r(document.querySelector('#view')), buffer: [c.width, c.height] };
+  });
+
+  /** The view fills its box, full width, and draws into all of it (buffer of the box's shape). */
+  async function expectFilled(page, width) {
+    await expect.poll(async () => {
+      const b = await boxes(page);
+      const ratio = (b.buffer[0] / b.buffer[1]) / (b.canvas[2] / b.canvas[3]);
+      return Math.abs(ratio - 1) < 0.05;
+    }).toBe(true);
+    const b = await boxes(page);
+    b.canvas.forEach((v, i) => expect(Math.abs(v - b.view[i]), `canvas box [${i}]`).toBeLessThanOrEqual(1));
+    expect(b.view[2]).toBeGreaterThan(0.9 * width);
+    expect(b.view[3]).toBeGreaterThan(200);
+    // The frame covers the box: the top and bottom bands are drawn (the scene's background,
+    // not the empty canvas).
+    const bands = await page.evaluate(() => {
+      const src = document.querySelector('#canvas');
+      const c = document.createElement('canvas');
+      c.width = 64;
+      c.height = 64;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(src, 0, 0, 64, 64);
+      const alpha = (y0) => {
+        const d = ctx.getImageData(0, y0, 64, 8).data;
+        let min = 255;
+        for (let i = 3; i < d.length; i += 4) min = Math.min(min, d[i]);
+        return min;
+      };
+      return [alpha(0), alpha(56)];
+    });
+    expect(bands).toEqual([255, 255]);
+  }
+
+  test('the view fills its box at 390×844 and turned sideways; the panel starts collapsed; touch orbits', async ({ page }) => {
+    const errors = collectErrors(page);
+    await open(page, './');
+    await page.evaluate(() => window.windfield.pause());
+    await expectFilled(page, 390);
+    await expect(page.locator('.lil-gui.lil-root')).toHaveClass(/lil-closed/);
+    // The panel opens from its title.
+    await page.locator('.lil-gui.lil-root > .lil-title').click();
+    await expect(page.locator('.lil-gui.lil-root')).not.toHaveClass(/lil-closed/);
+
+    // A one-finger swipe across the view orbits the camera.
+    const before = (await page.evaluate(() => window.windfield.exportBlobs({ width: 8, height: 8 }))).camera.position;
+    const [x, y, w, h] = (await boxes(page)).canvas;
+    const cdp = await page.context().newCDPSession(page);
+    const touch = (type, px) => cdp.send('Input.dispatchTouchEvent', { type, touchPoints: px === null ? [] : [{ x: px, y: y + h / 2 }] });
+    await touch('touchStart', x + w * 0.3);
+    for (let k = 1; k <= 8; k++) await touch('touchMove', x + w * (0.3 + 0.05 * k));
+    await touch('touchEnd', null);
+    const after = (await page.evaluate(() => window.windfield.exportBlobs({ width: 8, height: 8 }))).camera.position;
+    expect(Math.hypot(...after.map((v, i) => v - before[i]))).toBeGreaterThan(0.1);
+
+    await page.setViewportSize({ width: 844, height: 390 });
+    await expectFilled(page, 844);
+    expect(errors).toEqual([]);
+  });
+});

@@ -3,6 +3,8 @@
 import { defineConfig } from '@playwright/test';
 
 const chromium = process.env.CHROMIUM_PATH || '/usr/bin/chromium';
+/** The preview server's port (WINDFIELD_E2E_PORT, 4173 unless set). */
+const port = Number(process.env.WINDFIELD_E2E_PORT || 4173);
 
 export default defineConfig({
   testDir: '.',
@@ -14,7 +16,7 @@ export default defineConfig({
   retries: 0,
   reporter: [['list']],
   use: {
-    baseURL: 'http://127.0.0.1:4173/',
+    baseURL: `http://127.0.0.1:${port}/`,
     viewport: { width: 1100, height: 720 },
     launchOptions: {
       executablePath: chromium,
@@ -29,9 +31,9 @@ export default defineConfig({
     },
   },
   webServer: {
-    command: 'npx vite preview --config web/vite.config.js --host 127.0.0.1 --port 4173 --strictPort',
+    command: `npx vite preview --config web/vite.config.js --host 127.0.0.1 --port ${port} --strictPort`,
     cwd: '..',
-    url: 'http://127.0.0.1:4173/',
+    url: `http://127.0.0.1:${port}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 60_000,
   },

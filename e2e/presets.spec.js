@@ -68,6 +68,7 @@ test('<wind-field preset=NAME> plays a preset', async ({ page }) => {
   const scene = await page.evaluate(async () => {
     const el = document.createElement('wind-field');
     el.setAttribute('preset', 'cigarette');
+    el.setAttribute('loading', 'eager');
     el.style.cssText = 'display:block;width:200px;height:150px';
     document.body.append(el);
     await customElements.whenDefined('wind-field');

@@ -72,9 +72,12 @@ if (!process.argv.includes('--no-browser')) {
   build('web/vite.config.js');
   emit('site_js_gzip_kib', gzipKiB(`${root}dist`, /\.js$/), 'KiB');
   emit('site_wasm_gzip_kib', gzipKiB(`${root}dist`, /\.wasm$/), 'KiB');
-  const before = gzipKiB(`${root}dist`, /\.js$/);
   build('web/vite.embed.config.js');
-  emit('embed_module_gzip_kib', gzipKiB(`${root}dist`, /\.js$/) - before, 'KiB');
+  // The standalone <wind-field>: the loader a page fetches at once, and everything a player
+  // fetches when it nears the viewport (the player's code and the worker with the core).
+  const loader = gzipKiB(`${root}dist`, /^embed\.js$/);
+  emit('embed_loader_gzip_kib', loader, 'KiB');
+  emit('embed_full_gzip_kib', loader + gzipKiB(`${root}dist/wind-field`, /\.js$/), 'KiB');
   for (const r of await benchBrowser()) emit(r.name, r.value, r.unit);
 }
 

@@ -2,7 +2,7 @@
 // rises slowly and settles short of where it last fell from; a fixed scale stays fixed.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ResolutionGovernor } from '../web/src/resolution.js';
+import { ResolutionGovernor, SMALL_SCREEN_SCALE, startScale } from '../web/src/resolution.js';
 
 /** Feeds `fps(scale)` every 100 ms for `seconds`; returns the scales taken. */
 function run(governor, fps, seconds, start = 0) {
@@ -37,4 +37,18 @@ test('a fast view keeps full resolution; a fixed scale is kept whatever the rate
   assert.equal(g.scale, 1);
   run(g, () => 10, 2, 20_000);
   assert.ok(g.scale < 1);
+});
+
+test('phone-sized screens start at a lower resolution, in either orientation', () => {
+  assert.equal(startScale(390, 844), SMALL_SCREEN_SCALE);
+  assert.equal(startScale(844, 390), SMALL_SCREEN_SCALE);
+  assert.equal(startScale(1100, 720), 1);
+  const g = new ResolutionGovernor({ target: 60, start: startScale(390, 844) });
+  assert.equal(g.scale, SMALL_SCREEN_SCALE);
+  // It still rises when the frame rate allows, and 'auto' goes back to the start.
+  run(g, () => 60, 10);
+  assert.ok(g.scale > SMALL_SCREEN_SCALE);
+  g.set(0.25);
+  g.set('auto');
+  assert.equal(g.scale, SMALL_SCREEN_SCALE);
 });

@@ -1,6 +1,8 @@
 // The classroom page: the field's measured spectrum and temporal spread against the paper's
 // laws, a slice of the field, the Figure 1 demo (grid against blobs), and one plume shown with
-// turbulence off, on, and carried by the mean wind. `window.classroom` exposes the plotted data.
+// turbulence off, on, and carried by the mean wind. `window.classroom` exposes the plotted data
+// (`ready`: the plots and Figure 1 drawn; `snapshots`: Figure 1's row filled; `sideBySide`: the
+// three players, which load as they near the viewport, running their variants).
 
 import './embed.js';
 import init, { Figure1Demo } from '../pkg/windfield.js';
@@ -63,7 +65,7 @@ export function spectrumSeries(report) {
   };
 }
 
-const classroom = { report: null, series: null, figure1: null, ready: null };
+const classroom = { report: null, series: null, figure1: null, figure1Loops: 0, ready: null, snapshots: null, sideBySide: null };
 window.classroom = classroom;
 
 async function fieldLesson() {
@@ -111,49 +113,110 @@ function paint(canvas, data, n, scale) {
   ctx.drawImage(off, 0, 0, canvas.width, canvas.height);
 }
 
+/** Figure 1's snapshot times (s): the row of panels, as in the paper's figure. */
+export const FIGURE1_TIMES = [0, 0.25, 0.5, 1, 2];
+/** The live panels play the first `FIGURE1_TIMES.at(-1)` seconds, hold this long (s), and restart. */
+const FIGURE1_HOLD = 1;
+/** Simulated seconds per animation frame of the live panels. */
+const FIGURE1_STEP = 1 / 30;
+
+/**
+ * Figure 1: the live grid and blob panels play the square's first seconds and restart, so its
+ * evolution stays in view; on the way they fill a row of snapshots at fixed times for each
+ * model. With reduced motion the panels are not animated: the demo runs in the background and
+ * the panels show the latest snapshot, once.
+ */
 async function figure1Lesson() {
   await init();
   let demo = new Figure1Demo('{}');
   classroom.figure1 = demo;
-  const frame = () => {
+  classroom.figure1Loops = 0;
+  const end = FIGURE1_TIMES.at(-1);
+  let next = 0;
+  let held = 0;
+  let snapshotsDone;
+  classroom.snapshots = new Promise((resolve) => { snapshotsDone = resolve; });
+  const live = () => {
     const n = demo.n();
     paint($('#grid'), demo.grid(), n, 1);
     paint($('#blobs'), demo.blobs(), n, 1);
     $('#grid-caption').textContent = `Grid, t = ${demo.time().toFixed(2)} s, mass ${demo.gridMass().toFixed(5)}`;
     $('#blobs-caption').textContent = `Blobs, t = ${demo.time().toFixed(2)} s, mass ${demo.blobMass().toFixed(5)}`;
   };
-  $('#fig1-reset').addEventListener('click', () => {
+  /** Paints the snapshots the demo has reached (the same on every pass: the demo is deterministic). */
+  const snapshot = () => {
+    while (next < FIGURE1_TIMES.length && demo.time() >= FIGURE1_TIMES[next] - 1e-9) {
+      const n = demo.n();
+      paint($(`#fig1-grid-${next}`), demo.grid(), n, 1);
+      paint($(`#fig1-blobs-${next}`), demo.blobs(), n, 1);
+      next += 1;
+      if (reduceMotion) live();
+      if (next === FIGURE1_TIMES.length) snapshotsDone();
+    }
+  };
+  /** Steps to the next snapshot time, at most one frame's step. */
+  const advance = () => {
+    const target = next < FIGURE1_TIMES.length ? FIGURE1_TIMES[next] : Infinity;
+    demo.step(Math.min(FIGURE1_STEP, target - demo.time()));
+  };
+  let ticking = false;
+  const schedule = () => {
+    if (ticking) return;
+    ticking = true;
+    requestAnimationFrame(tick);
+  };
+  const restart = () => {
     demo.free();
     demo = new Figure1Demo('{}');
     classroom.figure1 = demo;
-    frame();
+    next = 0;
+    held = 0;
+    snapshot();
+    live();
+    schedule();
+  };
+  $('#fig1-reset').addEventListener('click', () => {
+    classroom.figure1Loops += 1;
+    restart();
   });
-  frame();
-  if (!reduceMotion) {
-    const tick = () => {
-      if (demo.time() < 12) {
-        demo.step(1 / 30);
-        frame();
-      }
-      requestAnimationFrame(tick);
-    };
-    requestAnimationFrame(tick);
+  function tick() {
+    ticking = false;
+    if (demo.time() < end - 1e-9) {
+      advance();
+      snapshot();
+      if (!reduceMotion) live();
+    } else if (!reduceMotion && ++held > FIGURE1_HOLD * 60) {
+      classroom.figure1Loops += 1;
+      restart();
+    }
+    if (!reduceMotion || next < FIGURE1_TIMES.length) schedule();
   }
+  snapshot();
+  live();
+  schedule();
 }
 
+/**
+ * Section 3's players load as they near the viewport; each then gets its variant of the scene.
+ * Resolves when all three run their variants.
+ */
 async function sideBySide() {
   const players = ['off', 'on', 'carried'].map((id) => $(`#${id}`));
-  await Promise.all(players.map((p) => p.ready));
-  const base = players[0].getScene();
-  const variants = {
-    off: { ...base, field: { ...base.field, amplitude: 0 } },
-    on: base,
-    carried: { ...base, field: { ...base.field, carried_by_wind: true } },
-  };
-  await Promise.all(players.map((p) => p.setScene(variants[p.id])));
+  return Promise.all(players.map(async (p) => {
+    await p.ready;
+    const base = p.getScene();
+    const variants = {
+      off: { ...base, field: { ...base.field, amplitude: 0 } },
+      on: base,
+      carried: { ...base, field: { ...base.field, carried_by_wind: true } },
+    };
+    if (p.id !== 'on') await p.setScene(variants[p.id]);
+  }));
 }
 
-classroom.ready = Promise.all([fieldLesson(), figure1Lesson(), sideBySide()]).catch((e) => {
+const fail = (e) => {
   showMessage(e.message);
   throw e;
-});
+};
+classroom.ready = Promise.all([fieldLesson(), figure1Lesson()]).catch(fail);
+classroom.sideBySide = sideBySide().catch(fail);

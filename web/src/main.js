@@ -12,6 +12,10 @@ import { decodeScene, encodeScene } from './state/url-codec.js';
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
 const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).href;
+/** Phone-sized screens start with the panel collapsed (its title opens it). */
+const smallScreen = window.matchMedia?.('(max-width: 800px), (max-height: 540px)').matches ?? false;
+/** What the view shows, for its text alternative: the preset's name, or the scene being edited. */
+let sceneName = 'the default scene';
 
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
@@ -27,6 +31,7 @@ const player = new Player($('#canvas'), {
       + ` · step ${st.stepMs.toFixed(2)} ms · ${st.fps.toFixed(0)} fps${scale}${volume}`;
   },
   onScene: async (scene) => {
+    $('#canvas').setAttribute('aria-label', `Gas in a turbulent wind: ${sceneName}, ${scene.emitters.length} emitter${scene.emitters.length === 1 ? '' : 's'}, ${scene.wind.length} wind primitive${scene.wind.length === 1 ? '' : 's'}`);
     history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
     controls?.refresh();
   },
@@ -54,6 +59,7 @@ function download(name, href) {
 let controls = null;
 function buildControls() {
   const gui = new GUI({ container: $('#panel'), title: 'windfield' });
+  if (smallScreen) gui.close();
   const actions = {
     play: () => { state.playing = true; },
     pause: () => { state.playing = false; },
@@ -110,6 +116,7 @@ function buildControls() {
   // Loads an edited scene; a refused one leaves a message and the controls on the last good one.
   const tryLoad = async (next) => {
     try {
+      if (!sceneName.endsWith(', edited')) sceneName += ', edited';
       await loadScene(next);
     } catch (e) {
       showMessage(e.message);
@@ -174,6 +181,7 @@ function wireImport() {
     const file = event.target.files?.[0];
     if (!file) return;
     try {
+      sceneName = `the imported scene ${file.name}`;
       await loadScene(JSON.parse(await file.text()));
     } catch (e) {
       showMessage(`Could not import ${file.name}: ${e.message}`);
@@ -204,6 +212,7 @@ async function initialScene() {
   });
   if (fromHash) {
     try {
+      sceneName = 'the scene from the link';
       return await loadScene(fromHash);
     } catch (e) {
       showMessage(`The link's scene is invalid (${e.message}); showing the default scene.`);
@@ -212,8 +221,10 @@ async function initialScene() {
   const preset = new URLSearchParams(location.search).get('preset');
   const url = preset ? new URL(`./scenes/${encodeURIComponent(preset)}.json`, document.baseURI).href : DEFAULT_SCENE_URL;
   let scene = await fetch(url).then((r) => (r.ok ? r.json() : null)).catch(() => null);
+  sceneName = preset ? `the ${preset} scene` : 'the default scene';
   if (!scene) {
     showMessage(`No preset named "${preset}"; showing the default scene.`);
+    sceneName = 'the default scene';
     scene = await fetch(DEFAULT_SCENE_URL).then((r) => r.json());
   }
   return loadScene(scene);

@@ -3,7 +3,7 @@
 
 import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
-import { ResolutionGovernor } from './resolution.js';
+import { ResolutionGovernor, startScale } from './resolution.js';
 import { waitForGpu } from './views/gpu-sync.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
@@ -42,8 +42,11 @@ export class Player {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
     this.stats = { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
-    /** Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`). */
-    this.resolution = new ResolutionGovernor();
+    /**
+     * Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`),
+     * starting lower on phone-sized screens.
+     */
+    this.resolution = new ResolutionGovernor({ start: startScale(window.innerWidth, window.innerHeight) });
     this.busy = false;
     this.lastFrame = null;
     this.accumulated = 0;

@@ -1,0 +1,78 @@
+// Accessibility: axe-core finds no serious or critical violation on any page, with its players
+// and panels loaded (the playground also with its panel collapsed, as on a phone); the
+// canvases carry text alternatives naming their scenes.
+import { test, expect } from '@playwright/test';
+import AxeBuilder from '@axe-core/playwright';
+
+/** The page's serious and critical violations, one line each (rule, impact, the first targets). */
+async function violations(page) {
+  const { violations: found } = await new AxeBuilder({ page }).analyze();
+  return found
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .map((v) => `${v.id} (${v.impact}): ${v.help} at ${v.nodes.slice(0, 3).map((n) => n.target.join(' > ')).join(', ')}`);
+}
+
+const pages = {
+  'playground (index.html)': {
+    path: './',
+    ready: async (page) => {
+      await page.waitForFunction(() => window.windfield !== undefined);
+      await page.evaluate(() => window.windfield.ready);
+      await expect(page.locator('.lil-gui.lil-root')).toBeVisible();
+    },
+  },
+  'field explorer (field.html)': {
+    path: './field.html',
+    ready: async (page) => {
+      await page.waitForFunction(() => window.windfield !== undefined);
+      await page.evaluate(() => window.windfield.ready);
+    },
+  },
+  'classroom (classroom.html)': {
+    path: './classroom.html',
+    ready: async (page) => {
+      await page.waitForFunction(() => window.classroom?.ready);
+      await page.evaluate(() => window.classroom.ready);
+      await page.evaluate(() => document.querySelector('#carried').scrollIntoView());
+      await page.evaluate(() => window.classroom.sideBySide);
+    },
+  },
+  'embedding guide (embed.html)': {
+    path: './embed.html',
+    ready: async (page) => {
+      await page.evaluate(() => Promise.all([...document.querySelectorAll('wind-field')].map((p) => p.ready)));
+    },
+  },
+};
+
+for (const [name, { path, ready }] of Object.entries(pages)) {
+  test(`axe: no serious or critical violation on the ${name}`, async ({ page }) => {
+    await page.goto(path);
+    await ready(page);
+    expect(await violations(page)).toEqual([]);
+  });
+}
+
+test('axe: the playground on a phone, panel collapsed and opened', async ({ page }) => {
+  await page.setViewportSize({ width: 390, height: 844 });
+  await page.goto('./');
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+  expect(await violations(page)).toEqual([]);
+  await page.locator('.lil-gui.lil-root > .lil-title').click();
+  expect(await violations(page)).toEqual([]);
+});
+
+test('canvases name what they show; players\' controls are labelled', async ({ page }) => {
+  await page.goto('./?preset=cigarette');
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+  await expect(page.locator('#canvas')).toHaveAttribute('aria-label', /the cigarette scene/);
+  await expect(page.locator('#canvas')).toHaveRole('img');
+  await page.goto('./embed.html');
+  const b = page.locator('#b');
+  await expect(b.locator('canvas')).toHaveAccessibleName('Gas in a turbulent wind: the scene default');
+  for (const label of ['Play', 'Step once', 'View: volume', 'Play the scene default']) {
+    await expect(b.getByRole('button', { name: label, exact: true })).toBeVisible();
+  }
+});

@@ -1,0 +1,68 @@
+// A page's script that uses windfield's types as a consumer would: compiled with `tsc --noEmit`
+// by tests/package.test.js. Lines marked @ts-expect-error must fail to compile.
+import type { BlobList, Scene, WindFieldElement, WindFieldStats } from 'windfield';
+
+const player = document.querySelector('wind-field');
+if (player) {
+  const el: WindFieldElement = player;
+  el.preset = 'steam-mug';
+  el.src = null;
+  el.autoplay = true;
+  el.controls = false;
+  el.loading = 'eager';
+  el.poster = 'poster.png';
+  el.posterTime = 1.5;
+  el.view = 'points';
+  el.alt = 'Steam rising from a mug';
+  el.load();
+  el.addEventListener('ready', (e) => {
+    const scene: Scene = e.detail.scene;
+    console.log(scene.simulation.dt, scene.field.size[0]);
+  });
+  el.addEventListener('error', (e) => console.log(e.detail.message.toUpperCase()));
+  el.addEventListener('click', (e) => console.log(e.clientX));
+  void (async () => {
+    await el.ready;
+    const loaded: boolean = el.loaded;
+    const scene = el.getScene();
+    if (scene) await el.setScene({ ...scene, seed: 2 });
+    await el.setScene({ version: 1, gas: { dissipation: 0.3 } });
+    await el.step(30);
+    const stats: WindFieldStats = el.stats();
+    const list: BlobList = await el.exportBlobs({ width: 64, height: 48 });
+    const png: string = await el.captureGPU({ mode: 'raymarch', width: 320, height: 240, quality: 'high' });
+    const still: string = await el.renderReference({ width: 160 });
+    console.log(loaded, stats.blobs + stats.time, list.blobs[0]?.sigma, png.length, still.length);
+  })();
+
+  // @ts-expect-error: not a view
+  el.view = 'wireframe';
+  // @ts-expect-error: loading is lazy or eager
+  el.loading = 'auto';
+  // @ts-expect-error: posterTime is a number
+  el.posterTime = '3';
+  // @ts-expect-error: ready is read-only
+  el.ready = Promise.resolve();
+  // @ts-expect-error: a scene needs its version
+  void el.setScene({ seed: 1 });
+  // @ts-expect-error: not a capture mode
+  void el.captureGPU({ mode: 'wireframe' });
+  el.addEventListener('error', (e) => {
+    // @ts-expect-error: the detail carries a message, not a code
+    console.log(e.detail.code);
+  });
+}
+
+const created = document.createElement('wind-field');
+created.preset = 'cigarette';
+document.body.append(created);
+
+const api = window.windfield;
+if (api) {
+  void api.ready.then(async () => {
+    api.pause();
+    await api.step(10);
+    const video: Blob = await api.recordWebM({ frames: 4, mode: 'points' });
+    console.log(api.getScene().seed, video.size);
+  });
+}

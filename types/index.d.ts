@@ -1,0 +1,241 @@
+// TypeScript declarations for windfield in the browser: the <wind-field> element (web/src/embed.js,
+// dist/embed.js), its attributes, properties, methods and events, the playground's
+// `window.windfield` (DESIGN §5), and the scene (DESIGN §3) and blob list (DESIGN §4) formats.
+// Importing the package's main entry defines the element; `import type` from it costs nothing.
+
+/** Three numbers: a point or a vector (m), or a colour (linear RGB). */
+export type Vec3 = [number, number, number];
+
+/** The views: the real-time volume view, one sprite a blob, or the exact per-chord march. */
+export type WindFieldView = 'raymarch' | 'points' | 'exact';
+/** Quality of the marched views: the volume's voxels and steps, the exact march's shadow grid. */
+export type WindFieldQuality = 'draft' | 'standard' | 'high';
+
+/** A wind primitive (any may add `decay` in m, and be switched off with `enabled: false`). */
+export type WindPrimitive = { decay?: number | null; enabled?: boolean } & (
+  | { type: 'uniform'; velocity: Vec3; position?: Vec3 }
+  | { type: 'source'; position: Vec3; strength: number; radius?: number }
+  | { type: 'vortex'; position: Vec3; axis: Vec3; strength: number; radius?: number }
+  | { type: 'repulsor'; radius: number; strength: number; path: [number, number, number, number][]; color?: Vec3 | null }
+);
+
+/** An emitter of blobs. */
+export interface Emitter {
+  shape?: 'point' | 'disk' | 'sphere' | 'box';
+  center?: Vec3;
+  normal?: Vec3;
+  radius?: number;
+  /** Full extents of a box (m). */
+  size?: Vec3;
+  /** Blobs per second. */
+  rate?: number;
+  sigma0?: number;
+  mass0?: number;
+  albedo?: Vec3 | null;
+  emission?: Vec3 | null;
+  velocity?: Vec3;
+  velocity_time?: number;
+  enabled?: boolean;
+}
+
+/** An opaque object of the render settings. */
+export type SceneObject =
+  | { type: 'sphere'; center: Vec3; radius: number; color: Vec3 }
+  | { type: 'plane'; point: Vec3; normal: Vec3; color: Vec3 }
+  | { type: 'cylinder'; base: Vec3; axis: Vec3; radius: number; height: number; color: Vec3; model?: 'mug' | 'teapot' | null };
+
+export type Light =
+  | { type: 'point'; position: Vec3; color: Vec3 }
+  | { type: 'directional'; direction: Vec3; color: Vec3 };
+
+export interface Camera {
+  position: Vec3;
+  target: Vec3;
+  up: Vec3;
+  /** The full vertical angle (degrees). */
+  fov_y_deg: number;
+}
+
+export interface Medium {
+  extinction: number | Vec3;
+  albedo: Vec3;
+  phase: { type: 'isotropic' } | { type: 'henyey-greenstein'; g: number };
+}
+
+export interface RenderSettings {
+  camera: Camera;
+  image: { width: number; height: number; encoding: 'srgb' | 'linear' };
+  medium: Medium;
+  lights: Light[];
+  shadows: boolean;
+  background: Vec3;
+  objects: SceneObject[];
+}
+
+/** A scene as the core holds it (DESIGN §3, version 1): every key filled in. */
+export interface Scene {
+  version: 1;
+  seed: number;
+  field: {
+    /** [nx, ny, nz, nt]. */
+    size: [number, number, number, number];
+    spectrum: { law: 'kolmogorov' | 'paper-literal'; epsilon: number; k_inertial: number; sigma: number };
+    /** World metres per spatial period. */
+    period: Vec3;
+    /** Seconds per temporal period. */
+    time_period: number;
+    amplitude: number;
+    carried_by_wind: boolean;
+  };
+  wind: WindPrimitive[];
+  emitters: Emitter[];
+  /** Initial blob sets (the morph's shapes). */
+  shapes?: Record<string, unknown>[];
+  gas: { diffusion: number; dissipation: number; split_sigma: number | null; max_blobs: number; min_mass: number };
+  simulation: { dt: number; integrator: 'rk2' | 'euler' };
+  render: RenderSettings;
+}
+
+type DeepPartial<T> = T extends (infer U)[] ? DeepPartial<U>[] : T extends object ? { [K in keyof T]?: DeepPartial<T[K]> } : T;
+
+/** A scene to load: `version` and any subset of the keys (the core fills in the rest). */
+export type SceneInput = DeepPartial<Omit<Scene, 'version'>> & { version: 1 };
+
+/** The blob list (DESIGN §4): the render input of the reference renderer and the CLI. */
+export interface BlobList extends Omit<RenderSettings, 'image'> {
+  image: { width: number; height: number; encoding: 'srgb' | 'linear' };
+  blobs: { center: Vec3; sigma: number; mass: number; albedo?: Vec3; emission?: Vec3; age?: number; sigma0?: number; mass0?: number }[];
+}
+
+/** `stats()`: the player's counters (times in ms). */
+export interface WindFieldStats {
+  blobs: number;
+  /** The simulated time (s). */
+  time: number;
+  fieldMs: number;
+  stepMs: number;
+  frameMs: number;
+  fps: number;
+  /** The real-time view's internal resolution (a share of the canvas's box). */
+  scale: number;
+  packMs: number;
+  frameBytes: number;
+}
+
+export interface CaptureOptions {
+  mode?: WindFieldView;
+  width?: number;
+  height?: number;
+  quality?: WindFieldQuality;
+  /** Draw models (the mug, the teapot) as the cylinders the CPU still uses. */
+  standIns?: boolean;
+}
+
+/** DESIGN §5's methods, on every <wind-field> and on the playground's `window.windfield`. */
+export interface WindFieldMethods {
+  /** The current scene (a copy); the element returns null before its scene is loaded. */
+  getScene(): Scene | null;
+  /** Loads `scene` from its start; rejects with an Error naming the bad key, and keeps the old one. */
+  setScene(scene: SceneInput): Promise<Scene>;
+  pause(): void;
+  play(): void;
+  /** Takes `n` fixed steps (deterministic) and draws. */
+  step(n?: number): Promise<void>;
+  stats(): WindFieldStats;
+  /** The blob list of the current state as the current view sees it. */
+  exportBlobs(size?: { width: number; height: number }): Promise<BlobList>;
+  /** A PNG data URL of a view drawn on the GPU at the size asked for. */
+  captureGPU(options?: CaptureOptions): Promise<string>;
+  /** A PNG data URL from the WASM CPU reference renderer. */
+  renderReference(options?: { width?: number; height?: number }): Promise<string>;
+}
+
+export interface WindFieldReadyDetail {
+  /** The scene now shown. */
+  scene: Scene;
+}
+
+export interface WindFieldErrorDetail {
+  /** What went wrong, e.g. `field.size[1]: must be an even number between 4 and 256`. */
+  message: string;
+}
+
+/** The element's own events. */
+export interface WindFieldEventMap {
+  /** A scene is loaded and drawn (at `poster-time` unless playing). */
+  ready: CustomEvent<WindFieldReadyDetail>;
+  /** The scene (or the player's code) could not be loaded. */
+  error: CustomEvent<WindFieldErrorDetail>;
+}
+
+/** `<wind-field>`: a player for one scene. Each attribute is mirrored by the property named here. */
+export declare class WindFieldElement extends HTMLElement implements WindFieldMethods {
+  /** `src`: a scene JSON URL, relative to the page; wins over `preset`. */
+  src: string | null;
+  /** `preset`: a scene in `scenes/` (`default` when neither is set). */
+  preset: string | null;
+  /** `controls`: play/pause, step and view buttons. */
+  controls: boolean;
+  /** `autoplay`: play from t = 0 once ready (not under `prefers-reduced-motion: reduce`). */
+  autoplay: boolean;
+  /** `loading`: `lazy` (default) loads as the element nears the viewport; `eager` at once. */
+  loading: 'lazy' | 'eager';
+  /** `poster`: an image URL shown until the scene is ready. */
+  poster: string | null;
+  /** `poster-time`: seconds the scene is simulated to when not playing (default 3). */
+  posterTime: number;
+  /** `view`: `raymarch` (default), `points` or `exact`. */
+  view: WindFieldView;
+  /** `alt`: the canvas's text alternative (by default one naming the scene). */
+  alt: string | null;
+  /** Resolves once the current scene is loaded and drawn; rejects when it cannot be. */
+  readonly ready: Promise<void>;
+  /** Whether the current scene is loaded. */
+  readonly loaded: boolean;
+  /** Starts loading now, whatever `loading` says. */
+  load(): void;
+
+  getScene(): Scene | null;
+  setScene(scene: SceneInput): Promise<Scene>;
+  pause(): void;
+  play(): void;
+  step(n?: number): Promise<void>;
+  stats(): WindFieldStats;
+  exportBlobs(size?: { width: number; height: number }): Promise<BlobList>;
+  captureGPU(options?: CaptureOptions): Promise<string>;
+  renderReference(options?: { width?: number; height?: number }): Promise<string>;
+
+  addEventListener<K extends keyof WindFieldEventMap>(type: K, listener: (this: WindFieldElement, ev: WindFieldEventMap[K]) => any, options?: boolean | AddEventListenerOptions): void;
+  addEventListener<K extends keyof HTMLElementEventMap>(type: K, listener: (this: WindFieldElement, ev: HTMLElementEventMap[K]) => any, options?: boolean | AddEventListenerOptions): void;
+  addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
+  removeEventListener<K extends keyof WindFieldEventMap>(type: K, listener: (this: WindFieldElement, ev: WindFieldEventMap[K]) => any, options?: boolean | EventListenerOptions): void;
+  removeEventListener<K extends keyof HTMLElementEventMap>(type: K, listener: (this: WindFieldElement, ev: HTMLElementEventMap[K]) => any, options?: boolean | EventListenerOptions): void;
+  removeEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | EventListenerOptions): void;
+}
+
+/** The playground's `window.windfield`: DESIGN §5's methods and a few for scripts and benchmarks. */
+export interface WindFieldPageAPI extends WindFieldMethods {
+  getScene(): Scene;
+  /** Resolves once the page's first scene is loaded. */
+  ready: Promise<void>;
+  /** A WebM of `frames` fixed steps, one a frame. */
+  recordWebM(options?: { frames?: number; width?: number; height?: number; fps?: number; mode?: WindFieldView }): Promise<Blob>;
+  /** Times frames drawn from scratch (ms, the median). */
+  timeFrames(options?: { mode?: WindFieldView; width?: number; height?: number; frames?: number; quality?: WindFieldQuality }): Promise<number>;
+  /** The real-time view's volumes as the GPU holds them, beside the core's twin of them. */
+  inspectVolume(options?: { quality?: WindFieldQuality }): Promise<unknown>;
+  /** The field's statistics (`windfield stats`). */
+  fieldStats(spectrum?: Partial<Scene['field']['spectrum']>): Promise<unknown>;
+  /** The small-scale wind at (x, y, z) m and t s. */
+  sample(x: number, y: number, z: number, t: number): Promise<unknown>;
+}
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'wind-field': WindFieldElement;
+  }
+  interface Window {
+    /** Set by the playground page (index.html). */
+    windfield?: WindFieldPageAPI;
+  }
+}
