@@ -102,6 +102,7 @@ function buildControls() {
     try {
       await loadScene(next);
     } catch (e) {
+      if (e.message.startsWith('cancelled')) return; // a newer edit is loading
       showMessage(e.message);
       controls.refresh();
     }

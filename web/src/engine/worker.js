@@ -6,18 +6,14 @@
 // progress while a request runs: { id, type: 'progress', progress, stage },
 // { type: 'fatal', error } if the core cannot start, and { type: 'crashed', error } if it traps
 // (a Rust panic or running out of memory leaves the instance unusable: the page restarts us).
-// Requests that arrive before the core is ready wait for it, in order.
+// Requests that arrive before the core is ready wait for it, in order. A field synthesis yields
+// between its stages, so requests keep being answered meanwhile (on the current scene), and a
+// newer valid `load` supersedes one in flight, which then rejects with "cancelled: ...".
 // Typed arrays in results are transferred, never copied through JSON.
 
 import init, {
   FieldSynthesis, ReferenceRender, SceneSimulation, sceneFieldParams, shadowGrid, validateScene,
 } from '../../pkg/windfield.js';
-
-const STAGES = [
-  'filtering white noise', 'x transform (u₁, u₂)', 'y transform (u₁, u₂)', 'z transform (u₁, u₂)',
-  't transform (u₁, u₂)', 'x transform (u₃)', 'y transform (u₃)', 'z transform (u₃)',
-  't transform (u₃)', 'interleaving',
-];
 
 /** The current field, its parameters (JSON) and synthesis time. */
 let field = null;
@@ -36,29 +32,48 @@ function progress(id, value, stage) {
   self.postMessage({ id, type: 'progress', progress: value, stage });
 }
 
-/** Synthesises the field for `paramsJson` unless the current one already matches. */
-function ensureField(id, paramsJson) {
-  if (field && fieldKey === paramsJson) return;
-  const t0 = performance.now();
-  const synthesis = new FieldSynthesis(paramsJson);
-  let stage = 0;
-  progress(id, 0, STAGES[0]);
-  while (synthesis.step()) {
-    stage += 1;
-    progress(id, synthesis.progress() * 0.95, STAGES[stage]);
-  }
-  const next = synthesis.finish();
-  synthesis.free();
-  field?.free();
-  field = next;
-  fieldKey = paramsJson;
-  fieldMs = performance.now() - t0;
+/** The newest valid `load` request: a synthesis in flight gives way to it. */
+let latestLoad = 0;
+const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
+
+function supersededUnlessLatest(id) {
+  if (id !== latestLoad) throw new Error('cancelled: a newer scene was loaded before this one was ready');
 }
 
-function load(id, scene) {
+/**
+ * Synthesises the field for `paramsJson` unless the current one already matches. Yields to
+ * the event loop between stages, so a newer `load` supersedes it: this one then rejects.
+ */
+async function ensureField(id, paramsJson) {
+  if (field && fieldKey === paramsJson) return;
+  // A superseded synthesis frees its memory at its next stage: let it, before allocating.
+  await yieldToEvents();
+  supersededUnlessLatest(id);
+  const t0 = performance.now();
+  const synthesis = new FieldSynthesis(paramsJson);
+  try {
+    progress(id, 0, synthesis.stage());
+    while (synthesis.step()) {
+      progress(id, synthesis.progress() * 0.95, synthesis.stage());
+      await yieldToEvents();
+      supersededUnlessLatest(id);
+    }
+    const next = synthesis.finish();
+    field?.free();
+    field = next;
+    fieldKey = paramsJson;
+    fieldMs = performance.now() - t0;
+  } finally {
+    synthesis.free();
+  }
+}
+
+async function load(id, scene) {
   const normal = validateScene(JSON.stringify(scene));
+  latestLoad = id;
   const parsed = JSON.parse(normal);
-  if (parsed.field.amplitude > 0) ensureField(id, sceneFieldParams(normal));
+  if (parsed.field.amplitude > 0) await ensureField(id, sceneFieldParams(normal));
+  supersededUnlessLatest(id);
   const next = parsed.field.amplitude > 0 ? SceneSimulation.withField(normal, field) : new SceneSimulation(normal);
   sim?.free();
   sim = next;
@@ -100,7 +115,7 @@ function inView(json, camera, image) {
 }
 
 const handlers = {
-  load: ({ id, scene }) => ({ result: load(id, scene) }),
+  load: async ({ id, scene }) => ({ result: await load(id, scene) }),
   reset: () => {
     const next = field && JSON.parse(sceneJson).field.amplitude > 0
       ? SceneSimulation.withField(sceneJson, field)
@@ -164,7 +179,7 @@ self.onmessage = async (event) => {
   const handler = handlers[msg.type];
   try {
     if (!handler) throw new Error(`unknown request "${msg.type}"`);
-    const { result, transfer = [] } = handler(msg);
+    const { result, transfer = [] } = await handler(msg);
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {
     self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err) });
