@@ -11,9 +11,6 @@
 //! each (8 pick the layer, 24 the signed abscissa), two per 64-bit draw, in single precision;
 //! 99.3 % of them cost one table lookup, one multiplication and one comparison.
 
-use rand_xoshiro::rand_core::{Rng, SeedableRng};
-use rand_xoshiro::Xoshiro256PlusPlus;
-
 /// Layers of the ziggurat (a power of two: the layer is the low bits of a draw).
 const LAYERS: usize = 256;
 /// Bits that pick the layer.
@@ -31,6 +28,40 @@ fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
+}
+
+/// xoshiro256++ (Blackman and Vigna), seeded as rand_xoshiro's `seed_from_u64` (four SplitMix64
+/// outputs): the same sequence, written out as a `Copy` value that the rare slow cases take and
+/// give back, so that the state stays in registers in the hot loop.
+#[derive(Debug, Clone, Copy)]
+struct Xoshiro256([u64; 4]);
+
+impl Xoshiro256 {
+    fn seed_from_u64(mut x: u64) -> Self {
+        Self([(); 4].map(|_| {
+            x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            mix64(x)
+        }))
+    }
+
+    #[inline(always)]
+    fn next_u64(&mut self) -> u64 {
+        let s = &mut self.0;
+        let result = s[0].wrapping_add(s[3]).rotate_left(23).wrapping_add(s[0]);
+        let t = s[1] << 17;
+        s[2] ^= s[0];
+        s[3] ^= s[1];
+        s[1] ^= s[2];
+        s[0] ^= s[3];
+        s[2] ^= t;
+        s[3] = s[3].rotate_left(45);
+        result
+    }
+
+    /// A uniform deviate in (0, 1).
+    fn uniform(&mut self) -> f32 {
+        (((self.next_u64() >> 40) as f32) + 0.5) * (1.0 / (1u32 << 24) as f32)
+    }
 }
 
 /// The ziggurat's tables for the standard normal density, unnormalised f(x) = exp(−x²/2).
@@ -78,7 +109,7 @@ impl Ziggurat {
 
 /// The noise stream of one spectral column.
 pub struct ColumnNoise<'a> {
-    rng: Xoshiro256PlusPlus,
+    rng: Xoshiro256,
     ziggurat: &'a Ziggurat,
 }
 
@@ -91,52 +122,8 @@ impl<'a> ColumnNoise<'a> {
             .iter()
             .fold(0u64, |acc, &ki| (acc << 21) | (ki + bias) as u64);
         Self {
-            rng: Xoshiro256PlusPlus::seed_from_u64(mix64(mix64(seed) ^ key)),
+            rng: Xoshiro256::seed_from_u64(mix64(mix64(seed) ^ key)),
             ziggurat,
-        }
-    }
-
-    /// A uniform deviate in (0, 1).
-    fn uniform(&mut self) -> f32 {
-        (((self.rng.next_u64() >> 40) as f32) + 0.5) * (1.0 / (1u32 << 24) as f32)
-    }
-
-    /// The ziggurat's quick case for 32 random bits: the deviate, or None (about 1 % of draws).
-    #[inline(always)]
-    fn quick(&self, bits: u32) -> Option<f32> {
-        let z = self.ziggurat;
-        let i = (bits & (LAYERS as u32 - 1)) as usize;
-        let j = (bits as i32) >> LAYER_BITS;
-        (j.unsigned_abs() < z.k[i]).then(|| j as f32 * z.w[i])
-    }
-
-    /// A standard normal deviate from 32 random bits, drawing more where they fall outside the
-    /// ziggurat's rectangles: the tail beyond R (layer 0) or a wedge.
-    #[cold]
-    fn slow(&mut self, mut bits: u32) -> f32 {
-        let z = self.ziggurat;
-        loop {
-            if let Some(x) = self.quick(bits) {
-                return x;
-            }
-            let i = (bits & (LAYERS as u32 - 1)) as usize;
-            let j = (bits as i32) >> LAYER_BITS;
-            let x = j as f32 * z.w[i];
-            if i == 0 {
-                // Marsaglia's tail: x = −ln(U₁)/R until −2 ln(U₂) > x².
-                let r = R as f32;
-                loop {
-                    let x = -self.uniform().ln() / r;
-                    let y = -self.uniform().ln();
-                    if y + y >= x * x {
-                        return if j > 0 { r + x } else { -r - x };
-                    }
-                }
-            }
-            if z.f[i] + self.uniform() * (z.f[i - 1] - z.f[i]) < (-0.5 * x * x).exp() {
-                return x;
-            }
-            bits = self.rng.next_u64() as u32;
         }
     }
 
@@ -152,7 +139,41 @@ impl<'a> ColumnNoise<'a> {
         if (j.unsigned_abs() < z.k[i]) & (l.unsigned_abs() < z.k[k]) {
             return [j as f32 * z.w[i], l as f32 * z.w[k]];
         }
-        [self.slow(lo), self.slow(hi)]
+        let (rng, a) = slow(self.rng, lo, z);
+        let (rng, b) = slow(rng, hi, z);
+        self.rng = rng;
+        [a, b]
+    }
+}
+
+/// A standard normal deviate from 32 random bits, drawing more from `rng` where they fall
+/// outside the ziggurat's rectangles: the tail beyond R (layer 0) or a wedge. The generator
+/// goes in and out by value, so that the caller's stays in registers.
+#[cold]
+#[inline(never)]
+fn slow(mut rng: Xoshiro256, mut bits: u32, z: &Ziggurat) -> (Xoshiro256, f32) {
+    loop {
+        let i = (bits & (LAYERS as u32 - 1)) as usize;
+        let j = (bits as i32) >> LAYER_BITS;
+        let x = j as f32 * z.w[i];
+        if j.unsigned_abs() < z.k[i] {
+            return (rng, x);
+        }
+        if i == 0 {
+            // Marsaglia's tail: x = −ln(U₁)/R until −2 ln(U₂) > x².
+            let r = R as f32;
+            loop {
+                let x = -rng.uniform().ln() / r;
+                let y = -rng.uniform().ln();
+                if y + y >= x * x {
+                    return (rng, if j > 0 { r + x } else { -r - x });
+                }
+            }
+        }
+        if z.f[i] + rng.uniform() * (z.f[i - 1] - z.f[i]) < (-0.5 * x * x).exp() {
+            return (rng, x);
+        }
+        bits = rng.next_u64() as u32;
     }
 }
 
@@ -164,6 +185,18 @@ mod tests {
         let z = Ziggurat::new();
         let mut n = ColumnNoise::new(seed, k, &z);
         (0..pairs).flat_map(|_| n.normal_pair()).collect()
+    }
+
+    #[test]
+    fn the_generator_is_rand_xoshiros_xoshiro256plusplus() {
+        use rand_xoshiro::rand_core::{Rng, SeedableRng};
+        for seed in [0, 1, 0x1234_5678_9abc_def0] {
+            let mut ours = Xoshiro256::seed_from_u64(seed);
+            let mut theirs = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+            for _ in 0..100 {
+                assert_eq!(ours.next_u64(), theirs.next_u64());
+            }
+        }
     }
 
     #[test]
