@@ -1,9 +1,10 @@
 #!/usr/bin/env node
-// Benchmarks: native (the Rust example), WASM (the built core in Node) and the browser (the
-// built site in chromium), medians of several runs. `npm run bench -- --json` prints one JSON
-// object per line; without --json, a table. `--no-browser` skips the browser part.
+// Benchmarks: native (the Rust example), WASM (the built core in Node), an FFTW baseline (when
+// Debian's libfftw3-dev is installed) and the browser (the built site in chromium), medians of
+// several runs. `npm run bench -- --json` prints one JSON object per line; without --json, a
+// table. `--no-browser` skips the browser part.
 import { execFileSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
 import { benchBrowser, gzipKiB } from './bench-browser.mjs';
@@ -38,12 +39,13 @@ for (const line of native.split('\n').filter(Boolean)) {
 }
 
 const core = await loadCore();
-const field = JSON.stringify({
-  size: [32, 32, 32, 32],
+/** The paper's field (ε = 1, k_inertial = 4, σ = 1, seed 1) on an n^4 lattice, as JSON. */
+const fieldJson = (n) => JSON.stringify({
+  size: [n, n, n, n],
   spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 },
   seed: 1,
 });
-emit('field_generate_32x32x32x32_wasm_ms', median(7, () => core.WindField.generate(field).free()), 'ms');
+emit('field_generate_32x32x32x32_wasm_ms', median(7, () => core.WindField.generate(fieldJson(32)).free()), 'ms');
 
 // One RK2 step of 200,000 blobs in a 32^4 field plus three primitives (as examples/bench.rs).
 const sceneJson = readFileSync(`${root}wasm-core/examples/blob-step-scene.json`, 'utf8');
@@ -61,9 +63,65 @@ emit('blob_step_200k_wasm_ms', median(7, () => sim.step(1)), 'ms');
 sim.free();
 emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
 
-const nativeMs = results.find((r) => r.name === 'field_generate_32x32x32x32_native_ms')?.value;
-const wasmMs = results.find((r) => r.name === 'field_generate_32x32x32x32_wasm_ms')?.value;
+const value = (name) => results.find((r) => r.name === name)?.value;
+const nativeMs = value('field_generate_32x32x32x32_native_ms');
+const wasmMs = value('field_generate_32x32x32x32_wasm_ms');
 if (nativeMs && wasmMs) emit('field_generate_wasm_over_native', wasmMs / nativeMs, 'ratio');
+
+// The largest lattice (2^24 points), and the WASM memory it takes, each in an instance of its
+// own (linear memory only grows, so an instance's size is its peak).
+let instances = 0;
+async function freshCore() {
+  const bindings = await import(`${root}web/pkg/windfield.js?instance=${++instances}`);
+  const exports = bindings.initSync({ module: readFileSync(`${root}web/pkg/windfield_bg.wasm`) });
+  return { ...bindings, memory: exports.memory };
+}
+const mib = (c) => c.memory.buffer.byteLength / 2 ** 20;
+{
+  const c = await freshCore();
+  emit('field_generate_64x64x64x64_wasm_ms', median(5, () => c.WindField.generate(fieldJson(64)).free()), 'ms');
+}
+{
+  const c = await freshCore();
+  const synthesis = new c.FieldSynthesis(fieldJson(64));
+  while (synthesis.step());
+  const f = synthesis.finish();
+  synthesis.free();
+  emit('wasm_field_64_memory_mib', mib(c), 'MiB');
+  // The worker keeps the current field while it synthesises the next one.
+  const next = c.WindField.generate(JSON.stringify({ ...JSON.parse(fieldJson(64)), seed: 2 }));
+  emit('wasm_field_64_replaced_memory_mib', mib(c), 'MiB');
+  next.free();
+  // The field page's statistics of the field (two half spectra in f64 while they run).
+  f.stats('');
+  emit('wasm_field_64_stats_memory_mib', mib(c), 'MiB');
+  f.free();
+}
+
+// FFTW: three complex single-precision 4-D inverse transforms of the same lattices, planned
+// with FFTW_MEASURE, in this run (scripts/fftw-baseline.c). Skipped without libfftw3-dev.
+if (existsSync('/usr/include/fftw3.h')) {
+  const binary = `${root}wasm-core/target/fftw-baseline`;
+  try {
+    execFileSync('gcc', ['-O2', '-o', binary, `${root}scripts/fftw-baseline.c`, '-lfftw3f', '-lm'], { stdio: ['ignore', 'ignore', 'inherit'] });
+    const out = execFileSync(binary, ['32', '64'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'] });
+    for (const line of out.split('\n').filter(Boolean)) {
+      const r = JSON.parse(line);
+      emit(r.name, r.value, r.unit);
+    }
+    for (const n of [32, 64]) {
+      const fftw = value(`fftw_inverse_3x_c2c_${n}x${n}x${n}x${n}_ms`);
+      const wasm = value(`field_generate_${n}x${n}x${n}x${n}_wasm_ms`);
+      const native = value(`field_generate_${n}x${n}x${n}x${n}_native_ms`);
+      if (fftw && wasm) emit(`field_over_fftw_${n}`, wasm / fftw, 'ratio');
+      if (fftw && native) emit(`field_native_over_fftw_${n}`, native / fftw, 'ratio');
+    }
+  } catch (err) {
+    console.error(`bench: FFTW baseline skipped (${err.message.split('\n')[0]})`);
+  }
+} else {
+  console.error('bench: FFTW baseline skipped (no /usr/include/fftw3.h: apt-get install libfftw3-dev)');
+}
 
 // The browser: the built site (`npm run build` first), skipped with --no-browser.
 if (!process.argv.includes('--no-browser')) {

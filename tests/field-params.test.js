@@ -12,6 +12,8 @@ test('each bad parameter is named', () => {
   const cases = [
     [withSize(DEFAULT_FIELD, [32, 33, 32, 32]), 'field.size[1]'],
     [withSize(DEFAULT_FIELD, [2, 32, 32, 32]), 'field.size[0]'],
+    [withSize(DEFAULT_FIELD, [32, 32, 32, 258]), 'field.size[3]'],
+    [withSize(DEFAULT_FIELD, [32, 32, 5, 32]), 'field.size[2]'],
     [withSize(DEFAULT_FIELD, 128), 'field.size: nx*ny*nz*nt'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, law: 'x' } }, 'field.spectrum.law'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, epsilon: 0 } }, 'field.spectrum.epsilon'],
@@ -24,6 +26,14 @@ test('each bad parameter is named', () => {
     assert.equal(errors.length, 1, JSON.stringify(errors));
     assert.ok(errors[0].startsWith(path), errors[0]);
   }
+});
+
+test('any even extent from 4 to 256 is a lattice, with the core\'s message otherwise', () => {
+  for (const size of [[24, 48, 48, 16], [6, 10, 4, 8], [256, 256, 16, 16], [64, 64, 64, 64]]) {
+    assert.deepEqual(validateField({ ...withSize(DEFAULT_FIELD, size), spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: 1 } }), []);
+  }
+  assert.deepEqual(validateField(withSize(DEFAULT_FIELD, [32, 33, 32, 32])),
+    ['field.size[1]: must be an even number between 4 and 256 (got 33 for ny)']);
 });
 
 test('k_inertial is bounded by the smallest spatial extent', () => {

@@ -15,6 +15,9 @@ process.on('exit', () => rmSync(dir, { recursive: true, force: true }));
 const cases = [
   { size: [16, 16, 16, 16], spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 }, seed: 1 },
   { size: [32, 16, 8, 4], spectrum: { law: 'paper-literal', epsilon: 2.5, k_inertial: 1.5, sigma: 0.3 }, seed: 987654321 },
+  // Extents that are not powers of two, 2 mod 4 included.
+  { size: [24, 10, 6, 12], spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 1, sigma: 1 }, seed: 3 },
+  { size: [48, 24, 24, 6], spectrum: { law: 'kolmogorov', epsilon: 0.5, k_inertial: 2, sigma: 2 }, seed: 44 },
 ];
 
 for (const params of cases) {
@@ -56,18 +59,53 @@ for (const params of cases) {
 }
 
 test('WASM rejects bad parameters with the parameter path', () => {
-  const bad = { ...cases[0], size: [16, 12, 16, 16] };
-  assert.throws(() => core.WindField.generate(JSON.stringify(bad)), /field\.size\[1\]: must be a power of two/);
+  for (const [size, message] of [
+    [[16, 13, 16, 16], /field\.size\[1\]: must be an even number between 4 and 256 \(got 13 for ny\)$/],
+    [[2, 16, 16, 16], /field\.size\[0\]: must be an even number between 4 and 256 \(got 2 for nx\)$/],
+    [[16, 16, 16, 258], /field\.size\[3\]: must be an even number between 4 and 256 \(got 258 for nt\)$/],
+    [[256, 256, 16, 32], /field\.size: nx\*ny\*nz\*nt must be at most 16777216 lattice points/],
+  ]) {
+    assert.throws(() => core.WindField.generate(JSON.stringify({ ...cases[0], size })), message, String(size));
+    assert.throws(() => new core.FieldSynthesis(JSON.stringify({ ...cases[0], size })), message, String(size));
+  }
   const badK = { ...cases[0], spectrum: { ...cases[0].spectrum, k_inertial: 99 } };
   assert.throws(() => core.WindField.generate(JSON.stringify(badK)), /field\.spectrum\.k_inertial/);
   assert.throws(() => core.WindField.generate('{"size": [16,16,16,16], "bogus": 1}'), /unknown field `bogus`/);
+});
+
+test('the CLI names the flag and exits 2 on a bad --size', () => {
+  const run = (size) => {
+    try {
+      cli(['generate', '--size', size, '--out', join(dir, 'never.npy')]);
+    } catch (err) {
+      return { status: err.status, stderr: err.stderr.toString() };
+    }
+    return { status: 0, stderr: '' };
+  };
+  for (const [size, message] of [
+    ['32,33,32,32', '--size: must be an even number between 4 and 256 (got 33 for ny)'],
+    ['7', '--size: must be an even number between 4 and 256 (got 7 for nx)'],
+    ['32,32,260,4', '--size: must be an even number between 4 and 256 (got 260 for nz)'],
+    ['128', '--size: nx*ny*nz*nt must be at most 16777216 lattice points (64^4) to stay within memory (got 268435456)'],
+    ['32,32,32', '--size: expected N or NX,NY,NZ,NT with each an even number between 4 and 256 (got "32,32,32")'],
+  ]) {
+    const { status, stderr } = run(size);
+    assert.equal(status, 2, size);
+    assert.equal(stderr.trim(), `windfield: error: ${message}`);
+  }
 });
 
 test('staged synthesis reports progress and equals the one-call field', () => {
   const json = JSON.stringify(cases[0]);
   const synthesis = new core.FieldSynthesis(json);
   const progress = [synthesis.progress()];
-  while (synthesis.step()) progress.push(synthesis.progress());
+  const stages = [synthesis.stage()];
+  while (synthesis.step()) {
+    progress.push(synthesis.progress());
+    stages.push(synthesis.stage());
+  }
+  assert.match(stages[0], /white noise, filter, t transform \(1\/8\)/);
+  assert.match(stages.at(-1), /z, y and x transforms \(8\/8\)/);
   const staged = synthesis.finish().data();
   assert.deepEqual(progress, [...progress].sort((a, b) => a - b));
   assert.ok(progress.length >= 8);

@@ -43,7 +43,7 @@ test('bad scenes fail with the JSON path and leave no output', () => {
   writeFileSync(bad, JSON.stringify({ version: 1, field: { size: [32, 31, 32, 32] } }));
   assert.throws(
     () => execFileSync(cliPath, ['simulate', bad, '--seconds', '1', '--out', out], { stdio: 'pipe' }),
-    (err) => err.status === 2 && /field\.size\[1\]: must be a power of two/.test(err.stderr.toString()),
+    (err) => err.status === 2 && /field\.size\[1\]: must be an even number between 4 and 256 \(got 31 for ny\)/.test(err.stderr.toString()),
   );
   assert.equal(existsSync(out), false);
   assert.throws(

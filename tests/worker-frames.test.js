@@ -25,9 +25,9 @@ function assertWholeBuffers(name, { result, transfer }) {
   return { moved, bytes: before };
 }
 
-test('frames are whole typed arrays, and the packed blobs are the blob list', () => {
+test('frames are whole typed arrays, and the packed blobs are the blob list', async () => {
   const handlers = createHandlers(core, () => {});
-  handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene });
   const { moved: frame, bytes } = assertWholeBuffers('advance', handlers.advance({ steps: 60 }));
   assert.ok(frame.count > 1000, `${frame.count} blobs`);
   assert.ok(frame.blobs instanceof Uint32Array && frame.info instanceof Float32Array && frame.spheres instanceof Float32Array);
@@ -47,17 +47,17 @@ test('frames are whole typed arrays, and the packed blobs are the blob list', ()
   assertWholeBuffers('reset', handlers.reset({}));
 });
 
-test('the exact march\'s frame is whole typed arrays too', () => {
+test('the exact march\'s frame is whole typed arrays too', async () => {
   const handlers = createHandlers(core, () => {});
-  handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene });
   handlers.advance({ steps: 30 });
   const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16 }));
   assert.ok(moved.count > 0 && moved.heads.length % (4 * 1024) === 0 && moved.list.length % 1024 === 0);
 });
 
-test('the worker refuses a run over the step budget, or a step count that is not one, before it starts', () => {
+test('the worker refuses a run over the step budget, or a step count that is not one, before it starts', async () => {
   const handlers = createHandlers(core, () => {});
-  handlers.load({ id: 1, scene: { ...scene, simulation: { dt: 0.001, integrator: 'rk2' } } });
+  await handlers.load({ id: 1, scene: { ...scene, simulation: { dt: 0.001, integrator: 'rk2' } } });
   const time = () => handlers.advance({ steps: 0 }).result.time;
   assert.throws(() => handlers.advance({ steps: 1_000_001 }), /simulation\.dt: 1000\.001 s of simulated time .* 1000001 steps, over the limit of 1000000/);
   for (const bad of [-1, 1.5, Number.NaN]) assert.throws(() => handlers.advance({ steps: bad }), /steps: must be a whole number/);

@@ -60,11 +60,7 @@ fn peak_rss_mib() -> Option<f64> {
 }
 
 fn main() {
-    let params = FieldParams::default();
-    let ms = median_ms(7, || {
-        std::hint::black_box(TurbulentField::generate(&params).expect("valid"));
-    });
-    emit("field_generate_32x32x32x32_native_ms", ms, "ms");
+    field_generate(32, 7);
     let mut sim =
         Simulation::new(Scene::from_json(BLOB_STEP_SCENE).expect("valid")).expect("valid");
     seed_blobs(&mut sim, 200_000);
@@ -98,4 +94,26 @@ fn main() {
     if let Some(mib) = peak_rss_mib() {
         emit("native_peak_rss_mib", mib, "MiB");
     }
+
+    // The largest lattice, 2^24 points, last: its 192 MiB field would dominate the peak above.
+    field_generate(64, 5);
+    if let Some(mib) = peak_rss_mib() {
+        emit("field_64_native_peak_rss_mib", mib, "MiB");
+    }
+}
+
+/// Median time of the paper's field (ε = 1, k_inertial = 4, σ = 1, seed 1) on an n^4 lattice.
+fn field_generate(n: usize, runs: usize) {
+    let params = FieldParams {
+        size: [n; 4],
+        ..FieldParams::default()
+    };
+    let ms = median_ms(runs, || {
+        std::hint::black_box(TurbulentField::generate(&params).expect("valid"));
+    });
+    emit(
+        &format!("field_generate_{n}x{n}x{n}x{n}_native_ms"),
+        ms,
+        "ms",
+    );
 }

@@ -48,6 +48,13 @@ impl FieldSynthesis {
         self.inner.as_mut().is_some_and(|s| s.run_stage())
     }
 
+    /// What the next `step()` does, for progress displays.
+    pub fn stage(&self) -> String {
+        self.inner
+            .as_ref()
+            .map_or_else(|| "done".into(), |s| s.stage().label())
+    }
+
     /// Fraction of the work done, 0..1.
     pub fn progress(&self) -> f64 {
         self.inner.as_ref().map_or(1.0, |s| s.progress())

@@ -1,4 +1,4 @@
-//! Four-dimensional FFT over a [`Lattice`] in `[t][z][y][x]` order, built from rustfft's 1-D
+//! Four-dimensional FFT of an array in `[t][z][y][x]` order, built from rustfft's 1-D
 //! transforms, one axis pass at a time.
 //!
 //! Normalisation: none in either direction (rustfft's convention). The inverse transform is
@@ -7,9 +7,9 @@
 //!
 //! The x axis is contiguous and transformed in place. The strided axes (y, z, t) are gathered a
 //! batch of [`BATCH`] neighbouring columns at a time into a small contiguous buffer, transformed
-//! together and scattered back, so every memory access reads whole cache lines.
+//! together and scattered back, so every memory access reads whole cache lines
+//! ([`transform_columns`], which the field synthesis uses too).
 
-use crate::lattice::Lattice;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftDirection, FftNum};
 use std::sync::Arc;
@@ -20,42 +20,147 @@ pub const BATCH: usize = 16;
 /// rustfft's planner. In WASM (always built with SIMD) the SIMD planner alone, so the scalar
 /// planner's algorithms stay out of the module.
 #[cfg(not(target_arch = "wasm32"))]
-fn planner<T: FftNum>() -> rustfft::FftPlanner<T> {
+pub fn planner<T: FftNum>() -> rustfft::FftPlanner<T> {
     rustfft::FftPlanner::new()
 }
 
 #[cfg(target_arch = "wasm32")]
-fn planner<T: FftNum>() -> rustfft::FftPlannerWasmSimd<T> {
+pub fn planner<T: FftNum>() -> rustfft::FftPlannerWasmSimd<T> {
     rustfft::FftPlannerWasmSimd::new().expect("the WASM build enables simd128")
 }
 
-/// A planned 4-D transform in one direction.
+/// Transforms every column of `data` with `fft` (of length n): `data` is a sequence of blocks of
+/// `n * stride` values, and column j of a block holds its values j, j + stride, ….
+/// `columns` is a work buffer (grown as needed) and `scratch` must hold at least
+/// `fft.get_inplace_scratch_len()` values.
+pub fn transform_columns<T: FftNum>(
+    fft: &dyn Fft<T>,
+    data: &mut [Complex<T>],
+    stride: usize,
+    columns: &mut Vec<Complex<T>>,
+    scratch: &mut [Complex<T>],
+) {
+    if stride == 1 {
+        fft.process_with_scratch(data, scratch);
+    } else {
+        transform_column_range(fft, data, stride, 0..stride, columns, scratch);
+    }
+}
+
+/// [`transform_columns`] for the columns `range` of each block only (a cache-sized share).
+pub fn transform_column_range<T: FftNum>(
+    fft: &dyn Fft<T>,
+    data: &mut [Complex<T>],
+    stride: usize,
+    range: std::ops::Range<usize>,
+    columns: &mut Vec<Complex<T>>,
+    scratch: &mut [Complex<T>],
+) {
+    let n = fft.len();
+    let block = n * stride;
+    assert_eq!(data.len() % block, 0, "data is not whole blocks");
+    assert!(range.end <= stride, "columns beyond the stride");
+    columns.resize(
+        n * BATCH.min(range.len()),
+        Complex::new(T::zero(), T::zero()),
+    );
+    for block_data in data.chunks_exact_mut(block) {
+        for c0 in range.clone().step_by(BATCH) {
+            let width = BATCH.min(range.end - c0);
+            let columns = &mut columns[..width * n];
+            gather(block_data, stride, c0, columns, n);
+            fft.process_with_scratch(columns, scratch);
+            scatter(columns, n, block_data, stride, c0);
+        }
+    }
+}
+
+/// Copies the columns `c0..c0 + columns.len() / n` of a block (rows of `stride`) into
+/// contiguous columns of length n, two rows at a time (two neighbouring values of a column are
+/// one 16-byte store for f32).
+#[inline]
+fn gather<T: FftNum>(
+    block: &[Complex<T>],
+    stride: usize,
+    c0: usize,
+    columns: &mut [Complex<T>],
+    n: usize,
+) {
+    let width = columns.len() / n;
+    let pairs = n / 2;
+    for p in 0..pairs {
+        let r0 = &block[2 * p * stride + c0..][..width];
+        let r1 = &block[(2 * p + 1) * stride + c0..][..width];
+        for ((column, a), b) in columns.chunks_exact_mut(n).zip(r0).zip(r1) {
+            let pair = &mut column[2 * p..2 * p + 2];
+            pair[0] = *a;
+            pair[1] = *b;
+        }
+    }
+    if n % 2 == 1 {
+        let row = &block[(n - 1) * stride + c0..][..width];
+        for (column, v) in columns.chunks_exact_mut(n).zip(row) {
+            column[n - 1] = *v;
+        }
+    }
+}
+
+/// The inverse of [`gather`].
+#[inline]
+fn scatter<T: FftNum>(
+    columns: &[Complex<T>],
+    n: usize,
+    block: &mut [Complex<T>],
+    stride: usize,
+    c0: usize,
+) {
+    let width = columns.len() / n;
+    let pairs = n / 2;
+    for p in 0..pairs {
+        let (head, tail) = block.split_at_mut((2 * p + 1) * stride);
+        let r0 = &mut head[2 * p * stride + c0..][..width];
+        let r1 = &mut tail[c0..][..width];
+        for ((column, a), b) in columns.chunks_exact(n).zip(r0).zip(r1) {
+            let pair = &column[2 * p..2 * p + 2];
+            *a = pair[0];
+            *b = pair[1];
+        }
+    }
+    if n % 2 == 1 {
+        let row = &mut block[(n - 1) * stride + c0..][..width];
+        for (column, v) in columns.chunks_exact(n).zip(row) {
+            *v = column[n - 1];
+        }
+    }
+}
+
+/// A planned 4-D transform in one direction of arrays of extents `[nx, ny, nz, nt]`
+/// (any lengths rustfft takes).
 pub struct Fft4<T: FftNum> {
-    lattice: Lattice,
+    shape: [usize; 4],
     axes: [Arc<dyn Fft<T>>; 4],
     scratch: Vec<Complex<T>>,
     columns: Vec<Complex<T>>,
 }
 
 impl<T: FftNum> Fft4<T> {
-    pub fn new(lattice: Lattice, direction: FftDirection) -> Self {
+    pub fn new(shape: [usize; 4], direction: FftDirection) -> Self {
         let mut planner = planner::<T>();
-        let axes = lattice.size.map(|n| planner.plan_fft(n, direction));
+        let axes = shape.map(|n| planner.plan_fft(n, direction));
         let scratch_len = axes
             .iter()
             .map(|f| f.get_inplace_scratch_len())
             .max()
             .unwrap_or(0);
-        let longest = *lattice.size.iter().max().unwrap_or(&1);
         Self {
-            lattice,
+            shape,
             axes,
             scratch: vec![Complex::new(T::zero(), T::zero()); scratch_len],
-            columns: vec![Complex::new(T::zero(), T::zero()); longest * BATCH],
+            columns: Vec::new(),
         }
     }
 
-    /// Transforms `data` (length `lattice.points()`) along every axis.
+    /// Transforms `data` (length `nx*ny*nz*nt`) along every axis.
     pub fn process(&mut self, data: &mut [Complex<T>]) {
         for axis in 0..4 {
             self.process_axis(data, axis);
@@ -66,44 +171,24 @@ impl<T: FftNum> Fft4<T> {
     pub fn process_axis(&mut self, data: &mut [Complex<T>], axis: usize) {
         assert_eq!(
             data.len(),
-            self.lattice.points(),
-            "buffer does not match the lattice"
+            self.shape.iter().product::<usize>(),
+            "buffer does not match the shape"
         );
-        let n = self.lattice.size[axis];
-        let stride: usize = self.lattice.size[..axis].iter().product();
-        let fft = &self.axes[axis];
-        if stride == 1 {
-            fft.process_with_scratch(data, &mut self.scratch);
-            return;
-        }
-        let block = n * stride;
-        for start in (0..data.len()).step_by(block) {
-            let block_data = &mut data[start..start + block];
-            for c0 in (0..stride).step_by(BATCH) {
-                let width = BATCH.min(stride - c0);
-                let columns = &mut self.columns[..width * n];
-                for j in 0..n {
-                    let row = &block_data[j * stride + c0..j * stride + c0 + width];
-                    for (col, v) in row.iter().enumerate() {
-                        columns[col * n + j] = *v;
-                    }
-                }
-                fft.process_with_scratch(columns, &mut self.scratch);
-                for j in 0..n {
-                    let row = &mut block_data[j * stride + c0..j * stride + c0 + width];
-                    for (col, v) in row.iter_mut().enumerate() {
-                        *v = columns[col * n + j];
-                    }
-                }
-            }
-        }
+        let stride: usize = self.shape[..axis].iter().product();
+        transform_columns(
+            &*self.axes[axis],
+            data,
+            stride,
+            &mut self.columns,
+            &mut self.scratch,
+        );
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lattice::wave_number;
+    use crate::lattice::{wave_number, Lattice};
 
     /// Slow, obviously-right 4-D DFT: Σ_x u(x) exp(sign · 2πi Σ_a k_a x_a / n_a).
     fn naive_dft4(l: &Lattice, u: &[Complex<f64>], sign: f64) -> Vec<Complex<f64>> {
@@ -151,7 +236,7 @@ mod tests {
         let u = test_signal(l.points());
         for (dir, sign) in [(FftDirection::Forward, -1.0), (FftDirection::Inverse, 1.0)] {
             let mut fast = u.clone();
-            Fft4::<f64>::new(l, dir).process(&mut fast);
+            Fft4::<f64>::new(l.size, dir).process(&mut fast);
             let slow = naive_dft4(&l, &u, sign);
             let err = fast
                 .iter()
@@ -168,8 +253,8 @@ mod tests {
         let l = Lattice::new([32, 32, 4, 4], "s").unwrap();
         let u = test_signal(l.points());
         let mut v = u.clone();
-        Fft4::<f64>::new(l, FftDirection::Forward).process(&mut v);
-        Fft4::<f64>::new(l, FftDirection::Inverse).process(&mut v);
+        Fft4::<f64>::new(l.size, FftDirection::Forward).process(&mut v);
+        Fft4::<f64>::new(l.size, FftDirection::Inverse).process(&mut v);
         let n = l.points() as f64;
         let err = u
             .iter()
@@ -192,7 +277,7 @@ mod tests {
                 Complex::from_polar(1.0, ph)
             })
             .collect();
-        Fft4::<f64>::new(l, FftDirection::Forward).process(&mut w);
+        Fft4::<f64>::new(l.size, FftDirection::Forward).process(&mut w);
         let peak = l.index(kx, ky, kz, kt);
         for (i, c) in w.iter().enumerate() {
             let want = if i == peak { n } else { 0.0 };

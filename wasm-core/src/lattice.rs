@@ -9,9 +9,9 @@ use crate::error::ParamError;
 /// Smallest allowed extent along any axis.
 pub const MIN_EXTENT: usize = 4;
 /// Largest allowed extent along any axis.
-pub const MAX_EXTENT: usize = 128;
-/// Memory guard: at most 2^24 lattice points (64^4). Synthesis then holds about
-/// 16 bytes (two complex f32 buffers) + 12 bytes (the field) per point, under 0.5 GiB.
+pub const MAX_EXTENT: usize = 256;
+/// Memory guard: at most 2^24 lattice points (64^4). Synthesis works in place in the field's
+/// own 12 bytes per point (three f32 components), so a field of 2^24 points needs 192 MiB.
 pub const MAX_POINTS: usize = 1 << 24;
 
 /// Lattice extents `[nx, ny, nz, nt]`.
@@ -23,15 +23,16 @@ pub struct Lattice {
 const AXIS_NAMES: [&str; 4] = ["nx", "ny", "nz", "nt"];
 
 impl Lattice {
-    /// Validates `size`: each extent a power of two in `4..=128`, the product at most [`MAX_POINTS`].
+    /// Validates `size`: each extent an even number in `4..=256` (powers of two are merely the
+    /// fastest), the product at most [`MAX_POINTS`].
     /// Errors name `{path}[i]` (or `{path}` for the memory guard).
     pub fn new(size: [usize; 4], path: &str) -> Result<Self, ParamError> {
         for (i, &n) in size.iter().enumerate() {
-            if !(MIN_EXTENT..=MAX_EXTENT).contains(&n) || !n.is_power_of_two() {
+            if !(MIN_EXTENT..=MAX_EXTENT).contains(&n) || n % 2 != 0 {
                 return Err(ParamError::new(
                     format!("{path}[{i}]"),
                     format!(
-                        "must be a power of two between {MIN_EXTENT} and {MAX_EXTENT} (got {n} for {})",
+                        "must be an even number between {MIN_EXTENT} and {MAX_EXTENT} (got {n} for {})",
                         AXIS_NAMES[i]
                     ),
                 ));
@@ -100,16 +101,22 @@ mod tests {
     fn rejects_bad_extents_with_paths() {
         let e = Lattice::new([32, 33, 32, 32], "field.size").unwrap_err();
         assert_eq!(e.path, "field.size[1]");
-        assert!(e.message.contains("power of two between 4 and 128"));
+        assert_eq!(
+            e.message,
+            "must be an even number between 4 and 256 (got 33 for ny)"
+        );
         assert_eq!(Lattice::new([2, 32, 32, 32], "s").unwrap_err().path, "s[0]");
         assert_eq!(
-            Lattice::new([32, 32, 32, 256], "s").unwrap_err().path,
+            Lattice::new([32, 32, 32, 258], "s").unwrap_err().path,
             "s[3]"
         );
         let e = Lattice::new([128, 128, 128, 128], "field.size").unwrap_err();
         assert_eq!(e.path, "field.size");
         assert!(e.message.contains("at most"));
         assert!(Lattice::new([64, 64, 64, 64], "s").is_ok());
+        assert!(Lattice::new([256, 256, 4, 4], "s").is_ok());
+        assert!(Lattice::new([6, 10, 4, 8], "s").is_ok());
+        assert!(Lattice::new([24, 48, 48, 16], "s").is_ok());
     }
 
     #[test]

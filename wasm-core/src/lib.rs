@@ -19,7 +19,9 @@ pub mod figure1;
 pub mod gas;
 pub mod lanes;
 pub mod lattice;
+pub mod noise;
 pub mod npy;
+pub mod real_fft;
 pub mod render;
 pub mod scene;
 pub mod shapes;
@@ -27,6 +29,8 @@ pub mod simulation;
 pub mod spectrum;
 pub mod spline;
 pub mod stats;
+pub mod synthesis;
+pub mod velocity_spectrum;
 pub mod wind;
 
 pub use error::ParamError;

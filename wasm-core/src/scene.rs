@@ -2,13 +2,14 @@
 //! primitives, emitters, gas constants, simulation and render settings.
 //!
 //! Parsing is strict: unknown keys, wrong types, non-finite or out-of-range numbers, and sizes
-//! over the memory guards are errors that name the JSON path (`field.size[1]: must be a power
-//! of two between 4 and 128`). Every section and most keys have defaults; `version` is required.
+//! over the memory guards are errors that name the JSON path (`field.size[1]: must be an even
+//! number between 4 and 256`). Every section and most keys have defaults; `version` is required.
 
 use crate::blob_list::{RenderSettings, MAX_COORD};
 use crate::check;
 use crate::error::ParamError;
 use crate::field::{FieldParams, MAX_SEED};
+use crate::lattice::{MAX_EXTENT, MIN_EXTENT};
 use crate::shapes::Shape;
 use crate::spectrum::SpectrumParams;
 use schemars::JsonSchema;
@@ -71,11 +72,28 @@ impl Default for Scene {
     }
 }
 
+/// The JSON Schema of `field.size`: four even integers from 4 to 256 (the product's bound, 2^24
+/// points, is beyond JSON Schema and stated in the description).
+fn lattice_size_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "array",
+        "items": {
+            "type": "integer",
+            "minimum": MIN_EXTENT,
+            "maximum": MAX_EXTENT,
+            "multipleOf": 2
+        },
+        "minItems": 4,
+        "maxItems": 4
+    })
+}
+
 /// The small-scale field and its world mapping.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FieldSettings {
-    /// Lattice `[nx, ny, nz, nt]`, each a power of two in 4..=128, at most 2^24 points.
+    /// Lattice `[nx, ny, nz, nt]`, each an even number in 4..=256, at most 2^24 points in all.
+    #[schemars(schema_with = "lattice_size_schema")]
     pub size: [usize; 4],
     pub spectrum: SpectrumParams,
     /// World metres per spatial period along x, y, z (the paper's grid spacing control).

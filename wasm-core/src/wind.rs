@@ -119,6 +119,8 @@ impl SmallScale {
             }
         }
         slice.size = [nx, ny, nz];
+        slice.extent = Vec3A::new(nx as f32, ny as f32, nz as f32);
+        slice.inv_extent = slice.extent.recip();
         slice.cells_per_metre = self.cells_per_metre.into();
         slice.offset = (self.carry * t as f32).into();
     }
@@ -130,6 +132,9 @@ impl SmallScale {
 #[derive(Debug, Clone, Default)]
 pub struct FieldSlice {
     size: [usize; 3],
+    /// The extents as floats, and their reciprocals (for the periodic wrap).
+    extent: Vec3A,
+    inv_extent: Vec3A,
     data: Vec<f32>,
     cells_per_metre: Vec3A,
     offset: Vec3A,
@@ -146,11 +151,15 @@ impl FieldSlice {
         let q = (x - self.offset) * self.cells_per_metre;
         let fl = q.floor();
         let t = q - fl;
-        let [nx, ny, nz] = self.size;
-        // Extents are powers of two: masking wraps negative indices too (|q| < 2^31).
-        let x0 = (fl.x as i32 as usize) & (nx - 1);
-        let y0 = (fl.y as i32 as usize) & (ny - 1);
-        let z0 = (fl.z as i32 as usize) & (nz - 1);
+        let [nx, ny] = [self.size[0], self.size[1]];
+        // The periodic wrap of the integer cell fl into 0..n, exact in f32 while |q| < 2^24: the
+        // quotient may round to a neighbouring integer, which the two selects put right.
+        let n = self.extent;
+        let mut cell = fl - n * (fl * self.inv_extent).floor();
+        cell = Vec3A::select(cell.cmpge(n), cell - n, cell);
+        cell = Vec3A::select(cell.cmplt(Vec3A::ZERO), cell + n, cell);
+        let cell = cell.max(Vec3A::ZERO).min(n - 1.0);
+        let (x0, y0, z0) = (cell.x as usize, cell.y as usize, cell.z as usize);
         let (sx, sy) = (nx + 1, ny + 1);
         let base = 3 * ((z0 * sy + y0) * sx + x0);
         let (dy, dz) = (3 * sx, 3 * sx * sy);

@@ -19,19 +19,11 @@ fn stats_for(p: &FieldParams) -> FieldStats {
     analyse(&f, &p.spectrum)
 }
 
-#[test]
-fn synthesis_equals_naive_inverse_dft_of_its_spectrum() {
-    // Tiny anisotropic lattice: every output value against Σ û exp(+i(k·x + ωt)) in f64.
-    let p = params(
-        [8, 4, 8, 4],
-        SpectrumParams {
-            k_inertial: 1.0,
-            ..Default::default()
-        },
-        7,
-    );
-    let spectrum = hermitian_spectrum(&p).unwrap();
-    let field = TurbulentField::generate(&p).unwrap();
+/// Every output value against Σ û exp(+i(k·x + ωt)) in f64, where û is the spectrum the
+/// synthesis filters; returns the largest error and the largest value.
+fn naive_inverse_dft_error(p: &FieldParams) -> (f64, f64) {
+    let spectrum = hermitian_spectrum(p).unwrap();
+    let field = TurbulentField::generate(p).unwrap();
     let [nx, ny, nz, nt] = p.size;
     let n = nx * ny * nz * nt;
     let coords = |i: usize| [i % nx, i / nx % ny, i / (nx * ny) % nz, i / (nx * ny * nz)];
@@ -62,33 +54,63 @@ fn synthesis_equals_naive_inverse_dft_of_its_spectrum() {
             max_val = max_val.max(sum.re.abs());
         }
     }
-    assert!(max_val > 0.1, "field should not be empty");
-    assert!(max_err < 1e-5 * max_val, "max error {max_err} of {max_val}");
+    (max_err, max_val)
+}
+
+#[test]
+fn synthesis_equals_naive_inverse_dft_of_its_spectrum() {
+    // Tiny anisotropic lattices, powers of two and not (each extent even, 2 mod 4 included).
+    for size in [[8, 4, 8, 4], [6, 10, 4, 8], [10, 6, 6, 12], [4, 4, 14, 6]] {
+        let p = params(
+            size,
+            SpectrumParams {
+                k_inertial: 1.0,
+                ..Default::default()
+            },
+            7,
+        );
+        let (max_err, max_val) = naive_inverse_dft_error(&p);
+        assert!(max_val > 0.1, "{size:?}: field should not be empty");
+        assert!(
+            max_err < 1e-5 * max_val,
+            "{size:?}: max error {max_err} of {max_val}"
+        );
+    }
 }
 
 #[test]
 fn spectrum_is_hermitian_and_zero_on_nyquist_planes_and_k0() {
-    let p = params(
-        [8, 8, 8, 8],
-        SpectrumParams {
-            k_inertial: 1.0,
-            ..Default::default()
-        },
-        3,
-    );
-    let s = hermitian_spectrum(&p).unwrap();
-    let n = 8usize;
-    for t in 0..n {
-        for z in 0..n {
-            for y in 0..n {
-                for x in 0..n {
-                    let i = ((t * n + z) * n + y) * n + x;
-                    let j = ((((n - t) % n) * n + (n - z) % n) * n + (n - y) % n) * n + (n - x) % n;
-                    for c in s.iter() {
-                        assert!((c[i] - c[j].conj()).norm() < 1e-15);
-                        if [x, y, z, t].contains(&(n / 2)) || (x == 0 && y == 0 && z == 0) {
-                            assert_eq!(c[i].norm(), 0.0);
+    for size in [[8, 8, 8, 8], [6, 10, 4, 8]] {
+        let p = params(
+            size,
+            SpectrumParams {
+                k_inertial: 1.0,
+                ..Default::default()
+            },
+            3,
+        );
+        let s = hermitian_spectrum(&p).unwrap();
+        let [nx, ny, nz, nt] = size;
+        let index = |x: usize, y: usize, z: usize, t: usize| ((t * nz + z) * ny + y) * nx + x;
+        let neg = |i: usize, n: usize| (n - i) % n;
+        for t in 0..nt {
+            for z in 0..nz {
+                for y in 0..ny {
+                    for x in 0..nx {
+                        let i = index(x, y, z, t);
+                        let j = index(neg(x, nx), neg(y, ny), neg(z, nz), neg(t, nt));
+                        let nyquist = x == nx / 2 || y == ny / 2 || z == nz / 2 || t == nt / 2;
+                        for c in s.iter() {
+                            assert!((c[i] - c[j].conj()).norm() < 1e-15);
+                            if nyquist || (x == 0 && y == 0 && z == 0) {
+                                assert_eq!(c[i].norm(), 0.0);
+                            }
                         }
+                        // Divergence-free mode by mode: k·û = 0.
+                        let k = [wave_number(x, nx), wave_number(y, ny), wave_number(z, nz)];
+                        let div: Complex64 = (0..3).map(|c| s[c][i] * k[c] as f64).sum();
+                        let size: f64 = (0..3).map(|c| s[c][i].norm()).sum();
+                        assert!(div.norm() <= 1e-6 * size * 8.0, "k·û at {k:?}");
                     }
                 }
             }
@@ -108,6 +130,65 @@ fn kolmogorov_slope_over_the_inertial_range_averaged_over_seeds() {
         (mean + 5.0 / 3.0).abs() < 0.1,
         "mean slope {mean} ({slopes:?})"
     );
+}
+
+/// The statistics of DESIGN §6 on a lattice whose extents are not powers of two (48 = 2⁴·3),
+/// averaged over seeds: slope, energy, divergence, components, mean and temporal spread.
+#[test]
+fn statistics_on_a_48x48x48x16_lattice_averaged_over_seeds() {
+    let seeds = 1..=4u64;
+    let reports: Vec<FieldStats> = seeds
+        .map(|seed| stats_for(&params([48, 48, 48, 16], SpectrumParams::default(), seed)))
+        .collect();
+    let count = reports.len() as f64;
+    let mean_of = |f: &dyn Fn(&FieldStats) -> f64| reports.iter().map(f).sum::<f64>() / count;
+    let slope = mean_of(&|st| st.slope.unwrap());
+    assert!((slope + 5.0 / 3.0).abs() < 0.1, "mean slope {slope}");
+    assert_eq!(reports[0].fit_range, [5, 23]);
+    let energy = mean_of(&|st| st.energy_ratio);
+    assert!((energy - 1.0).abs() < 0.05, "mean energy ratio {energy}");
+    let mut components = [0.0; 3];
+    for st in &reports {
+        assert!(
+            st.divergence_ratio < 1e-10,
+            "divergence {}",
+            st.divergence_ratio
+        );
+        for (total, e) in components.iter_mut().zip(st.component_energy) {
+            *total += e;
+        }
+        for m in st.mean {
+            assert!(m.abs() < 1e-6 * st.rms_speed, "mean {:?}", st.mean);
+        }
+    }
+    let average = components.iter().sum::<f64>() / 3.0;
+    for c in components {
+        assert!(
+            (c / average - 1.0).abs() < 0.05,
+            "components {components:?}"
+        );
+    }
+    // nt = 16 cuts the Gaussian of std kσ at the Nyquist ω: the measured spread follows the
+    // lattice-normalised G_k, shell by shell.
+    for shell in 5..=20 {
+        let measured = mean_of(&|st| {
+            st.shells
+                .iter()
+                .find(|s| s.k == shell)
+                .unwrap()
+                .temporal_spread
+        });
+        let expected = reports[0]
+            .shells
+            .iter()
+            .find(|s| s.k == shell)
+            .unwrap()
+            .temporal_spread_expected;
+        assert!(
+            (measured / expected - 1.0).abs() < 0.1,
+            "shell {shell}: spread {measured} vs {expected}"
+        );
+    }
 }
 
 #[test]
@@ -315,6 +396,39 @@ fn interpolation_is_exact_at_nodes_and_continuous_across_seams() {
 }
 
 #[test]
+fn every_even_extent_from_4_to_256_is_accepted() {
+    let spectrum = SpectrumParams {
+        k_inertial: 1.0,
+        ..Default::default()
+    };
+    for n in (4..=256).step_by(2) {
+        assert!(
+            FieldParams {
+                size: [n, 4, 4, 4],
+                spectrum,
+                ..FieldParams::default()
+            }
+            .validate()
+            .is_ok(),
+            "{n}"
+        );
+    }
+    for n in (5..=255).step_by(2).chain([0, 2, 258, 512]) {
+        let e = FieldParams {
+            size: [4, 4, 4, n],
+            ..FieldParams::default()
+        }
+        .validate()
+        .unwrap_err();
+        assert_eq!(e.path, "field.size[3]");
+        assert_eq!(
+            e.message,
+            format!("must be an even number between 4 and 256 (got {n} for nt)")
+        );
+    }
+}
+
+#[test]
 fn every_bad_parameter_is_rejected_with_its_name() {
     let good = FieldParams::default();
     let cases: Vec<(FieldParams, &str, &str)> = vec![
@@ -324,7 +438,7 @@ fn every_bad_parameter_is_rejected_with_its_name() {
                 ..good
             },
             "field.size[1]",
-            "power of two between 4 and 128",
+            "must be an even number between 4 and 256 (got 33 for ny)",
         ),
         (
             FieldParams {
@@ -332,15 +446,15 @@ fn every_bad_parameter_is_rejected_with_its_name() {
                 ..good
             },
             "field.size[0]",
-            "power of two",
+            "must be an even number between 4 and 256 (got 2 for nx)",
         ),
         (
             FieldParams {
-                size: [32, 32, 256, 32],
+                size: [32, 32, 258, 4],
                 ..good
             },
             "field.size[2]",
-            "power of two",
+            "must be an even number between 4 and 256 (got 258 for nz)",
         ),
         (
             FieldParams {
@@ -348,15 +462,31 @@ fn every_bad_parameter_is_rejected_with_its_name() {
                 ..good
             },
             "field.size[3]",
-            "power of two",
+            "(got 0 for nt)",
         ),
         (
             FieldParams {
-                size: [128, 128, 128, 128],
+                size: [24, 24, 5, 24],
+                ..good
+            },
+            "field.size[2]",
+            "(got 5 for nz)",
+        ),
+        (
+            FieldParams {
+                size: [64, 64, 64, 66],
                 ..good
             },
             "field.size",
-            "at most",
+            "nx*ny*nz*nt must be at most 16777216 lattice points (64^4) to stay within memory (got 17301504)",
+        ),
+        (
+            FieldParams {
+                size: [256, 256, 256, 4],
+                ..good
+            },
+            "field.size",
+            "at most 16777216",
         ),
         (
             FieldParams {

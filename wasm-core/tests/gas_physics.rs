@@ -181,29 +181,35 @@ fn decay_multiplies_by_exp_of_minus_distance_over_l() {
 
 #[test]
 fn wind_frames_equal_the_quadrilinear_reference() {
-    let s = scene(json!({
-        "field": {"size": [16, 16, 16, 8], "period": [2, 3, 4], "time_period": 5, "amplitude": 1.3, "carried_by_wind": true},
-        "wind": [
-            {"type": "uniform", "velocity": [0.2, 0.1, 0]},
-            {"type": "vortex", "position": [0, 0, 0], "axis": [1, 1, 0], "strength": 0.7},
-            {"type": "repulsor", "radius": 0.3, "strength": 0.5, "path": [[0, -1, 0, 0], [2, 1, 0.5, 0], [4, 0, 1, 1]]}
-        ]
-    }));
-    let sim = Simulation::new(s).unwrap();
-    for (k, t) in [0.0, 0.37, 1.9, 7.3].into_iter().enumerate() {
-        let frame = sim.wind.frame(t);
-        for i in 0..50 {
-            let x = Vec3::new(
-                ((i * 37 + k) % 101) as f32 / 17.0 - 3.0,
-                ((i * 53) % 97) as f32 / 19.0 - 2.5,
-                ((i * 71 + 3 * k) % 89) as f32 / 23.0 - 2.0,
-            );
-            let a = frame.velocity(x);
-            let b = sim.wind.velocity(x, t);
-            assert!(
-                (a - b).length() < 1e-4 * (1.0 + b.length()),
-                "t {t} x {x}: {a} vs {b}"
-            );
+    // Powers of two and not: the frame's periodic wrap must agree with the reference's.
+    for size in [[16, 16, 16, 8], [12, 10, 6, 6]] {
+        let s = scene(json!({
+            "field": {"size": size, "period": [2, 3, 4], "time_period": 5, "amplitude": 1.3, "carried_by_wind": true,
+                      "spectrum": {"k_inertial": 1}},
+            "wind": [
+                {"type": "uniform", "velocity": [0.2, 0.1, 0]},
+                {"type": "vortex", "position": [0, 0, 0], "axis": [1, 1, 0], "strength": 0.7},
+                {"type": "repulsor", "radius": 0.3, "strength": 0.5, "path": [[0, -1, 0, 0], [2, 1, 0.5, 0], [4, 0, 1, 1]]}
+            ]
+        }));
+        let sim = Simulation::new(s).unwrap();
+        for (k, t) in [0.0, 0.37, 1.9, 7.3].into_iter().enumerate() {
+            let frame = sim.wind.frame(t);
+            for i in 0..60 {
+                // Mostly within a few periods of the origin, every fifth one tens of periods out.
+                let far = if i % 5 == 0 { 40.0 } else { 1.0 };
+                let x = Vec3::new(
+                    ((i * 37 + k) % 101) as f32 / 17.0 - 3.0,
+                    ((i * 53) % 97) as f32 / 19.0 - 2.5,
+                    ((i * 71 + 3 * k) % 89) as f32 / 23.0 - 2.0,
+                ) * far;
+                let a = frame.velocity(x);
+                let b = sim.wind.velocity(x, t);
+                assert!(
+                    (a - b).length() < 1e-4 * (1.0 + b.length()),
+                    "{size:?} t {t} x {x}: {a} vs {b}"
+                );
+            }
         }
     }
 }

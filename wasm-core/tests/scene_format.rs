@@ -60,6 +60,22 @@ fn a_minimal_scene_takes_the_paper_defaults() {
 
 type Edit = Box<dyn Fn(&mut serde_json::Value)>;
 
+#[test]
+fn any_even_lattice_within_the_memory_guard_is_a_valid_scene() {
+    for size in [
+        [24, 48, 48, 16],
+        [6, 10, 4, 8],
+        [256, 256, 16, 16],
+        [64, 64, 64, 64],
+    ] {
+        let text = format!(
+            r#"{{"version": 1, "field": {{"size": {size:?}, "spectrum": {{"k_inertial": 1}}}}}}"#
+        );
+        let s = Scene::from_json(&text).unwrap_or_else(|e| panic!("{size:?}: {e}"));
+        assert_eq!(s.field.size, size);
+    }
+}
+
 fn set(pointer: &'static str, value: serde_json::Value) -> Edit {
     Box::new(move |v| {
         *v.pointer_mut(pointer)
@@ -100,12 +116,17 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/field/size/1", json!(33)),
             "field.size[1]",
-            "power of two between 4 and 128",
+            "must be an even number between 4 and 256 (got 33 for ny)",
         ),
         (
-            set("/field/size/3", json!(256)),
+            set("/field/size/3", json!(258)),
             "field.size[3]",
-            "power of two",
+            "even number between 4 and 256 (got 258 for nt)",
+        ),
+        (
+            set("/field/size/2", json!(2)),
+            "field.size[2]",
+            "(got 2 for nz)",
         ),
         (
             set("/field/size", json!([128, 128, 128, 128])),

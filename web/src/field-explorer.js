@@ -12,12 +12,16 @@ const SLICE_RES = 64;
 /** Seconds of animation per temporal period of the field (at speed 1). */
 const SECONDS_PER_PERIOD = 8;
 
+/** Lattices offered: any even extent from 4 to 256 works (powers of two are the fastest). */
 const LATTICES = {
   '16⁴': [16, 16, 16, 16],
+  '24⁴': [24, 24, 24, 24],
   '32⁴': [32, 32, 32, 32],
   '32³ × 64': [32, 32, 32, 64],
+  '48³ × 16': [48, 48, 48, 16],
   '64³ × 16': [64, 64, 64, 16],
   '64³ × 32': [64, 64, 64, 32],
+  '64⁴': [64, 64, 64, 64],
 };
 
 const $ = (selector) => document.querySelector(selector);

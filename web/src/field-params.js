@@ -9,9 +9,14 @@ export const DEFAULT_FIELD = Object.freeze({
 });
 
 export const LAWS = ['kolmogorov', 'paper-literal'];
-const MAX_POINTS = 2 ** 24;
+/** Extents per axis: even numbers from 4 to 256 (powers of two are the fastest). */
+export const MIN_EXTENT = 4;
+export const MAX_EXTENT = 256;
+/** At most 2^24 lattice points in all (64⁴: a 192 MiB field). */
+export const MAX_POINTS = 2 ** 24;
+const AXES = ['nx', 'ny', 'nz', 'nt'];
 
-const isPow2 = (n) => Number.isInteger(n) && n > 0 && (n & (n - 1)) === 0;
+const isExtent = (n) => Number.isInteger(n) && n % 2 === 0 && n >= MIN_EXTENT && n <= MAX_EXTENT;
 
 /**
  * Checks field parameters with the core's rules and paths; returns a list of
@@ -24,8 +29,8 @@ export function validateField(field) {
     errors.push('field.size: must be [nx, ny, nz, nt]');
   } else {
     size.forEach((n, i) => {
-      if (!isPow2(n) || n < 4 || n > 128) {
-        errors.push(`field.size[${i}]: must be a power of two between 4 and 128`);
+      if (!isExtent(n)) {
+        errors.push(`field.size[${i}]: must be an even number between ${MIN_EXTENT} and ${MAX_EXTENT} (got ${n} for ${AXES[i]})`);
       }
     });
     if (errors.length === 0 && size.reduce((a, b) => a * b, 1) > MAX_POINTS) {

@@ -119,6 +119,7 @@ function buildControls() {
       if (!sceneName.endsWith(', edited')) sceneName += ', edited';
       await loadScene(next);
     } catch (e) {
+      if (e.message.startsWith('cancelled')) return; // a newer edit is loading
       showMessage(e.message);
       controls.refresh();
     }

@@ -39,7 +39,10 @@ const SWITCH_ON = { decay: 1, albedo: [0.9, 0.9, 0.9], emission: [1, 0.8, 0.5], 
 const SKIP = new Set(['type', 'path', 'enabled']);
 const COLOUR = new Set(['color', 'albedo', 'emission']);
 const CHOICES = { shape: ['point', 'disk', 'sphere', 'box'], model: ['mug', 'teapot'] };
-const LATTICE = [8, 16, 32, 64];
+/** Lattice extents offered (any even number from 4 to 256 is valid; powers of two are the fastest). */
+const LATTICE = [8, 12, 16, 24, 32, 48, 64];
+/** The offered extents plus `n`, in order (a scene may use any even extent). */
+const latticeChoices = (n) => [...new Set([...LATTICE, n])].sort((a, b) => a - b);
 
 const isTriple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number');
 
@@ -103,8 +106,8 @@ function world(root, draft, changed) {
   const f = root.addFolder('World mapping (§3)');
   const field = draft.field;
   const lattice = { space: field.size[0], time: field.size[3] };
-  f.add(lattice, 'space', LATTICE).name('lattice N (x, y, z)').onChange((n) => { field.size = [n, n, n, field.size[3]]; changed(); });
-  f.add(lattice, 'time', LATTICE).name('lattice N (t)').onChange((n) => { field.size[3] = n; changed(); });
+  f.add(lattice, 'space', latticeChoices(lattice.space)).name('lattice N (x, y, z)').onChange((n) => { field.size = [n, n, n, field.size[3]]; changed(); });
+  f.add(lattice, 'time', latticeChoices(lattice.time)).name('lattice N (t)').onChange((n) => { field.size[3] = n; changed(); });
   field.period.forEach((_, a) => f.add(field.period, a).name(`period ${'xyz'[a]} (m)`).onFinishChange(changed));
   f.add(field, 'time_period').name('time period (s)').onFinishChange(changed);
 }

@@ -9,11 +9,8 @@
 
 import { binBlobs, padRows, TEX_WIDTH, TILE } from './tiles.js';
 
-const STAGES = [
-  'filtering white noise', 'x transform (u₁, u₂)', 'y transform (u₁, u₂)', 'z transform (u₁, u₂)',
-  't transform (u₁, u₂)', 'x transform (u₃)', 'y transform (u₃)', 'z transform (u₃)',
-  't transform (u₃)', 'interleaving',
-];
+/** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
+const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
 
 /**
  * The request handlers over `core` (the WASM module's exports, initialised); `progress(id,
@@ -28,29 +25,47 @@ export function createHandlers(core, progress, memory = () => 0) {
   let sim = null;
   let sceneJson = '';
 
-  /** Synthesises the field for `paramsJson` unless the current one already matches. */
-  function ensureField(id, paramsJson) {
-    if (field && fieldKey === paramsJson) return;
-    const t0 = performance.now();
-    const synthesis = new core.FieldSynthesis(paramsJson);
-    let stage = 0;
-    progress(id, 0, STAGES[0]);
-    while (synthesis.step()) {
-      stage += 1;
-      progress(id, synthesis.progress() * 0.95, STAGES[stage]);
-    }
-    const next = synthesis.finish();
-    synthesis.free();
-    field?.free();
-    field = next;
-    fieldKey = paramsJson;
-    fieldMs = performance.now() - t0;
+  /** The newest valid `load` request: a synthesis in flight gives way to it. */
+  let latestLoad = 0;
+
+  function supersededUnlessLatest(id) {
+    if (id !== latestLoad) throw new Error('cancelled: a newer scene was loaded before this one was ready');
   }
 
-  function load(id, scene) {
+  /**
+   * Synthesises the field for `paramsJson` unless the current one already matches. Yields to
+   * the event loop between stages, so a newer `load` supersedes it: this one then rejects.
+   */
+  async function ensureField(id, paramsJson) {
+    if (field && fieldKey === paramsJson) return;
+    // A superseded synthesis frees its memory at its next stage: let it, before allocating.
+    await yieldToEvents();
+    supersededUnlessLatest(id);
+    const t0 = performance.now();
+    const synthesis = new core.FieldSynthesis(paramsJson);
+    try {
+      progress(id, 0, synthesis.stage());
+      while (synthesis.step()) {
+        progress(id, synthesis.progress() * 0.95, synthesis.stage());
+        await yieldToEvents();
+        supersededUnlessLatest(id);
+      }
+      const next = synthesis.finish();
+      field?.free();
+      field = next;
+      fieldKey = paramsJson;
+      fieldMs = performance.now() - t0;
+    } finally {
+      synthesis.free();
+    }
+  }
+
+  async function load(id, scene) {
     const normal = core.validateScene(JSON.stringify(scene));
+    latestLoad = id;
     const parsed = JSON.parse(normal);
-    if (parsed.field.amplitude > 0) ensureField(id, core.sceneFieldParams(normal));
+    if (parsed.field.amplitude > 0) await ensureField(id, core.sceneFieldParams(normal));
+    supersededUnlessLatest(id);
     const next = parsed.field.amplitude > 0 ? core.SceneSimulation.withField(normal, field) : new core.SceneSimulation(normal);
     sim?.free();
     sim = next;
@@ -87,7 +102,7 @@ export function createHandlers(core, progress, memory = () => 0) {
   }
 
   return {
-    load: ({ id, scene }) => ({ result: load(id, scene) }),
+    load: async ({ id, scene }) => ({ result: await load(id, scene) }),
     reset: () => {
       const next = field && JSON.parse(sceneJson).field.amplitude > 0
         ? core.SceneSimulation.withField(sceneJson, field)

@@ -6,7 +6,9 @@
 // progress while a request runs: { id, type: 'progress', progress, stage },
 // { type: 'fatal', error } if the core cannot start, and { type: 'crashed', error } if it traps
 // (a Rust panic or running out of memory leaves the instance unusable: the page restarts us).
-// Requests that arrive before the core is ready wait for it, in order.
+// Requests that arrive before the core is ready wait for it, in order. A field synthesis yields
+// between its stages, so requests keep being answered meanwhile (on the current scene), and a
+// newer valid `load` supersedes one in flight, which then rejects with "cancelled: ...".
 // The requests themselves are `handlers.js`; typed arrays in results are transferred.
 
 import init, * as core from '../../pkg/windfield.js';
@@ -32,7 +34,7 @@ self.onmessage = async (event) => {
   const handler = handlers[msg.type];
   try {
     if (!handler) throw new Error(`unknown request "${msg.type}"`);
-    const { result, transfer = [] } = handler(msg);
+    const { result, transfer = [] } = await handler(msg);
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {
     self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err) });

@@ -106,7 +106,8 @@ struct SpectrumArgs {
 
 #[derive(Args)]
 struct GenerateArgs {
-    /// Lattice size: N (for N,N,N,N) or NX,NY,NZ,NT; each a power of two from 4 to 128.
+    /// Lattice size: N (for N,N,N,N) or NX,NY,NZ,NT; each an even number from 4 to 256 (powers
+    /// of two are the fastest), at most 2^24 points in all.
     #[arg(long, default_value = "32")]
     size: String,
     #[command(flatten)]
@@ -155,7 +156,7 @@ fn parse_size(text: &str) -> Result<[usize; 4], Failure> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     let bad = || {
         Failure::Input(format!(
-            "--size: expected N or NX,NY,NZ,NT with each a power of two between 4 and 128 (got {text:?})"
+            "--size: expected N or NX,NY,NZ,NT with each an even number between 4 and 256 (got {text:?})"
         ))
     };
     let nums = parts

@@ -1,0 +1,227 @@
+//! The DFT û of the small-scale velocity (paper §3.3): white noise filtered so that every mode
+//! has the cross-spectral density of paper Eq. 7 (DESIGN §2), one spatial column — one wave
+//! vector k, every temporal wave number ω — at a time.
+//!
+//! Per mode (k, ω): `û = a(k, ω) (X₁ e₁ + X₂ e₂)`, with X₁, X₂ independent complex Gaussians
+//! (E|X|² = 1, [`crate::noise`]), e₁, e₂ an orthonormal basis of the plane normal to k, and
+//! `a² = E(|k|) G_k(ω) / (4π|k|²)`. Then `⟨û_i* û_j⟩ = a² (e₁ᵢe₁ⱼ + e₂ᵢe₂ⱼ) = a² (δ_ij − k_i k_j / k²)`:
+//! exactly Eq. 7, the covariance of three-component white noise projected onto that plane, drawn
+//! with two Gaussians per mode instead of three. The basis is built from k and the coordinate
+//! axis least aligned with it, so no k is a special case (Eq. 21's kernel divides by zero where k
+//! lies on an axis).
+//!
+//! Real output needs `û(−k, −ω) = û(k, ω)*`. Columns with kx > 0, and with kx = 0 and
+//! (ky, kz) > 0 in lexicographic order, draw their own noise; every other column is the mirror
+//! of the column of −k. The spatial k = 0 column, every Nyquist plane (a wave number equal to
+//! −n/2) and the Nyquist ω are zero. Noise is drawn for every non-Nyquist mode of a drawn column
+//! whatever its amplitude, so a seed fixes the white noise and the spectrum parameters only
+//! filter it.
+
+use crate::error::ParamError;
+use crate::lattice::{wave_number, Lattice};
+use crate::noise::{ColumnNoise, Ziggurat};
+use crate::spectrum::SpectrumParams;
+use rustfft::num_complex::{Complex32, Complex64};
+
+/// The filter and the noise of one field: everything that determines û.
+#[derive(Debug, Clone)]
+pub struct VelocitySpectrum {
+    size: [usize; 4],
+    seed: u64,
+    ziggurat: Ziggurat,
+    /// a(k², ω)/√2 indexed `[k² * nt + t]` (the √2 turns a pair of standard normal deviates
+    /// into a complex Gaussian with E|X|² = 1); zero at the Nyquist ω (t = nt/2), which is
+    /// left out of G's normalisation.
+    amplitude: Vec<f32>,
+}
+
+impl VelocitySpectrum {
+    /// The amplitudes a(k, ω) for every |k|² the lattice holds, normalising G_k over the
+    /// lattice's non-Nyquist ω (Eq. 10); computed in double precision, kept in single.
+    pub fn new(lattice: &Lattice, spectrum: &SpectrumParams, seed: u64) -> Self {
+        let [nx, ny, nz, nt] = lattice.size;
+        let k2_max: usize = [nx, ny, nz].iter().map(|&n| (n / 2 - 1).pow(2)).sum();
+        let omegas: Vec<f64> = (0..nt)
+            .filter(|&t| t != nt / 2)
+            .map(|t| wave_number(t, nt) as f64)
+            .collect();
+        let mut amplitude = vec![0.0; (k2_max + 1) * nt];
+        for k2 in 1..=k2_max {
+            let k = (k2 as f64).sqrt();
+            if spectrum.energy_spectrum(k) == 0.0 {
+                continue;
+            }
+            let g = spectrum.temporal_spread(k, &omegas);
+            let row = &mut amplitude[k2 * nt..(k2 + 1) * nt];
+            let non_nyquist = (0..nt).filter(|&t| t != nt / 2);
+            for (t, gt) in non_nyquist.zip(g) {
+                row[t] = (spectrum.mode_variance(k, gt) / 2.0).sqrt() as f32;
+            }
+        }
+        Self {
+            size: lattice.size,
+            seed,
+            ziggurat: Ziggurat::new(),
+            amplitude,
+        }
+    }
+
+    /// û(k, ω) for the spatial wave vector `k` (integer wave numbers, each in `-n/2..n/2` for
+    /// its axis) at every temporal index t (ω = `wave_number(t, nt)`), written to `u[c][t]`
+    /// for the three components c (each of length nt).
+    #[inline]
+    pub fn column(&self, k: [i64; 3], u: [&mut [Complex32]; 3]) {
+        let nt = self.size[3];
+        assert!(u.iter().all(|uc| uc.len() == nt), "one value per ω");
+        let nyquist = (0..3).any(|a| k[a] == -(self.size[a] as i64) / 2);
+        if nyquist || k == [0, 0, 0] {
+            u.into_iter()
+                .for_each(|uc| uc.fill(Complex32::new(0.0, 0.0)));
+        } else if draws_its_own_noise(k) {
+            self.draw(k, u, false);
+        } else {
+            // û(k, ω) = û(−k, −ω)*: the mirror column, reversed in ω and conjugated.
+            self.draw(k.map(|ki| -ki), u, true);
+        }
+    }
+
+    /// Filters the column's own noise stream: `û = a (X₁ e₁ + X₂ e₂)` for every non-Nyquist ω,
+    /// written to `u[c][t]`, or, for the mirror column, `û*` to `u[c][−t]`.
+    #[inline]
+    fn draw(&self, k: [i64; 3], u: [&mut [Complex32]; 3], mirror: bool) {
+        let nt = self.size[3];
+        let k2 = k.iter().map(|ki| ki * ki).sum::<i64>() as usize;
+        let amplitude = &self.amplitude[k2 * nt..(k2 + 1) * nt];
+        let [e1, e2] = plane_basis(k).map(|e| e.map(|v| v as f32));
+        let mut noise = ColumnNoise::new(self.seed, k, &self.ziggurat);
+        let [u1, u2, u3] = u;
+        for (t, &a) in amplitude.iter().enumerate() {
+            let v = if t == nt / 2 {
+                [Complex32::new(0.0, 0.0); 3]
+            } else {
+                // X₁ = (g₀ + i g₁)/√2, X₂ = (g₂ + i g₃)/√2; the √2 is in the amplitude.
+                let [g0, g1] = noise.normal_pair();
+                let [g2, g3] = noise.normal_pair();
+                let x1 = Complex32::new(g0 * a, g1 * a);
+                let x2 = Complex32::new(g2 * a, g3 * a);
+                [0, 1, 2].map(|c| x1 * e1[c] + x2 * e2[c])
+            };
+            let (i, v) = if mirror {
+                ((nt - t) % nt, v.map(|c| c.conj()))
+            } else {
+                (t, v)
+            };
+            u1[i] = v[0];
+            u2[i] = v[1];
+            u3[i] = v[2];
+        }
+    }
+}
+
+/// Whether the column of `k` draws noise (the half space kx > 0, then kx = 0 with (ky, kz) > 0
+/// lexicographically) rather than mirroring the column of −k.
+pub fn draws_its_own_noise(k: [i64; 3]) -> bool {
+    k[0] > 0 || (k[0] == 0 && (k[1] > 0 || (k[1] == 0 && k[2] > 0)))
+}
+
+/// An orthonormal basis e₁, e₂ of the plane normal to `k` ≠ 0: e₁ = k × â / |k × â| with â the
+/// coordinate axis of k's smallest component (so |k × â|² ≥ ⅔|k|²), e₂ = k̂ × e₁.
+pub fn plane_basis(k: [i64; 3]) -> [[f64; 3]; 2] {
+    let kf = k.map(|v| v as f64);
+    let norm = kf.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let khat = kf.map(|v| v / norm);
+    let a = (0..3)
+        .min_by(|&i, &j| khat[i].abs().total_cmp(&khat[j].abs()))
+        .expect("three axes");
+    let mut axis = [0.0; 3];
+    axis[a] = 1.0;
+    let e1 = normalise(cross(khat, axis));
+    let e2 = cross(khat, e1);
+    [e1, e2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalise(v: [f64; 3]) -> [f64; 3] {
+    let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    v.map(|x| x / n)
+}
+
+/// The three Hermitian spectra û₁, û₂, û₃ on the whole lattice (storage order `[t][z][y][x]`),
+/// exactly the values the synthesis transforms. For verification and analysis.
+pub fn hermitian_spectrum(
+    params: &crate::field::FieldParams,
+) -> Result<[Vec<Complex64>; 3], ParamError> {
+    let lattice = params.validate()?;
+    let [nx, ny, nz, nt] = lattice.size;
+    let spectrum = VelocitySpectrum::new(&lattice, &params.spectrum, params.seed);
+    let zero = vec![Complex64::new(0.0, 0.0); lattice.points()];
+    let mut s = [zero.clone(), zero.clone(), zero];
+    let mut column = vec![Complex32::new(0.0, 0.0); 3 * nt];
+    for z in 0..nz {
+        for y in 0..ny {
+            for x in 0..nx {
+                let k = [wave_number(x, nx), wave_number(y, ny), wave_number(z, nz)];
+                let (u1, rest) = column.split_at_mut(nt);
+                let (u2, u3) = rest.split_at_mut(nt);
+                spectrum.column(k, [u1, u2, u3]);
+                for (c, uc) in column.chunks_exact(nt).enumerate() {
+                    for (t, v) in uc.iter().enumerate() {
+                        s[c][lattice.index(x, y, z, t)] = Complex64::new(v.re as f64, v.im as f64);
+                    }
+                }
+            }
+        }
+    }
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_basis_is_orthonormal_and_normal_to_k_on_and_off_the_axes() {
+        for k in [
+            [1, 0, 0],
+            [0, -3, 0],
+            [0, 0, 7],
+            [2, 2, 2],
+            [-5, 1, 3],
+            [1, 1, 0],
+        ] {
+            let [e1, e2] = plane_basis(k);
+            let dot = |a: [f64; 3], b: [f64; 3]| a.iter().zip(&b).map(|(x, y)| x * y).sum::<f64>();
+            let kf = k.map(|v| v as f64);
+            assert!(
+                dot(e1, kf).abs() < 1e-14 && dot(e2, kf).abs() < 1e-14,
+                "{k:?}"
+            );
+            assert!((dot(e1, e1) - 1.0).abs() < 1e-14 && (dot(e2, e2) - 1.0).abs() < 1e-14);
+            assert!(dot(e1, e2).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn every_wave_vector_but_zero_is_drawn_or_mirrored_exactly_once() {
+        for kx in -3i64..=3 {
+            for ky in -3i64..=3 {
+                for kz in -3i64..=3 {
+                    let k = [kx, ky, kz];
+                    let m = [-kx, -ky, -kz];
+                    if k == [0, 0, 0] {
+                        assert!(!draws_its_own_noise(k));
+                    } else {
+                        assert_ne!(draws_its_own_noise(k), draws_its_own_noise(m), "{k:?}");
+                    }
+                }
+            }
+        }
+    }
+}
