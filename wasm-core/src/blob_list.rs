@@ -16,9 +16,13 @@ pub const MAX_IMAGE_SIDE: u32 = 8192;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Camera {
+    #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
     pub position: [f32; 3],
+    #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
     pub target: [f32; 3],
+    #[schemars(inner(range(min = -1e6, max = 1e6)))]
     pub up: [f32; 3],
+    #[schemars(range(min = 0.1, max = 179))]
     pub fov_y_deg: f32,
 }
 
@@ -45,7 +49,9 @@ pub enum Encoding {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Image {
+    #[schemars(range(min = 1, max = MAX_IMAGE_SIDE))]
     pub width: u32,
+    #[schemars(range(min = 1, max = MAX_IMAGE_SIDE))]
     pub height: u32,
     pub encoding: Encoding,
 }
@@ -64,8 +70,8 @@ impl Default for Image {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(untagged)]
 pub enum Extinction {
-    Grey(f32),
-    Rgb([f32; 3]),
+    Grey(#[schemars(range(min = 0, max = 1e6))] f32),
+    Rgb(#[schemars(inner(range(min = 0, max = 1e6)))] [f32; 3]),
 }
 
 impl Extinction {
@@ -84,7 +90,10 @@ pub enum Phase {
     #[default]
     Isotropic,
     /// p = (1 − g²) / (1 + g² − 2g cos θ)^{3/2}, g in (−1, 1).
-    HenyeyGreenstein { g: f32 },
+    HenyeyGreenstein {
+        #[schemars(extend("exclusiveMinimum" = -1, "exclusiveMaximum" = 1))]
+        g: f32,
+    },
 }
 
 /// The participating medium's optical constants (paper Appendix B).
@@ -93,6 +102,7 @@ pub enum Phase {
 pub struct Medium {
     pub extinction: Extinction,
     /// Albedo Ω per channel, in [0, 1]; a blob's own albedo overrides it.
+    #[schemars(inner(range(min = 0, max = 1)))]
     pub albedo: [f32; 3],
     pub phase: Phase,
 }
@@ -113,11 +123,15 @@ impl Default for Medium {
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Light {
     Point {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         position: [f32; 3],
+        #[schemars(inner(range(min = 0, max = 1e6)))]
         color: [f32; 3],
     },
     Directional {
+        #[schemars(inner(range(min = -1e6, max = 1e6)))]
         direction: [f32; 3],
+        #[schemars(inner(range(min = 0, max = 1e6)))]
         color: [f32; 3],
     },
 }
@@ -127,20 +141,31 @@ pub enum Light {
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Object {
     Sphere {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         center: [f32; 3],
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         radius: f32,
+        #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
     },
     Plane {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         point: [f32; 3],
+        #[schemars(inner(range(min = -1e6, max = 1e6)))]
         normal: [f32; 3],
+        #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
     },
     Cylinder {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         base: [f32; 3],
+        #[schemars(inner(range(min = -1e6, max = 1e6)))]
         axis: [f32; 3],
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         radius: f32,
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         height: f32,
+        #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
         /// A richer mesh the browser draws in the cylinder's place (the still keeps the
         /// cylinder as its stand-in).
@@ -166,6 +191,7 @@ pub struct RenderSettings {
     pub medium: Medium,
     pub lights: Vec<Light>,
     pub shadows: bool,
+    #[schemars(inner(range(min = 0, max = 1e6)))]
     pub background: [f32; 3],
     pub objects: Vec<Object>,
 }

@@ -34,9 +34,11 @@ fn yes() -> bool {
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Scene format version (currently 1).
+    #[schemars(extend("const" = SCENE_VERSION))]
     pub version: u32,
     /// Seeds the field's white noise, the emitters and the splitting.
     #[serde(default = "one")]
+    #[schemars(range(max = MAX_SEED))]
     pub seed: u64,
     #[serde(default)]
     pub field: FieldSettings,
@@ -97,10 +99,13 @@ pub struct FieldSettings {
     pub size: [usize; 4],
     pub spectrum: SpectrumParams,
     /// World metres per spatial period along x, y, z (the paper's grid spacing control).
+    #[schemars(inner(range(min = 1e-3, max = 1e4)))]
     pub period: [f64; 3],
     /// Seconds per temporal period.
+    #[schemars(range(min = 1e-3, max = 1e6))]
     pub time_period: f64,
     /// Scale of the small-scale velocity; 0 turns the turbulence off.
+    #[schemars(range(min = 0, max = 1e3))]
     pub amplitude: f64,
     /// Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
     /// mean wind (the paper's suggested remedy for its independence assumption, §7).
@@ -128,11 +133,14 @@ impl Default for FieldSettings {
 pub enum Primitive {
     /// Directional wind of constant `velocity` (m/s).
     Uniform {
+        #[schemars(inner(range(min = -1e4, max = 1e4)))]
         velocity: [f32; 3],
         /// Where the decay is measured from (m); only used with `decay`.
         #[serde(default)]
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         position: [f32; 3],
         #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         decay: Option<f32>,
         #[serde(default = "yes")]
         enabled: bool,
@@ -140,11 +148,15 @@ pub enum Primitive {
     /// Spherical source (strength > 0) or sink (< 0): volume flux `strength` (m³/s),
     /// u = s/(4π) · r / (|r|² + a²)^{3/2}, regularised within the core radius a = `radius`.
     Source {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         position: [f32; 3],
+        #[schemars(range(min = -1e6, max = 1e6))]
         strength: f32,
         #[serde(default = "default_core")]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         radius: f32,
         #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         decay: Option<f32>,
         #[serde(default = "yes")]
         enabled: bool,
@@ -152,12 +164,17 @@ pub enum Primitive {
     /// Vortex line through `position` along `axis` with circulation `strength` Γ (m²/s) and
     /// core radius a: azimuthal speed Γ ρ / (2π (ρ² + a²)) at distance ρ from the axis.
     Vortex {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
         position: [f32; 3],
+        #[schemars(inner(range(min = -1e6, max = 1e6)))]
         axis: [f32; 3],
+        #[schemars(range(min = -1e6, max = 1e6))]
         strength: f32,
         #[serde(default = "default_core")]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         radius: f32,
         #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         decay: Option<f32>,
         #[serde(default = "yes")]
         enabled: bool,
@@ -166,13 +183,18 @@ pub enum Primitive {
     /// `[t, x, y, z]` of `path`; it pushes gas aside with the potential flow of a moving sphere
     /// plus a radial repulsion of speed `strength` (m/s) at its surface, falling off as 1/r².
     Repulsor {
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         radius: f32,
+        #[schemars(range(min = 0, max = 1e4))]
         strength: f32,
+        #[schemars(length(min = 1), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]
         path: Vec<[f64; 4]>,
         /// Colour of the sphere in renders; none keeps it invisible.
         #[serde(default)]
+        #[schemars(inner(range(min = 0, max = 1)))]
         color: Option<[f32; 3]>,
         #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
         decay: Option<f32>,
         #[serde(default = "yes")]
         enabled: bool,
@@ -214,24 +236,35 @@ pub enum EmitterShape {
 #[serde(deny_unknown_fields, default)]
 pub struct Emitter {
     pub shape: EmitterShape,
+    #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
     pub center: [f32; 3],
+    #[schemars(inner(range(min = -1e6, max = 1e6)))]
     pub normal: [f32; 3],
+    #[schemars(range(min = 0, max = MAX_COORD))]
     pub radius: f32,
+    #[schemars(inner(range(min = 0, max = MAX_COORD)))]
     pub size: [f32; 3],
     /// Birth rate in blobs per second; births are evenly spaced in time.
+    #[schemars(range(min = 0, max = 1e6))]
     pub rate: f64,
     /// Initial standard deviation σ0 (m).
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
     pub sigma0: f32,
     /// Initial mass m0.
+    #[schemars(range(max = 1e12), extend("exclusiveMinimum" = 0))]
     pub mass0: f32,
     /// Albedo colour; none uses the medium's.
+    #[schemars(inner(range(min = 0, max = 1)))]
     pub albedo: Option<[f32; 3]>,
     /// Self-emission colour Q; none is no emission.
+    #[schemars(inner(range(min = 0, max = 1e6)))]
     pub emission: Option<[f32; 3]>,
     /// Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
     /// exp(−age/`velocity_time`).
+    #[schemars(inner(range(min = -1e4, max = 1e4)))]
     pub velocity: [f32; 3],
     /// Relaxation time of the initial velocity (s).
+    #[schemars(range(max = 1e6), extend("exclusiveMinimum" = 0))]
     pub velocity_time: f32,
     pub enabled: bool,
 }
@@ -261,14 +294,19 @@ impl Default for Emitter {
 #[serde(deny_unknown_fields, default)]
 pub struct GasSettings {
     /// κ (m²/s): σ² = σ0² + κ·age.
+    #[schemars(range(min = 0, max = 1e3))]
     pub diffusion: f64,
     /// α (1/s): m = m0·exp(−α·age).
+    #[schemars(range(min = 0, max = 1e3))]
     pub dissipation: f64,
     /// Blobs whose σ would exceed this (m) are split into smaller ones; none never splits.
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
     pub split_sigma: Option<f64>,
     /// Most live blobs; the oldest are removed first beyond it.
+    #[schemars(range(min = 1, max = MAX_BLOBS_LIMIT))]
     pub max_blobs: usize,
     /// Blobs lighter than this are removed.
+    #[schemars(range(min = 0, max = 1e12))]
     pub min_mass: f64,
 }
 
@@ -299,6 +337,7 @@ pub enum Integrator {
 #[serde(deny_unknown_fields, default)]
 pub struct SimulationSettings {
     /// Fixed time step (s).
+    #[schemars(range(max = 1), extend("exclusiveMinimum" = 0))]
     pub dt: f64,
     pub integrator: Integrator,
 }
@@ -571,6 +610,17 @@ pub fn json_schema() -> String {
             "https://windfield.dev/scene.schema.json".into(),
         );
         obj.insert("title".into(), "windfield scene, version 1".into());
+        obj.insert(
+            "description".into(),
+            "Every per-value range the parser enforces is stated here. Rules over several \
+             values are not: a direction (axis, normal, up) must have non-zero length; the \
+             camera's target must differ from its position and its up must not be parallel to \
+             the view; a repulsor's key times must increase; field.spectrum.k_inertial is at \
+             most half the smallest spatial extent minus one; field.size holds at most 2^24 \
+             points; a reversed shape's run (reverse_from / simulation.dt) is at most 1,000,000 \
+             steps and all reversed shapes keep at most 2e6 blob-steps."
+                .into(),
+        );
     }
     serde_json::to_string_pretty(&schema).expect("schema serialises") + "\n"
 }

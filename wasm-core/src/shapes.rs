@@ -38,26 +38,37 @@ pub enum Solid {
 #[serde(deny_unknown_fields, default)]
 pub struct Shape {
     pub shape: Solid,
+    #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
     pub center: [f32; 3],
     /// Axis of the torus and the trefoil (need not be unit length).
+    #[schemars(inner(range(min = -1e6, max = 1e6)))]
     pub axis: [f32; 3],
     /// Size (m): ball radius, torus major radius, trefoil scale, cube half-side.
+    #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
     pub radius: f32,
     /// Tube radius of the torus and the trefoil (m).
+    #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
     pub thickness: f32,
     /// Number of blobs (ignored for `points`).
+    #[schemars(range(min = 1, max = MAX_SHAPE_BLOBS))]
     pub count: usize,
     /// Blob centres relative to `center`, for `points`.
+    #[schemars(length(max = MAX_SHAPE_BLOBS), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]
     pub points: Vec<[f32; 3]>,
     /// σ0 (m) and m0 of every blob.
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
     pub sigma0: f32,
+    #[schemars(range(max = 1e12), extend("exclusiveMinimum" = 0))]
     pub mass0: f32,
     /// Albedo colour; none uses the medium's. Zero lights the set by its emission alone.
+    #[schemars(inner(range(min = 0, max = 1)))]
     pub albedo: Option<[f32; 3]>,
     /// Self-emission colour Q.
+    #[schemars(inner(range(min = 0, max = 1e6)))]
     pub emission: Option<[f32; 3]>,
     /// Play this set backwards from this time (s): at time t it shows its forward state at
     /// max(reverse_from − t, 0).
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
     pub reverse_from: Option<f64>,
 }
 

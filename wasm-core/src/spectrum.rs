@@ -57,10 +57,14 @@ impl SpectrumLaw {
 pub struct SpectrumParams {
     pub law: SpectrumLaw,
     /// Energy-cascade rate ε (> 0).
+    #[schemars(range(max = MAX_EPSILON), extend("exclusiveMinimum" = 0))]
     pub epsilon: f64,
-    /// Inertial wave number: E(k) = 0 below it (lattice units, > 0).
+    /// Inertial wave number: E(k) = 0 below it (lattice units, > 0), at most half the
+    /// smallest spatial extent minus one (127 on the largest lattice).
+    #[schemars(range(max = 127), extend("exclusiveMinimum" = 0))]
     pub k_inertial: f64,
     /// Temporal spread: G_k is a Gaussian in ω with standard deviation kσ (σ ≥ 0; 0 freezes time).
+    #[schemars(range(min = 0, max = MAX_SIGMA))]
     pub sigma: f64,
 }
 
