@@ -169,7 +169,7 @@ export interface WindFieldEventMap {
 }
 
 /** `<wind-field>`: a player for one scene. Each attribute is mirrored by the property named here. */
-export declare class WindFieldElement extends HTMLElement implements WindFieldMethods {
+export declare class WindFieldElement extends HTMLElement {
   /** `src`: a scene JSON URL, relative to the page; wins over `preset`. */
   src: string | null;
   /** `preset`: a scene in `scenes/` (`default` when neither is set). */
@@ -195,16 +195,6 @@ export declare class WindFieldElement extends HTMLElement implements WindFieldMe
   /** Starts loading now, whatever `loading` says. */
   load(): void;
 
-  getScene(): Scene | null;
-  setScene(scene: SceneInput): Promise<Scene>;
-  pause(): void;
-  play(): void;
-  step(n?: number): Promise<void>;
-  stats(): WindFieldStats;
-  exportBlobs(size?: { width: number; height: number }): Promise<BlobList>;
-  captureGPU(options?: CaptureOptions): Promise<string>;
-  renderReference(options?: { width?: number; height?: number }): Promise<string>;
-
   addEventListener<K extends keyof WindFieldEventMap>(type: K, listener: (this: WindFieldElement, ev: WindFieldEventMap[K]) => any, options?: boolean | AddEventListenerOptions): void;
   addEventListener<K extends keyof HTMLElementEventMap>(type: K, listener: (this: WindFieldElement, ev: HTMLElementEventMap[K]) => any, options?: boolean | AddEventListenerOptions): void;
   addEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | AddEventListenerOptions): void;
@@ -212,6 +202,9 @@ export declare class WindFieldElement extends HTMLElement implements WindFieldMe
   removeEventListener<K extends keyof HTMLElementEventMap>(type: K, listener: (this: WindFieldElement, ev: HTMLElementEventMap[K]) => any, options?: boolean | EventListenerOptions): void;
   removeEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | EventListenerOptions): void;
 }
+
+/** The methods of DESIGN §5 (declaration merging adds them to the class). */
+export interface WindFieldElement extends WindFieldMethods {}
 
 /** The playground's `window.windfield`: DESIGN §5's methods and a few for scripts and benchmarks. */
 export interface WindFieldPageAPI extends WindFieldMethods {
