@@ -57,10 +57,10 @@ function compareVolumes(page, { scene = null, steps, quality }) {
 test('the GPU volumes are the core twin\'s and hold the blobs\' mass', async ({ page }) => {
   test.setTimeout(240_000);
   const errors = collectErrors(page);
-  // Steam from the mug (wide blobs: the particle mesh), two plumes 2 m apart at draft quality
+  // Steam from the mug (wide blobs: the particle mesh), two plumes 4 m apart at draft quality
   // (voxels wider than twice the blobs' σ: the direct splat), the morph (self-emission: the
   // source volume).
-  const apart = { ...plume, emitters: [...plume.emitters, { ...plume.emitters[0], center: [2, 0, 0] }] };
+  const apart = { ...plume, emitters: [...plume.emitters, { ...plume.emitters[0], center: [4, 0, 0] }] };
   const cases = [
     { query: 'preset=steam-mug', steps: 180, quality: 'standard', path: 'mesh' },
     { query: '', scene: apart, steps: 50, quality: 'draft', path: 'direct' },

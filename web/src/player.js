@@ -55,7 +55,8 @@ export class Player {
     this.engine = new Engine({
       onError: (m) => hooks.onMessage?.(m),
       onRestart: () => {
-        if (this.state.scene) this.load(this.state.scene).catch((e) => hooks.onMessage?.(e.message));
+        // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
+        if (this.state.scene) this.exclusive(() => this.load(this.state.scene)).catch((e) => hooks.onMessage?.(e.message));
       },
     });
     this.lastTime = performance.now();
