@@ -18,6 +18,9 @@ const cases = [
   // Extents that are not powers of two, 2 mod 4 included.
   { size: [24, 10, 6, 12], spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 1, sigma: 1 }, seed: 3 },
   { size: [48, 24, 24, 6], spectrum: { law: 'kolmogorov', epsilon: 0.5, k_inertial: 2, sigma: 2 }, seed: 44 },
+  // An odd number of spectral columns per row (nx/2 = 5): the WASM build draws noise two
+  // columns at a time and gathers two columns at a time, with one left over.
+  { size: [10, 6, 8, 14], spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 1, sigma: 1 }, seed: 5 },
 ];
 
 for (const params of cases) {

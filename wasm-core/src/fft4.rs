@@ -88,6 +88,10 @@ fn gather<T: FftNum>(
 ) {
     let width = columns.len() / n;
     let pairs = n / 2;
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    if std::mem::size_of::<Complex<T>>() == 8 && n % 2 == 0 {
+        return pairs8::gather(block, stride, c0, columns, n);
+    }
     for p in 0..pairs {
         let r0 = &block[2 * p * stride + c0..][..width];
         let r1 = &block[(2 * p + 1) * stride + c0..][..width];
@@ -116,6 +120,10 @@ fn scatter<T: FftNum>(
 ) {
     let width = columns.len() / n;
     let pairs = n / 2;
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    if std::mem::size_of::<Complex<T>>() == 8 && n % 2 == 0 {
+        return pairs8::scatter(columns, n, block, stride, c0);
+    }
     for p in 0..pairs {
         let (head, tail) = block.split_at_mut((2 * p + 1) * stride);
         let r0 = &mut head[2 * p * stride + c0..][..width];
@@ -130,6 +138,83 @@ fn scatter<T: FftNum>(
         let row = &mut block[(n - 1) * stride + c0..][..width];
         for (column, v) in columns.chunks_exact(n).zip(row) {
             *v = column[n - 1];
+        }
+    }
+}
+
+/// [`gather`] and [`scatter`] for 8-byte values (single-precision complex) and an even n in
+/// WASM: two rows and two columns at a time, a 2×2 transpose in two 16-byte loads and two
+/// 16-byte stores.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+pub(crate) mod pairs8 {
+    use core::arch::wasm32::*;
+
+    /// [`super::gather`]: columns `c0..` of the block's rows into contiguous columns of n.
+    pub(crate) fn gather<V>(block: &[V], stride: usize, c0: usize, columns: &mut [V], n: usize) {
+        assert_eq!(std::mem::size_of::<V>(), 8, "8-byte values");
+        let width = columns.len() / n;
+        assert!(n % 2 == 0 && c0 + width <= stride && n * stride <= block.len());
+        let (src, dst) = (
+            block.as_ptr() as *const u64,
+            columns.as_mut_ptr() as *mut u64,
+        );
+        for p in (0..n).step_by(2) {
+            // SAFETY: rows p and p + 1 of the block hold stride values from c0 + c < stride,
+            // and column c holds n values from row p < n (asserted above).
+            unsafe {
+                let (r0, r1) = (src.add(p * stride + c0), src.add((p + 1) * stride + c0));
+                let mut c = 0;
+                while c + 2 <= width {
+                    let (a, b) = (v128_load(r0.add(c).cast()), v128_load(r1.add(c).cast()));
+                    v128_store(dst.add(c * n + p).cast(), i64x2_shuffle::<0, 2>(a, b));
+                    v128_store(dst.add((c + 1) * n + p).cast(), i64x2_shuffle::<1, 3>(a, b));
+                    c += 2;
+                }
+                if c < width {
+                    dst.add(c * n + p)
+                        .write_unaligned(r0.add(c).read_unaligned());
+                    dst.add(c * n + p + 1)
+                        .write_unaligned(r1.add(c).read_unaligned());
+                }
+            }
+        }
+    }
+
+    /// [`super::scatter`]: contiguous columns of n back into columns `c0..` of the rows.
+    pub(crate) fn scatter<S, D>(
+        columns: &[S],
+        n: usize,
+        block: &mut [D],
+        stride: usize,
+        c0: usize,
+    ) {
+        let eight = std::mem::size_of::<S>() == 8 && std::mem::size_of::<D>() == 8;
+        assert!(eight, "8-byte values");
+        let width = columns.len() / n;
+        assert!(n % 2 == 0 && c0 + width <= stride && n * stride <= block.len());
+        let (src, dst) = (
+            columns.as_ptr() as *const u64,
+            block.as_mut_ptr() as *mut u64,
+        );
+        for p in (0..n).step_by(2) {
+            // SAFETY: as in `gather`, with the roles of block and columns exchanged.
+            unsafe {
+                let (r0, r1) = (dst.add(p * stride + c0), dst.add((p + 1) * stride + c0));
+                let mut c = 0;
+                while c + 2 <= width {
+                    let a = v128_load(src.add(c * n + p).cast());
+                    let b = v128_load(src.add((c + 1) * n + p).cast());
+                    v128_store(r0.add(c).cast(), i64x2_shuffle::<0, 2>(a, b));
+                    v128_store(r1.add(c).cast(), i64x2_shuffle::<1, 3>(a, b));
+                    c += 2;
+                }
+                if c < width {
+                    r0.add(c)
+                        .write_unaligned(src.add(c * n + p).read_unaligned());
+                    r1.add(c)
+                        .write_unaligned(src.add(c * n + p + 1).read_unaligned());
+                }
+            }
         }
     }
 }

@@ -64,13 +64,22 @@ impl Xoshiro256 {
     }
 }
 
+/// A layer's rectangle: |j| < `bound` means x = j·`width` lies inside the density. The two
+/// sit side by side, so one 8-byte load fetches both.
+#[derive(Debug, Clone, Copy, Default)]
+#[repr(C)]
+struct Rectangle {
+    /// Acceptance bound on |j|.
+    bound: u32,
+    /// Abscissa per unit of j.
+    width: f32,
+}
+
 /// The ziggurat's tables for the standard normal density, unnormalised f(x) = exp(−x²/2).
 #[derive(Debug, Clone)]
 pub struct Ziggurat {
-    /// Acceptance bound on |j| per layer: |j| < k[i] means x = j·w[i] lies inside the density.
-    k: [u32; LAYERS],
-    /// Abscissa per unit of j, per layer.
-    w: [f32; LAYERS],
+    /// Per layer, its rectangle.
+    rect: [Rectangle; LAYERS],
     /// f at the layer's right edge.
     f: [f32; LAYERS],
 }
@@ -103,7 +112,11 @@ impl Ziggurat {
             f[i] = density(d) as f32;
             w[i] = (d / SCALE) as f32;
         }
-        Self { k, w, f }
+        let rect = std::array::from_fn(|i| Rectangle {
+            bound: k[i],
+            width: w[i],
+        });
+        Self { rect, f }
     }
 }
 
@@ -127,6 +140,36 @@ impl<'a> ColumnNoise<'a> {
         }
     }
 
+    /// The stream's next deviates, four per entry of `out` (two [`Self::normal_pair`]s).
+    #[inline(never)]
+    pub fn fill(&mut self, out: &mut [[f32; 4]]) {
+        for g in out {
+            let [g0, g1] = self.normal_pair();
+            let [g2, g3] = self.normal_pair();
+            *g = [g0, g1, g2, g3];
+        }
+    }
+
+    /// [`Self::fill`] for two streams at once, `a` into `out_a` and `b` into `out_b` (of equal
+    /// lengths): the same deviates, with the generators side by side in SIMD lanes where the
+    /// build has them.
+    #[inline(never)]
+    pub fn fill_two(
+        a: &mut ColumnNoise,
+        b: &mut ColumnNoise,
+        out_a: &mut [[f32; 4]],
+        out_b: &mut [[f32; 4]],
+    ) {
+        assert_eq!(out_a.len(), out_b.len(), "one entry of each per ω");
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+        simd::fill_two(a, b, out_a, out_b);
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+        {
+            a.fill(out_a);
+            b.fill(out_b);
+        }
+    }
+
     /// Two standard normal deviates from one 64-bit draw (more in the rare slow cases).
     #[inline]
     pub fn normal_pair(&mut self) -> [f32; 2] {
@@ -136,8 +179,9 @@ impl<'a> ColumnNoise<'a> {
         let mask = LAYERS as u32 - 1;
         let (i, k) = ((lo & mask) as usize, (hi & mask) as usize);
         let (j, l) = ((lo as i32) >> LAYER_BITS, (hi as i32) >> LAYER_BITS);
-        if (j.unsigned_abs() < z.k[i]) & (l.unsigned_abs() < z.k[k]) {
-            return [j as f32 * z.w[i], l as f32 * z.w[k]];
+        let (ri, rk) = (z.rect[i], z.rect[k]);
+        if (j.unsigned_abs() < ri.bound) & (l.unsigned_abs() < rk.bound) {
+            return [j as f32 * ri.width, l as f32 * rk.width];
         }
         let (rng, a) = slow(self.rng, lo, z);
         let (rng, b) = slow(rng, hi, z);
@@ -155,8 +199,8 @@ fn slow(mut rng: Xoshiro256, mut bits: u32, z: &Ziggurat) -> (Xoshiro256, f32) {
     loop {
         let i = (bits & (LAYERS as u32 - 1)) as usize;
         let j = (bits as i32) >> LAYER_BITS;
-        let x = j as f32 * z.w[i];
-        if j.unsigned_abs() < z.k[i] {
+        let x = j as f32 * z.rect[i].width;
+        if j.unsigned_abs() < z.rect[i].bound {
             return (rng, x);
         }
         if i == 0 {
@@ -174,6 +218,124 @@ fn slow(mut rng: Xoshiro256, mut bits: u32, z: &Ziggurat) -> (Xoshiro256, f32) {
             return (rng, x);
         }
         bits = rng.next_u64() as u32;
+    }
+}
+
+/// Two xoshiro256++ generators in the two 64-bit lanes of WASM's 128-bit vectors, and the
+/// ziggurat's common case for the four deviates of their two draws in 32-bit lanes.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod simd {
+    use super::{ColumnNoise, Xoshiro256, LAYERS, LAYER_BITS};
+    use core::arch::wasm32::*;
+
+    /// `x` rotated left by `R` bits in each 64-bit lane.
+    #[inline(always)]
+    fn rotl<const R: u32>(x: v128) -> v128 {
+        v128_or(i64x2_shl(x, R), u64x2_shr(x, 64 - R))
+    }
+
+    /// xoshiro256++'s step ([`Xoshiro256::next_u64`]) in both lanes.
+    #[inline(always)]
+    fn next(s: &mut [v128; 4]) -> v128 {
+        let result = i64x2_add(rotl::<23>(i64x2_add(s[0], s[3])), s[0]);
+        let t = i64x2_shl(s[1], 17);
+        s[2] = v128_xor(s[2], s[0]);
+        s[3] = v128_xor(s[3], s[1]);
+        s[1] = v128_xor(s[1], s[2]);
+        s[0] = v128_xor(s[0], s[3]);
+        s[2] = v128_xor(s[2], t);
+        s[3] = rotl::<45>(s[3]);
+        result
+    }
+
+    /// The deviates of four 32-bit draws (lanes) as [`ColumnNoise::normal_pair`]'s fast path
+    /// computes them, and whether each fell inside its layer's rectangle (all bits of a lane).
+    #[inline(always)]
+    fn rectangles(bits: v128, rect: *const u64) -> (v128, v128) {
+        let layer = v128_and(bits, u32x4_splat(LAYERS as u32 - 1));
+        let j = i32x4_shr(bits, LAYER_BITS);
+        // SAFETY: every layer index is below LAYERS, the length of the table behind `rect`.
+        let (lo, hi) = unsafe {
+            let at = |lane: u32| rect.add(lane as usize);
+            let lo = v128_load64_lane::<1>(
+                v128_load64_zero(at(u32x4_extract_lane::<0>(layer))),
+                at(u32x4_extract_lane::<1>(layer)),
+            );
+            let hi = v128_load64_lane::<1>(
+                v128_load64_zero(at(u32x4_extract_lane::<2>(layer))),
+                at(u32x4_extract_lane::<3>(layer)),
+            );
+            (lo, hi)
+        };
+        let bound = i32x4_shuffle::<0, 2, 4, 6>(lo, hi);
+        let width = i32x4_shuffle::<1, 3, 5, 7>(lo, hi);
+        let inside = u32x4_lt(i32x4_abs(j), bound);
+        (f32x4_mul(f32x4_convert_i32x4(j), width), inside)
+    }
+
+    pub(super) fn fill_two(
+        a: &mut ColumnNoise,
+        b: &mut ColumnNoise,
+        out_a: &mut [[f32; 4]],
+        out_b: &mut [[f32; 4]],
+    ) {
+        let rect = a.ziggurat.rect.as_ptr() as *const u64;
+        let (ra, rb) = (a.rng.0, b.rng.0);
+        let mut s: [v128; 4] = std::array::from_fn(|i| u64x2(ra[i], rb[i]));
+        for (ga, gb) in out_a.iter_mut().zip(out_b.iter_mut()) {
+            let before = s;
+            // Lanes [a's g₀, g₁, b's g₀, g₁], then [a's g₂, g₃, b's g₂, g₃].
+            let (first, inside_first) = rectangles(next(&mut s), rect);
+            let (second, inside_second) = rectangles(next(&mut s), rect);
+            let va = i32x4_shuffle::<0, 1, 4, 5>(first, second);
+            let vb = i32x4_shuffle::<2, 3, 6, 7>(first, second);
+            // SAFETY: each entry is 16 bytes; WASM stores may be unaligned.
+            unsafe {
+                v128_store(ga.as_mut_ptr() as *mut v128, va);
+                v128_store(gb.as_mut_ptr() as *mut v128, vb);
+            }
+            let inside = u32x4_bitmask(v128_and(inside_first, inside_second));
+            if inside == 0b1111 {
+                continue;
+            }
+            // A draw outside the rectangles: this ω again from where it began, for that
+            // stream alone, as `normal_pair` draws it.
+            let mut redo = |column: &mut ColumnNoise, lane: usize, g: &mut [f32; 4]| {
+                column.rng = Xoshiro256([0, 1, 2, 3].map(|i| lane_of(before[i], lane)));
+                column.fill(std::slice::from_mut(g));
+                for (i, v) in s.iter_mut().enumerate() {
+                    *v = with_lane(*v, lane, column.rng.0[i]);
+                }
+            };
+            if inside & 0b0011 != 0b0011 {
+                redo(a, 0, ga);
+            }
+            if inside & 0b1100 != 0b1100 {
+                redo(b, 1, gb);
+            }
+        }
+        a.rng = Xoshiro256([0, 1, 2, 3].map(|i| lane_of(s[i], 0)));
+        b.rng = Xoshiro256([0, 1, 2, 3].map(|i| lane_of(s[i], 1)));
+    }
+
+    /// 64-bit lane `i` of `v`.
+    #[inline(always)]
+    fn lane_of(v: v128, i: usize) -> u64 {
+        if i == 0 {
+            u64x2_extract_lane::<0>(v)
+        } else {
+            u64x2_extract_lane::<1>(v)
+        }
+    }
+
+    /// `v` with 64-bit lane `i` replaced by `x`.
+    #[inline(always)]
+    fn with_lane(v: v128, i: usize, x: u64) -> v128 {
+        if i == 0 {
+            u64x2_replace_lane::<0>(v, x)
+        } else {
+            u64x2_replace_lane::<1>(v, x)
+        }
     }
 }
 
@@ -211,13 +373,16 @@ mod tests {
     fn the_ziggurat_tables_tile_the_density() {
         let z = Ziggurat::new();
         // The top layer, from x = 0 to x₁ under f = 1, closes the recurrence with area V.
-        let x1 = z.w[1] as f64 * SCALE;
+        let x1 = z.rect[1].width as f64 * SCALE;
         assert!(
             (x1 * (1.0 - (-0.5 * x1 * x1).exp()) - V).abs() < 1e-6,
             "x₁ {x1}"
         );
         for i in 1..LAYERS - 1 {
-            assert!(z.w[i] < z.w[i + 1] && z.f[i] > z.f[i + 1], "layer {i}");
+            assert!(
+                z.rect[i].width < z.rect[i + 1].width && z.f[i] > z.f[i + 1],
+                "layer {i}"
+            );
         }
     }
 

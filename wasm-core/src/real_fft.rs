@@ -53,7 +53,22 @@ impl<T: FftNum> RealTwiddles<T> {
         let i = Complex::new(T::zero(), T::one());
         let (x0, xm) = (spectrum[0].re, nyquist.re);
         z[0] = Complex::new(x0 + xm, x0 - xm);
-        for k in 1..m {
+        #[allow(unused_mut)]
+        let mut k = 1;
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+        if stride == 1 && std::mem::size_of::<T>() == 4 {
+            assert!(spectrum.len() >= m && z.len() >= m);
+            // SAFETY: T is f32 (FftNum is f32 or f64), so the slices are f32 pairs.
+            k = unsafe {
+                simd::pack_inverse(
+                    spectrum.as_ptr().cast(),
+                    self.twiddles.as_ptr().cast(),
+                    z.as_mut_ptr().cast(),
+                    m,
+                )
+            };
+        }
+        for k in k..m {
             let a = spectrum[k * stride];
             let b = spectrum[(m - k) * stride].conj();
             z[k] = (a + b) + i * self.twiddles[k] * (a - b);
@@ -79,6 +94,51 @@ impl<T: FftNum> RealTwiddles<T> {
             };
             spectrum[k] = even + w * odd;
         }
+    }
+}
+
+/// [`RealTwiddles::pack_inverse`] in single precision, two coefficients per 128-bit vector.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod simd {
+    use core::arch::wasm32::*;
+
+    /// `Z_k` for k = 1, 2, … in pairs while k + 1 < m, as the scalar loop computes them
+    /// (complex values as f32 pairs); returns the first k not written.
+    ///
+    /// # Safety
+    /// `x` holds the m coefficients X_0..X_{m−1}, `w` the m twiddles and `z` m values.
+    #[inline]
+    pub(super) unsafe fn pack_inverse(
+        x: *const f32,
+        w: *const f32,
+        z: *mut f32,
+        m: usize,
+    ) -> usize {
+        // Negates the imaginary parts (lanes 1 and 3).
+        let conj = f32x4(0.0, -0.0, 0.0, -0.0);
+        let negate_re = f32x4(-0.0, 0.0, -0.0, 0.0);
+        let mut k = 1;
+        while k + 1 < m {
+            let a = v128_load(x.add(2 * k).cast());
+            // X_{m−k}*, X_{m−k−1}*.
+            let b = v128_xor(
+                i64x2_shuffle::<1, 0>(
+                    v128_load(x.add(2 * (m - k - 1)).cast()),
+                    v128_load(x.add(2 * (m - k - 1)).cast()),
+                ),
+                conj,
+            );
+            let (sum, d) = (f32x4_add(a, b), f32x4_sub(a, b));
+            // i w^k = (−Im w, Re w) =: (p, q); (p + iq)(d_re + i d_im).
+            let tw = v128_load(w.add(2 * k).cast());
+            let p = f32x4_neg(i32x4_shuffle::<1, 1, 3, 3>(tw, tw));
+            let q = i32x4_shuffle::<0, 0, 2, 2>(tw, tw);
+            let swapped = i32x4_shuffle::<1, 0, 3, 2>(d, d);
+            let rotated = f32x4_add(f32x4_mul(p, d), v128_xor(f32x4_mul(q, swapped), negate_re));
+            v128_store(z.add(2 * k).cast(), f32x4_add(sum, rotated));
+            k += 2;
+        }
+        k
     }
 }
 

@@ -20,6 +20,7 @@
 use crate::error::ParamError;
 use crate::fft4::{planner, transform_column_range};
 use crate::field::{FieldParams, TurbulentField};
+use crate::lanes::interleave3;
 use crate::lattice::{wave_number, Lattice};
 use crate::real_fft::RealTwiddles;
 use crate::velocity_spectrum::VelocitySpectrum;
@@ -88,6 +89,8 @@ struct Transforms {
     rows: Vec<Complex32>,
     /// A plane's packed x sequences `[y][c][j]` for the real transform.
     packed: Vec<Complex32>,
+    /// Normal deviates of two spectral columns, four per ω.
+    normals: Vec<[f32; 4]>,
 }
 
 impl Transforms {
@@ -113,6 +116,7 @@ impl Transforms {
             columns: Vec::new(),
             rows: vec![zero; (ROW_GROUP_BYTES / 8).max(row) * nt],
             packed: vec![zero; row * ny],
+            normals: Vec::new(),
         }
     }
 
@@ -169,11 +173,7 @@ impl Transforms {
         {
             let (u1, rest) = seqs.split_at(nx);
             let (u2, u3) = rest.split_at(nx);
-            for (((o, a), b), c) in out.chunks_exact_mut(3).zip(u1).zip(u2).zip(u3) {
-                o[0] = *a;
-                o[1] = *b;
-                o[2] = *c;
-            }
+            interleave3(u1, u2, u3, out);
         }
     }
 }
@@ -278,13 +278,7 @@ impl Synthesis {
             let ky = wave_number(y, ny);
             let (u1, rest) = row_columns.split_at_mut(m * nt);
             let (u2, u3) = rest.split_at_mut(m * nt);
-            let chunks = u1
-                .chunks_exact_mut(nt)
-                .zip(u2.chunks_exact_mut(nt))
-                .zip(u3.chunks_exact_mut(nt));
-            for (kx, ((u1, u2), u3)) in chunks.enumerate() {
-                self.spectrum.column([kx as i64, ky, kz], [u1, u2, u3]);
-            }
+            self.spectrum.row([ky, kz], [u1, u2, u3], &mut w.normals);
             w.t.process_with_scratch(row_columns, &mut w.scratch);
         }
         let Storage::Filling(memory) = &mut self.storage else {
@@ -327,13 +321,26 @@ fn write_rows(
     start: usize,
     slab: usize,
 ) {
-    let run = columns.len() / nt;
-    for t in 0..nt {
-        let rows = &mut memory[start + t * slab..][..2 * run];
-        for (v, column) in rows.chunks_exact_mut(2).zip(columns.chunks_exact(nt)) {
-            let u = column[t];
-            v[0].write(u.re);
-            v[1].write(u.im);
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        // Two times and two columns at a time, as the strided transforms' scatter.
+        assert!(start % 2 == 0 && slab % 2 == 0 && memory.len() % 2 == 0);
+        // SAFETY: two MaybeUninit<f32> have the size and alignment of one
+        // MaybeUninit<Complex32>, and the length is even.
+        let values: &mut [MaybeUninit<Complex32>] =
+            unsafe { std::slice::from_raw_parts_mut(memory.as_mut_ptr().cast(), memory.len() / 2) };
+        crate::fft4::pairs8::scatter(columns, nt, values, slab / 2, start / 2);
+    }
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    {
+        let run = columns.len() / nt;
+        for t in 0..nt {
+            let rows = &mut memory[start + t * slab..][..2 * run];
+            for (v, column) in rows.chunks_exact_mut(2).zip(columns.chunks_exact(nt)) {
+                let u = column[t];
+                v[0].write(u.re);
+                v[1].write(u.im);
+            }
         }
     }
 }

@@ -21,6 +21,7 @@ use crate::error::ParamError;
 use crate::lattice::{wave_number, Lattice};
 use crate::noise::{ColumnNoise, Ziggurat};
 use crate::spectrum::SpectrumParams;
+use glam::Vec4;
 use rustfft::num_complex::{Complex32, Complex64};
 
 /// The filter and the noise of one field: everything that determines û.
@@ -69,53 +70,150 @@ impl VelocitySpectrum {
     /// û(k, ω) for the spatial wave vector `k` (integer wave numbers, each in `-n/2..n/2` for
     /// its axis) at every temporal index t (ω = `wave_number(t, nt)`), written to `u[c][t]`
     /// for the three components c (each of length nt).
-    #[inline]
     pub fn column(&self, k: [i64; 3], u: [&mut [Complex32]; 3]) {
+        let mut normals = vec![[0.0; 4]; self.size[3]];
+        self.column_with(k, u, &mut normals);
+    }
+
+    /// [`Self::column`] for every kx = 0..nx/2 − 1 of the spatial row (ky, kz): column kx at
+    /// `u[c][kx·nt..(kx + 1)·nt]`. `normals` is work space. The row's columns draw their noise
+    /// two at a time ([`ColumnNoise::fill_two`]).
+    pub fn row(&self, [ky, kz]: [i64; 2], u: [&mut [Complex32]; 3], normals: &mut Vec<[f32; 4]>) {
         let nt = self.size[3];
-        assert!(u.iter().all(|uc| uc.len() == nt), "one value per ω");
-        let nyquist = (0..3).any(|a| k[a] == -(self.size[a] as i64) / 2);
-        if nyquist || k == [0, 0, 0] {
-            u.into_iter()
-                .for_each(|uc| uc.fill(Complex32::new(0.0, 0.0)));
-        } else if draws_its_own_noise(k) {
-            self.draw(k, u, false);
-        } else {
-            // û(k, ω) = û(−k, −ω)*: the mirror column, reversed in ω and conjugated.
-            self.draw(k.map(|ki| -ki), u, true);
+        let m = self.size[0] / 2;
+        assert!(u.iter().all(|uc| uc.len() == m * nt), "one column per kx");
+        normals.resize(2 * nt, [0.0; 4]);
+        let (na, nb) = normals.split_at_mut(nt);
+        let [u1, u2, u3] = u;
+        let mut columns = u1
+            .chunks_exact_mut(nt)
+            .zip(u2.chunks_exact_mut(nt))
+            .zip(u3.chunks_exact_mut(nt))
+            .enumerate()
+            .filter_map(|(kx, ((u1, u2), u3))| {
+                let k = [kx as i64, ky, kz];
+                let stream = match self.source(k) {
+                    Source::Zero => {
+                        [u1, u2, u3]
+                            .into_iter()
+                            .for_each(|uc| uc.fill(Complex32::new(0.0, 0.0)));
+                        return None;
+                    }
+                    Source::Own => (k, false),
+                    Source::Mirror => (k.map(|v| -v), true),
+                };
+                Some((stream, [u1, u2, u3]))
+            });
+        let (half, rest) = (nt / 2, nt / 2 + 1);
+        while let Some(((ka, mirror_a), ua)) = columns.next() {
+            let mut noise_a = ColumnNoise::new(self.seed, ka, &self.ziggurat);
+            let Some(((kb, mirror_b), ub)) = columns.next() else {
+                noise_a.fill(&mut na[..half]);
+                noise_a.fill(&mut na[rest..]);
+                self.filter_into(ka, na, ua, mirror_a);
+                break;
+            };
+            let mut noise_b = ColumnNoise::new(self.seed, kb, &self.ziggurat);
+            ColumnNoise::fill_two(&mut noise_a, &mut noise_b, &mut na[..half], &mut nb[..half]);
+            ColumnNoise::fill_two(&mut noise_a, &mut noise_b, &mut na[rest..], &mut nb[rest..]);
+            self.filter_into(ka, na, ua, mirror_a);
+            self.filter_into(kb, nb, ub, mirror_b);
         }
     }
 
-    /// Filters the column's own noise stream: `û = a (X₁ e₁ + X₂ e₂)` for every non-Nyquist ω,
-    /// written to `u[c][t]`, or, for the mirror column, `û*` to `u[c][−t]`.
+    /// Where the values of the column of `k` come from.
+    fn source(&self, k: [i64; 3]) -> Source {
+        let nyquist = (0..3).any(|a| k[a] == -(self.size[a] as i64) / 2);
+        if nyquist || k == [0, 0, 0] {
+            Source::Zero
+        } else if draws_its_own_noise(k) {
+            Source::Own
+        } else {
+            Source::Mirror
+        }
+    }
+
+    /// [`Self::column`] with `normals` (nt entries) as work space.
+    fn column_with(&self, k: [i64; 3], u: [&mut [Complex32]; 3], normals: &mut [[f32; 4]]) {
+        let nt = self.size[3];
+        assert!(u.iter().all(|uc| uc.len() == nt), "one value per ω");
+        let (stream, mirror) = match self.source(k) {
+            Source::Zero => {
+                u.into_iter()
+                    .for_each(|uc| uc.fill(Complex32::new(0.0, 0.0)));
+                return;
+            }
+            Source::Own => (k, false),
+            Source::Mirror => (k.map(|v| -v), true),
+        };
+        self.normals(stream, normals);
+        self.filter_into(stream, normals, u, mirror);
+    }
+
+    /// [`Self::filter`] for the column whose noise is the stream of `k`: the column of `k`
+    /// itself, or, if `mirror`, the column of −k, û(−k, ω) = û(k, −ω)* (reversed in ω and
+    /// conjugated).
+    fn filter_into(
+        &self,
+        k: [i64; 3],
+        normals: &[[f32; 4]],
+        [u1, u2, u3]: [&mut [Complex32]; 3],
+        mirror: bool,
+    ) {
+        self.filter(k, normals, [&mut *u1, &mut *u2, &mut *u3]);
+        if mirror {
+            for uc in [u1, u2, u3] {
+                uc[1..].reverse();
+                uc.iter_mut().for_each(|v| *v = v.conj());
+            }
+        }
+    }
+
+    /// The deviates of the column of `k`'s own stream, four per ω: `normals[t]` for every
+    /// non-Nyquist t in order (X₁ = (g₀ + i g₁)/√2, X₂ = (g₂ + i g₃)/√2); the entry of the
+    /// Nyquist ω is left as it was.
     #[inline]
-    fn draw(&self, k: [i64; 3], u: [&mut [Complex32]; 3], mirror: bool) {
+    fn normals(&self, k: [i64; 3], normals: &mut [[f32; 4]]) {
+        let half = self.size[3] / 2;
+        let mut noise = ColumnNoise::new(self.seed, k, &self.ziggurat);
+        noise.fill(&mut normals[..half]);
+        noise.fill(&mut normals[half + 1..]);
+    }
+
+    /// `û(k, ω) = a(k, ω) (X₁ e₁ + X₂ e₂)` from the column's deviates, written to `u[c][t]`;
+    /// zero at the Nyquist ω.
+    #[inline]
+    fn filter(&self, k: [i64; 3], normals: &[[f32; 4]], u: [&mut [Complex32]; 3]) {
         let nt = self.size[3];
         let k2 = k.iter().map(|ki| ki * ki).sum::<i64>() as usize;
         let amplitude = &self.amplitude[k2 * nt..(k2 + 1) * nt];
         let [e1, e2] = plane_basis(k).map(|e| e.map(|v| v as f32));
-        let mut noise = ColumnNoise::new(self.seed, k, &self.ziggurat);
+        // Component c in four lanes, [g₀a·e₁, g₁a·e₁, g₂a·e₂, g₃a·e₂] (rounded as complex
+        // arithmetic would: X₁e₁ + X₂e₂ with √2·X = g a), then the pairs summed.
+        let weights = [0, 1, 2].map(|c| Vec4::new(e1[c], e1[c], e2[c], e2[c]));
         let [u1, u2, u3] = u;
-        for (t, &a) in amplitude.iter().enumerate() {
-            let v = if t == nt / 2 {
-                [Complex32::new(0.0, 0.0); 3]
-            } else {
-                // X₁ = (g₀ + i g₁)/√2, X₂ = (g₂ + i g₃)/√2; the √2 is in the amplitude.
-                let [g0, g1] = noise.normal_pair();
-                let [g2, g3] = noise.normal_pair();
-                let x1 = Complex32::new(g0 * a, g1 * a);
-                let x2 = Complex32::new(g2 * a, g3 * a);
-                [0, 1, 2].map(|c| x1 * e1[c] + x2 * e2[c])
-            };
-            let (i, v) = if mirror {
-                ((nt - t) % nt, v.map(|c| c.conj()))
-            } else {
-                (t, v)
-            };
-            u1[i] = v[0];
-            u2[i] = v[1];
-            u3[i] = v[2];
+        let rows = u1.iter_mut().zip(u2.iter_mut()).zip(u3.iter_mut());
+        for ((((v1, v2), v3), &a), g) in rows.zip(amplitude).zip(normals) {
+            let x = Vec4::from_array(*g) * a;
+            let [p1, p2, p3] = weights.map(|w| {
+                let p = x * w;
+                Complex32::new(p.x + p.z, p.y + p.w)
+            });
+            (*v1, *v2, *v3) = (p1, p2, p3);
         }
+        let zero = Complex32::new(0.0, 0.0);
+        (u1[nt / 2], u2[nt / 2], u3[nt / 2]) = (zero, zero, zero);
     }
+}
+
+/// Where a spectral column's values come from.
+enum Source {
+    /// A Nyquist column or k = 0: zero.
+    Zero,
+    /// Its own noise stream.
+    Own,
+    /// The stream of −k, mirrored.
+    Mirror,
 }
 
 /// Whether the column of `k` draws noise (the half space kx > 0, then kx = 0 with (ky, kz) > 0
@@ -219,6 +317,45 @@ mod tests {
                         assert!(!draws_its_own_noise(k));
                     } else {
                         assert_ne!(draws_its_own_noise(k), draws_its_own_noise(m), "{k:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A row's columns, drawn in pairs, equal the columns drawn one at a time: odd and even
+    /// numbers of columns per row, mirrored kx = 0 columns, Nyquist rows and k = 0.
+    #[test]
+    fn a_row_equals_its_columns() {
+        for size in [[10, 6, 4, 14], [12, 8, 6, 8], [6, 4, 4, 4]] {
+            let lattice = Lattice::new(size, "size").unwrap();
+            let params = SpectrumParams {
+                k_inertial: 1.0,
+                ..SpectrumParams::default()
+            };
+            let spectrum = VelocitySpectrum::new(&lattice, &params, 7);
+            let [nx, ny, nz, nt] = size;
+            let m = nx / 2;
+            let mut normals = Vec::new();
+            let zero = Complex32::new(0.0, 0.0);
+            for (y, z) in (0..ny).flat_map(|y| (0..nz).map(move |z| (y, z))) {
+                let (ky, kz) = (wave_number(y, ny), wave_number(z, nz));
+                let mut row = vec![Complex32::new(f32::NAN, 0.0); 3 * m * nt];
+                let (u1, rest) = row.split_at_mut(m * nt);
+                let (u2, u3) = rest.split_at_mut(m * nt);
+                spectrum.row([ky, kz], [u1, u2, u3], &mut normals);
+                for kx in 0..m {
+                    let mut column = vec![zero; 3 * nt];
+                    let (c1, rest) = column.split_at_mut(nt);
+                    let (c2, c3) = rest.split_at_mut(nt);
+                    spectrum.column([kx as i64, ky, kz], [c1, c2, c3]);
+                    for c in 0..3 {
+                        let got = &row[(c * m + kx) * nt..][..nt];
+                        let want = &column[c * nt..][..nt];
+                        let same = got.iter().zip(want).all(|(a, b)| {
+                            a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits()
+                        });
+                        assert!(same, "{size:?} k ({kx}, {ky}, {kz}) component {c}");
                     }
                 }
             }
