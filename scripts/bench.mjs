@@ -63,6 +63,38 @@ emit('blob_step_200k_wasm_ms', median(7, () => sim.step(1)), 'ms');
 sim.free();
 emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
 
+// The worker at 100,000 blobs: the dense plume (tests/fixtures/dense-plume.json) emitting
+// 20,000 blobs a second for 5 s up to its cap, then one fixed step and the frame's packing as
+// the engine worker does them (web/src/engine/handlers.js: `advance`), median of 31. The same
+// quantities as the browser's worker_step_100k_ms (step and pack) and worker_pack_100k_ms.
+{
+  const plume = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));
+  plume.emitters[0].rate = 20_000;
+  plume.gas.max_blobs = 100_000;
+  const worker = new core.SceneSimulation(JSON.stringify(plume));
+  worker.step(Math.round(5 / plume.simulation.dt));
+  const step = [];
+  const pack = [];
+  for (let i = 0; i < 32; i++) {
+    const t0 = performance.now();
+    worker.step(1);
+    const t1 = performance.now();
+    worker.packFrame();
+    worker.frameInfo();
+    worker.movingSpheres();
+    const t2 = performance.now();
+    if (i > 0) {
+      step.push(t1 - t0);
+      pack.push(t2 - t1);
+    }
+  }
+  const mid = (t) => t.sort((a, b) => a - b)[t.length >> 1];
+  const k = `${Math.round(worker.frameInfo()[0] / 1000)}k`;
+  emit(`worker_step_${k}_wasm_ms`, mid(step) + mid(pack), 'ms');
+  emit(`worker_pack_${k}_wasm_ms`, mid(pack), 'ms');
+  worker.free();
+}
+
 const value = (name) => results.find((r) => r.name === name)?.value;
 const nativeMs = value('field_generate_32x32x32x32_native_ms');
 const wasmMs = value('field_generate_32x32x32x32_wasm_ms');

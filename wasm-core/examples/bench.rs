@@ -6,7 +6,7 @@ use glam::Vec3;
 use std::time::Instant;
 use windfield::field::{FieldParams, TurbulentField};
 use windfield::gas::Blob;
-use windfield::render::{RenderOptions, Renderer};
+use windfield::render::{PackedFrame, RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// The blob-step benchmark scene: a 32^4 field plus uniform, vortex and source primitives.
@@ -66,6 +66,7 @@ fn main() {
     seed_blobs(&mut sim, 200_000);
     let ms = median_ms(7, || sim.step());
     emit("blob_step_200k_native_ms", ms, "ms");
+    worker_plume();
 
     // The reference renderer: a simulated plume of 10,000 blobs, one point light, shadows.
     let plume = Scene::from_json(include_str!("render-plume-scene.json")).expect("valid");
@@ -100,6 +101,31 @@ fn main() {
     if let Some(mib) = peak_rss_mib() {
         emit("field_64_native_peak_rss_mib", mib, "MiB");
     }
+}
+
+/// The engine worker's work per frame at 100,000 blobs (as `scripts/bench.mjs` measures it in
+/// WASM): the dense plume emitting 20,000 blobs a second for 5 s up to its cap, then one fixed
+/// step and the frame's packing, medians of 31 (step and pack together, and the pack alone).
+fn worker_plume() {
+    let mut scene =
+        Scene::from_json(include_str!("../../tests/fixtures/dense-plume.json")).expect("valid");
+    scene.emitters[0].rate = 20_000.0;
+    scene.gas.max_blobs = 100_000;
+    let medium = Vec3::from_array(scene.render.medium.albedo);
+    let mut sim = Simulation::new(scene).expect("valid");
+    sim.run(sim.steps_for(5.0));
+    let pack = |sim: &Simulation| {
+        std::hint::black_box(PackedFrame::of_blobs(&sim.blobs(), medium));
+    };
+    let step_ms = median_ms(31, || sim.step());
+    let pack_ms = median_ms(31, || pack(&sim));
+    let k = (sim.blobs().len() + 500) / 1000;
+    emit(
+        &format!("worker_step_{k}k_native_ms"),
+        step_ms + pack_ms,
+        "ms",
+    );
+    emit(&format!("worker_pack_{k}k_native_ms"), pack_ms, "ms");
 }
 
 /// Median time of the paper's field (ε = 1, k_inertial = 4, σ = 1, seed 1) on an n^4 lattice.

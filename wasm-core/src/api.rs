@@ -8,9 +8,7 @@ use crate::blob_list::{BlobList, Encoding};
 use crate::field::{FieldParams, Synthesis, TurbulentField};
 use crate::gas::Blob;
 use crate::render::volume::{light_columns, splat, Towards, VoxelGrid};
-use crate::render::{
-    encode_png, merge_blobs, LinearImage, PackedFrame, RenderBlob, RenderOptions, Renderer,
-};
+use crate::render::{encode_png, merge_blobs, LinearImage, PackedFrame, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::simulation::Simulation;
 use crate::spectrum::SpectrumParams;
@@ -419,15 +417,8 @@ impl SceneSimulation {
 
     /// The current blobs packed for the GPU (albedo resolved against the medium's).
     fn packed(&self) -> PackedFrame {
-        let blobs = self.inner.blobs();
         let medium = Vec3::from_array(self.inner.scene.render.medium.albedo);
-        PackedFrame::pack(blobs.len(), |i| RenderBlob {
-            center: blobs.center(i),
-            sigma: blobs.sigma[i],
-            mass: blobs.mass[i],
-            albedo: blobs.albedo_of(i).map_or(medium, Vec3::from_array),
-            emission: Vec3::from_slice(&blobs.emission[3 * i..3 * i + 3]),
-        })
+        PackedFrame::of_blobs(&self.inner.blobs(), medium)
     }
 
     /// The voxel grid `lo` (3 numbers, m), `h` (m), `dims` (3 counts), checked.

@@ -6,7 +6,7 @@
 //! and colours hand to a renderer as whole buffers.
 
 use crate::emitter::{stream_seed, uniform, EmitterState};
-use crate::lanes::load3;
+use crate::lanes::{exp4, load3};
 use crate::scene::{Emitter, GasSettings, Integrator};
 use crate::wind::{Wind, WindFrame};
 use glam::{Quat, Vec3, Vec3A};
@@ -158,6 +158,23 @@ impl Blobs {
         compact(&mut self.velocity_time, 1, keep);
     }
 
+    /// Removes the `count` oldest blobs (the first `count`), moving the rest down.
+    pub fn drop_oldest(&mut self, count: usize) {
+        fn drop<T>(v: &mut Vec<T>, width: usize, count: usize) {
+            v.drain(..width * count);
+        }
+        drop(&mut self.position, 3, count);
+        drop(&mut self.sigma, 1, count);
+        drop(&mut self.mass, 1, count);
+        drop(&mut self.albedo, 3, count);
+        drop(&mut self.emission, 3, count);
+        drop(&mut self.sigma0, 1, count);
+        drop(&mut self.mass0, 1, count);
+        drop(&mut self.birth, 1, count);
+        drop(&mut self.velocity0, 3, count);
+        drop(&mut self.velocity_time, 1, count);
+    }
+
     /// The full state of blob `i`.
     pub fn get(&self, i: usize) -> Blob {
         let rgb = |v: &[f32]| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
@@ -186,6 +203,41 @@ impl Blobs {
     /// Total mass.
     pub fn total_mass(&self) -> f64 {
         self.mass.iter().map(|&m| m as f64).sum()
+    }
+}
+
+/// The blobs' own velocities, v0·exp(−age/τ) (m/s): birth times (s), v0 (xyz) and τ (s).
+struct OwnVelocity<'a> {
+    birth: &'a [f64],
+    velocity0: &'a [f32],
+    velocity_time: &'a [f32],
+}
+
+impl OwnVelocity<'_> {
+    /// Calls `f(i, v, h)` for every blob in order, with its own velocity v at `t` and the factor
+    /// h = exp(−dt/(2τ)) that takes v to t + dt/2: the exponentials of age four blobs at a time,
+    /// h once for each run of equal τ.
+    fn each(&self, t: f64, dt: f32, mut f: impl FnMut(usize, Vec3A, f32)) {
+        let n = self.birth.len();
+        let mut half_step = (f32::NAN, 1.0f32);
+        for first in (0..n).step_by(4) {
+            let lanes = (n - first).min(4);
+            let mut exponent = [-1.0f32; 4];
+            for (j, e) in exponent.iter_mut().enumerate().take(lanes) {
+                let i = first + j;
+                *e = -((t - self.birth[i]) as f32) / self.velocity_time[i];
+            }
+            let decay = exp4(exponent);
+            for (j, &d) in decay.iter().enumerate().take(lanes) {
+                let i = first + j;
+                let tau = self.velocity_time[i];
+                if tau != half_step.0 {
+                    half_step = (tau, (-0.5 * dt / tau).exp());
+                }
+                let v0 = Vec3A::from_slice(&self.velocity0[3 * i..3 * i + 3]);
+                f(i, v0 * d, half_step.1);
+            }
+        }
     }
 }
 
@@ -291,25 +343,19 @@ impl Gas {
         let position = &mut b.position[..3 * n];
         let x_at = |p: &[f32], i: usize| load3(p, 3 * i);
         let dtf = dt as f32;
-        // The blob's own velocity v0·exp(−age/τ) at t, and the factor exp(−dt/(2τ)) that takes it
-        // to t + dt/2 (m/s): one exponential a blob, and one for each run of equal τ.
-        let mut half_step = (f32::NAN, 1.0f32);
-        let mut own = |i: usize| {
-            let tau = b.velocity_time[i];
-            if tau != half_step.0 {
-                half_step = (tau, (-0.5 * dtf / tau).exp());
-            }
-            let v0 = Vec3A::from_slice(&b.velocity0[3 * i..3 * i + 3]);
-            (v0 * (-((t - b.birth[i]) as f32) / tau).exp(), half_step.1)
+        let own = OwnVelocity {
+            birth: &b.birth[..n],
+            velocity0: &b.velocity0[..3 * n],
+            velocity_time: &b.velocity_time[..n],
         };
         match (integrator, b.own_velocity) {
             (Integrator::Euler, false) => (0..n).for_each(|i| {
                 let x = x_at(position, i);
                 (x + f0.velocity_a(x) * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
             }),
-            (Integrator::Euler, true) => (0..n).for_each(|i| {
+            (Integrator::Euler, true) => own.each(t, dtf, |i, v, _| {
                 let x = x_at(position, i);
-                let k1 = f0.velocity_a(x) + own(i).0;
+                let k1 = f0.velocity_a(x) + v;
                 (x + k1 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
             }),
             (Integrator::Rk2, false) => (0..n).for_each(|i| {
@@ -317,9 +363,8 @@ impl Gas {
                 let xm = x + f0.velocity_a(x) * (0.5 * dtf);
                 (x + fh.velocity_a(xm) * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
             }),
-            (Integrator::Rk2, true) => (0..n).for_each(|i| {
+            (Integrator::Rk2, true) => own.each(t, dtf, |i, v, to_half| {
                 let x = x_at(position, i);
-                let (v, to_half) = own(i);
                 let xm = x + (f0.velocity_a(x) + v) * (0.5 * dtf);
                 let k2 = fh.velocity_a(xm) + v * to_half;
                 (x + k2 * dtf).write_to_slice(&mut position[3 * i..3 * i + 3]);
@@ -422,28 +467,65 @@ impl Gas {
         }
     }
 
+    /// How many blobs one of σ and mass becomes: 6^levels children, none when a child would
+    /// fall below `min_mass`, `max_blobs + 1` when there would be more than `max_blobs`.
+    fn children(&self, sigma: f32, mass: f32) -> usize {
+        let levels = self.split_levels(sigma);
+        let children = (SPLIT_CHILDREN as f64).powi(levels as i32);
+        let child_mass = mass as f64 / children;
+        let max = self.settings.max_blobs;
+        if child_mass < self.settings.min_mass {
+            0
+        } else if children > max as f64 {
+            max + 1
+        } else {
+            children as usize
+        }
+    }
+
+    /// The number of oldest blobs to drop (possibly 0) when capping is all there is to do:
+    /// none of the newest `max_blobs` splits or dissipates, and the newest blob beyond them
+    /// would not dissipate (else the blob-by-blob pass would reach further back). None
+    /// otherwise. Dropping them gives exactly what [`Self::split_remove_cap_each`] gives.
+    fn cap_only(&self) -> Option<usize> {
+        let n = self.blobs.len();
+        let kept = n.min(self.settings.max_blobs);
+        let b = &self.blobs;
+        let unchanged = |i: usize| self.children(b.sigma[i], b.mass[i]) == 1;
+        if !(n - kept..n).all(unchanged) {
+            return None;
+        }
+        let cutoff = n - kept;
+        match cutoff {
+            0 => Some(0),
+            _ => (self.children(b.sigma[cutoff - 1], b.mass[cutoff - 1]) >= 1).then_some(cutoff),
+        }
+    }
+
     /// Replaces wide blobs by children, removes light ones, and keeps the newest within
     /// `max_blobs`. Never holds more than `max_blobs` blobs, whatever the split depth.
     fn split_remove_cap(&mut self, t: f64) {
+        match self.cap_only() {
+            Some(cutoff) => {
+                self.counts.capped += cutoff as u64;
+                self.blobs.drop_oldest(cutoff);
+                self.decayed.drain(..cutoff);
+            }
+            None => self.split_remove_cap_each(t),
+        }
+    }
+
+    /// [`Self::split_remove_cap`] blob by blob, whatever each one becomes.
+    fn split_remove_cap_each(&mut self, t: f64) {
         let n = self.blobs.len();
         let max = self.settings.max_blobs;
-        let min_mass = self.settings.min_mass;
         // Pass 1, newest to oldest: how many blobs each becomes; where the budget runs out.
         let mut counts = vec![0usize; n];
         let mut total = 0usize;
         let mut cutoff = 0;
         let mut changed = false;
         for i in (0..n).rev() {
-            let levels = self.split_levels(self.blobs.sigma[i]);
-            let children = (SPLIT_CHILDREN as f64).powi(levels as i32);
-            let child_mass = self.blobs.mass[i] as f64 / children;
-            let c = if child_mass < min_mass {
-                0
-            } else if children > max as f64 {
-                max + 1
-            } else {
-                children as usize
-            };
+            let c = self.children(self.blobs.sigma[i], self.blobs.mass[i]);
             if c != 1 {
                 changed = true;
             }
@@ -562,5 +644,78 @@ impl Gas {
             b * (tau * u3).cos(),
         )
         .normalize()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A gas of `n` blobs, σ and mass growing with the index, and `max_blobs` of `max`.
+    fn gas(n: usize, max: usize, min_mass: f64) -> Gas {
+        let settings = GasSettings {
+            max_blobs: max,
+            min_mass,
+            split_sigma: Some(0.5),
+            ..GasSettings::default()
+        };
+        let mut g = Gas::new(settings, &[], 7);
+        for i in 0..n {
+            let x = i as f32;
+            let blob = Blob::new(
+                Vec3::new(x, -x, 0.5 * x),
+                0.01 + 1e-4 * x,
+                1.0 + x,
+                -x as f64,
+            );
+            g.blobs.push(&blob, blob.sigma0, blob.mass0);
+        }
+        g.sync_decayed();
+        g
+    }
+
+    fn same(a: &Gas, b: &Gas) {
+        let (x, y) = (&a.blobs, &b.blobs);
+        assert_eq!(x.position, y.position);
+        assert_eq!(x.sigma, y.sigma);
+        assert_eq!(x.mass, y.mass);
+        assert_eq!(x.albedo, y.albedo);
+        assert_eq!(x.emission, y.emission);
+        assert_eq!(x.sigma0, y.sigma0);
+        assert_eq!(x.mass0, y.mass0);
+        assert_eq!(x.birth, y.birth);
+        assert_eq!(x.velocity0, y.velocity0);
+        assert_eq!(x.velocity_time, y.velocity_time);
+        assert_eq!(a.decayed, b.decayed);
+        assert_eq!(a.counts, b.counts);
+    }
+
+    #[test]
+    fn capping_alone_drops_the_oldest_as_the_blob_by_blob_pass_does() {
+        for (n, max, min_mass) in [
+            (120, 100, 0.0),
+            (100, 100, 0.0),
+            (60, 100, 0.0),
+            (120, 100, 5.5),
+        ] {
+            let mut fast = gas(n, max, min_mass);
+            let mut each = fast.clone();
+            fast.split_remove_cap(1.0);
+            each.split_remove_cap_each(1.0);
+            same(&fast, &each);
+            assert_eq!(fast.blobs.len(), n.min(max));
+        }
+    }
+
+    #[test]
+    fn splits_and_removals_take_the_blob_by_blob_pass() {
+        // The newest blob splits; the oldest would be removed below min_mass.
+        let mut g = gas(50, 100, 0.0);
+        g.blobs.sigma[49] = 0.8;
+        assert_eq!(g.cap_only(), None);
+        let mut g = gas(120, 100, 1.5);
+        assert_eq!(g.cap_only(), Some(20));
+        g.blobs.mass[19] = 1.0;
+        assert_eq!(g.cap_only(), None);
     }
 }

@@ -65,3 +65,121 @@ pub fn interleave3(a: &[f32], b: &[f32], c: &[f32], out: &mut [f32]) {
         o.copy_from_slice(&[*a, *b, *c]);
     }
 }
+
+/// e^x in four lanes, each exactly what `f32::exp` gives on this target. In WASM with SIMD,
+/// a four-wide form of the `expf` that `f32::exp` calls there (FreeBSD's, through Rust's libm):
+/// the same reduction x = k ln 2 + r, the same rational approximation of e^r and the same
+/// scaling by 2^k, operation for operation; lanes outside its plain range (|x| ≤ 2^−14, and
+/// −103.97 < x ≤ −80 or x ≥ 80, where `expf` treats subnormals, overflow and NaN apart) take
+/// `f32::exp` itself. Elsewhere, `f32::exp` per lane.
+#[inline]
+pub fn exp4(x: [f32; 4]) -> [f32; 4] {
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        if let Some(y) = simd::exp4(x) {
+            return y;
+        }
+    }
+    x.map(f32::exp)
+}
+
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod simd {
+    use core::arch::wasm32::*;
+
+    // The constants as bit patterns (a v128 holds four of either): ln 2 in two parts, 1/ln 2,
+    // and the two coefficients of the approximation.
+    const LN2_HI: u32 = 0x3f31_7200;
+    const LN2_LO: u32 = 0x35bf_be8e;
+    const INV_LN2: u32 = 0x3fb8_aa3b;
+    const P1: u32 = 0x3e2a_aa8f;
+    const P2: u32 = 0xbb35_5215;
+
+    fn splat_u(v: u32) -> v128 {
+        u32x4_splat(v)
+    }
+
+    /// The vector path of [`super::exp4`]; None when a lane needs `expf`'s special cases.
+    #[inline]
+    pub fn exp4(x: [f32; 4]) -> Option<[f32; 4]> {
+        let v = f32x4(x[0], x[1], x[2], x[3]);
+        // |x| as bits, and all ones in the negative lanes.
+        let hx = v128_and(v, splat_u(0x7fff_ffff));
+        let negative = i32x4_shr(v, 31);
+        let plain = v128_and(
+            u32x4_gt(hx, splat_u(0x3900_0000)),
+            u32x4_lt(hx, splat_u(0x42a0_0000)),
+        );
+        // x ≤ −103.972084 (−∞ included): exactly 0.
+        let zero = v128_and(
+            negative,
+            v128_and(
+                u32x4_ge(hx, splat_u(0x42cf_f1b5)),
+                u32x4_le(hx, splat_u(0x7f80_0000)),
+            ),
+        );
+        if !u32x4_all_true(v128_or(plain, zero)) {
+            return None;
+        }
+        // k: round(x / ln 2) above 1.5 ln 2, ±1 above 0.5 ln 2, else 0.
+        let half = v128_bitselect(f32x4_splat(-0.5), f32x4_splat(0.5), negative);
+        let k_far = i32x4_trunc_sat_f32x4(f32x4_add(f32x4_mul(splat_u(INV_LN2), v), half));
+        let k_near = i32x4_add(i32x4_splat(1), i32x4_shl(negative, 1));
+        let k = v128_bitselect(
+            k_far,
+            v128_and(k_near, u32x4_gt(hx, splat_u(0x3eb1_7218))),
+            u32x4_gt(hx, splat_u(0x3f85_1592)),
+        );
+        let kf = f32x4_convert_i32x4(k);
+        let hi = f32x4_sub(v, f32x4_mul(kf, splat_u(LN2_HI)));
+        let lo = f32x4_mul(kf, splat_u(LN2_LO));
+        let r = f32x4_sub(hi, lo);
+        let rr = f32x4_mul(r, r);
+        let p = f32x4_add(splat_u(P1), f32x4_mul(rr, splat_u(P2)));
+        let c = f32x4_sub(r, f32x4_mul(rr, p));
+        let q = f32x4_div(f32x4_mul(r, c), f32x4_sub(f32x4_splat(2.0), c));
+        let y = f32x4_add(f32x4_splat(1.0), f32x4_add(f32x4_sub(q, lo), hi));
+        // y · 2^k, exact for the k of the plain range.
+        let scale = i32x4_shl(i32x4_add(k, i32x4_splat(0x7f)), 23);
+        let out = v128_andnot(f32x4_mul(y, scale), zero);
+        Some([
+            f32x4_extract_lane::<0>(out),
+            f32x4_extract_lane::<1>(out),
+            f32x4_extract_lane::<2>(out),
+            f32x4_extract_lane::<3>(out),
+        ])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exp4_is_exp_in_every_lane() {
+        let special = [
+            0.0, -0.0, 1e-5, -1e-5, 0.3, -0.3, 1.0, -1.0, 79.9, -79.9, -80.0, -90.0,
+        ];
+        let more = [
+            -104.0,
+            -1e9,
+            88.8,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            0.5,
+            -3.0,
+            -20.0,
+        ];
+        let sweep = (0..4000).map(|i| (i as f32 - 2000.0) * 0.0537);
+        let all: Vec<f32> = special.into_iter().chain(more).chain(sweep).collect();
+        for x in all.chunks_exact(4) {
+            let x = [x[0], x[1], x[2], x[3]];
+            assert_eq!(
+                exp4(x).map(f32::to_bits),
+                x.map(|v| v.exp().to_bits()),
+                "{x:?}"
+            );
+        }
+        assert!(exp4([f32::NAN; 4]).iter().all(|v| v.is_nan()));
+    }
+}

@@ -25,6 +25,7 @@
 
 use super::gaussian::RenderBlob;
 use crate::blob_list::BlobList;
+use crate::gas::Blobs;
 use glam::Vec3;
 use half::f16;
 
@@ -82,6 +83,62 @@ pub struct PackedFrame {
     pub classes: Vec<SigmaClass>,
 }
 
+/// What packing reads of the blobs: centre, σ and mass first (classes and bounds), then the
+/// whole blob of each one kept (its words).
+trait PackSource {
+    fn len(&self) -> usize;
+    /// Centre (m), σ (m) and mass of blob `i`.
+    fn extent(&self, i: usize) -> (Vec3, f32, f32);
+    /// Albedo (resolved) and emission Q of blob `i`.
+    fn colours(&self, i: usize) -> (Vec3, Vec3);
+}
+
+/// Blobs given one [`RenderBlob`] at a time.
+struct Each<F>(usize, F);
+
+impl<F: Fn(usize) -> RenderBlob> PackSource for Each<F> {
+    fn len(&self) -> usize {
+        self.0
+    }
+
+    #[inline(always)]
+    fn extent(&self, i: usize) -> (Vec3, f32, f32) {
+        let b = (self.1)(i);
+        (b.center, b.sigma, b.mass)
+    }
+
+    #[inline(always)]
+    fn colours(&self, i: usize) -> (Vec3, Vec3) {
+        let b = (self.1)(i);
+        (b.albedo, b.emission)
+    }
+}
+
+/// The gas's blobs, a blob without an albedo of its own taking the medium's.
+struct GasBlobs<'a> {
+    blobs: &'a Blobs,
+    medium: Vec3,
+}
+
+impl PackSource for GasBlobs<'_> {
+    fn len(&self) -> usize {
+        self.blobs.len()
+    }
+
+    #[inline(always)]
+    fn extent(&self, i: usize) -> (Vec3, f32, f32) {
+        let b = self.blobs;
+        (b.center(i), b.sigma[i], b.mass[i])
+    }
+
+    #[inline(always)]
+    fn colours(&self, i: usize) -> (Vec3, Vec3) {
+        let b = self.blobs;
+        let albedo = b.albedo_of(i).map_or(self.medium, Vec3::from_array);
+        (albedo, Vec3::from_slice(&b.emission[3 * i..3 * i + 3]))
+    }
+}
+
 /// The two halves of `a` (low 16 bits) and `b` (high) in one word.
 fn halves(a: f32, b: f32) -> u32 {
     u32::from(f16::from_f32(a).to_bits()) | (u32::from(f16::from_f32(b).to_bits()) << 16)
@@ -89,74 +146,72 @@ fn halves(a: f32, b: f32) -> u32 {
 
 impl PackedFrame {
     /// Packs the blobs that `blob(i)` gives for i in 0..n (albedo already resolved: the
-    /// blob's own or the medium's), dropping those without mass. Two passes over the blobs
-    /// (classes and bounds; words), no allocation but the output.
+    /// blob's own or the medium's), dropping those without mass.
     pub fn pack(n: usize, blob: impl Fn(usize) -> RenderBlob) -> Self {
-        let kept = |b: &RenderBlob| b.mass > 0.0 && b.sigma > 0.0;
+        Self::pack_source(&Each(n, blob))
+    }
+
+    /// The gas's blobs packed, a blob without an albedo of its own taking `medium`'s: the
+    /// same words as [`Self::pack`] of their [`RenderBlob`]s.
+    pub fn of_blobs(blobs: &Blobs, medium: Vec3) -> Self {
+        Self::pack_source(&GasBlobs { blobs, medium })
+    }
+
+    /// Two passes over the blobs (classes and bounds from centre, σ and mass; then the words),
+    /// no allocation but the output.
+    fn pack_source(source: &impl PackSource) -> Self {
+        let kept = |sigma: f32, mass: f32| mass > 0.0 && sigma > 0.0;
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         let mut sigma_min = f32::INFINITY;
-        let mut emissive = false;
         let mut counts = [0usize; SIGMA_CLASSES];
         let mut widest = [0.0f32; SIGMA_CLASSES];
-        for i in 0..n {
-            let b = blob(i);
-            if !kept(&b) {
+        for i in 0..source.len() {
+            let (center, sigma, mass) = source.extent(i);
+            if !kept(sigma, mass) {
                 continue;
             }
-            let k = class_of(b.sigma);
+            let k = class_of(sigma);
             counts[k] += 1;
-            widest[k] = widest[k].max(b.sigma);
-            sigma_min = sigma_min.min(b.sigma);
-            let r = Vec3::splat(FOOTPRINT * b.sigma);
-            lo = lo.min(b.center - r);
-            hi = hi.max(b.center + r);
-            emissive |= (Vec3::ONE - b.albedo) * b.emission != Vec3::ZERO;
+            widest[k] = widest[k].max(sigma);
+            sigma_min = sigma_min.min(sigma);
+            let r = Vec3::splat(FOOTPRINT * sigma);
+            lo = lo.min(center - r);
+            hi = hi.max(center + r);
         }
         let count: usize = counts.iter().sum();
         if count == 0 {
             return Self::default();
         }
-        let mut next = [0usize; SIGMA_CLASSES];
-        let mut classes = Vec::new();
-        let mut offset = 0;
-        for k in 0..SIGMA_CLASSES {
-            next[k] = offset;
-            if counts[k] > 0 {
-                classes.push(SigmaClass {
-                    index: k,
-                    offset,
-                    count: counts[k],
-                    sigma_max: widest[k],
-                });
-            }
-            offset += counts[k];
-        }
+        let (classes, mut next) = Self::classes(&counts, &widest);
         let mut words = vec![0u32; WORDS_PER_BLOB * count.next_multiple_of(PACK_ALIGN)];
+        let mut emissive = false;
         // Neighbouring blobs mostly share an emitter's colours: convert each change once.
         let mut colour = (Vec3::NAN, Vec3::NAN, [0u32; 3]);
-        for i in 0..n {
-            let b = blob(i);
-            if !kept(&b) {
+        for i in 0..source.len() {
+            let (center, sigma, mass) = source.extent(i);
+            if !kept(sigma, mass) {
                 continue;
             }
-            let k = class_of(b.sigma);
+            let k = class_of(sigma);
             let w = &mut words[WORDS_PER_BLOB * next[k]..WORDS_PER_BLOB * (next[k] + 1)];
             next[k] += 1;
-            if b.albedo != colour.0 || b.emission != colour.1 {
-                let q = (Vec3::ONE - b.albedo) * b.emission;
+            let (albedo, emission) = source.colours(i);
+            if albedo != colour.0 || emission != colour.1 {
+                let q = (Vec3::ONE - albedo) * emission;
+                emissive |= q != Vec3::ZERO;
                 let packed = [
-                    halves(b.albedo.x, b.albedo.y),
-                    halves(b.albedo.z, q.x),
+                    halves(albedo.x, albedo.y),
+                    halves(albedo.z, q.x),
                     halves(q.y, q.z),
                 ];
-                colour = (b.albedo, b.emission, packed);
+                colour = (albedo, emission, packed);
             }
-            w[0] = b.center.x.to_bits();
-            w[1] = b.center.y.to_bits();
-            w[2] = b.center.z.to_bits();
-            w[3] = b.sigma.to_bits();
-            w[4] = b.mass.to_bits();
+            w[0] = center.x.to_bits();
+            w[1] = center.y.to_bits();
+            w[2] = center.z.to_bits();
+            w[3] = sigma.to_bits();
+            w[4] = mass.to_bits();
             w[5..8].copy_from_slice(&colour.2);
         }
         Self {
@@ -167,6 +222,30 @@ impl PackedFrame {
             sigma_min,
             classes,
         }
+    }
+
+    /// The non-empty classes of the blob counts and widest σ per class, and each class's
+    /// first blob.
+    fn classes(
+        counts: &[usize; SIGMA_CLASSES],
+        widest: &[f32; SIGMA_CLASSES],
+    ) -> (Vec<SigmaClass>, [usize; SIGMA_CLASSES]) {
+        let mut first = [0usize; SIGMA_CLASSES];
+        let mut classes = Vec::new();
+        let mut offset = 0;
+        for k in 0..SIGMA_CLASSES {
+            first[k] = offset;
+            if counts[k] > 0 {
+                classes.push(SigmaClass {
+                    index: k,
+                    offset,
+                    count: counts[k],
+                    sigma_max: widest[k],
+                });
+            }
+            offset += counts[k];
+        }
+        (classes, first)
     }
 
     /// A blob list's blobs packed (colours resolved against its medium's albedo).
@@ -220,6 +299,7 @@ impl PackedFrame {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gas::Blob;
 
     fn blob(x: f32, sigma: f32, mass: f32) -> RenderBlob {
         RenderBlob {
@@ -269,6 +349,31 @@ mod tests {
         // (1 − Ω) Q, exact in half precision here.
         assert_eq!(b.emission, Vec3::new(1.5, 0.0, 1.0));
         assert!(f.emissive);
+    }
+
+    #[test]
+    fn the_gas_packs_as_its_render_blobs_do() {
+        let mut blobs = Blobs::default();
+        for i in 0..300 {
+            let x = i as f32 * 0.01;
+            let own = (i % 3 == 0).then_some([0.2, 0.4, 0.6]);
+            let glow = (i % 5 == 0).then_some([1.0, 0.5, 0.0]);
+            let b = Blob::new(Vec3::new(x, 1.0 - x, 0.5 * x), 0.01, 1.0, 0.0).coloured(own, glow);
+            let mass = if i % 7 == 0 { 0.0 } else { 1.0 + x };
+            blobs.push(&b, 0.001 * (1.0 + (i % 40) as f32), mass);
+        }
+        let medium = Vec3::new(0.9, 0.8, 0.7);
+        let each = PackedFrame::pack(blobs.len(), |i| RenderBlob {
+            center: blobs.center(i),
+            sigma: blobs.sigma[i],
+            mass: blobs.mass[i],
+            albedo: blobs.albedo_of(i).map_or(medium, Vec3::from_array),
+            emission: Vec3::from_slice(&blobs.emission[3 * i..3 * i + 3]),
+        });
+        let gas = PackedFrame::of_blobs(&blobs, medium);
+        assert!(gas.classes.len() > 3 && gas.emissive);
+        assert_eq!(gas.count, 300 - 43);
+        assert_eq!(gas, each);
     }
 
     #[test]
