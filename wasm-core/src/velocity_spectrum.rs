@@ -192,6 +192,28 @@ impl VelocitySpectrum {
         // arithmetic would: X₁e₁ + X₂e₂ with √2·X = g a), then the pairs summed.
         let weights = [0, 1, 2].map(|c| Vec4::new(e1[c], e1[c], e2[c], e2[c]));
         let [u1, u2, u3] = u;
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+        if normals.len() == nt && [&u1, &u2, &u3].iter().all(|uc| uc.len() == nt) {
+            use core::arch::wasm32::*;
+            let [w1, w2, w3] = weights.map(|w| f32x4(w.x, w.y, w.z, w.w));
+            let (o1, o2, o3) = (u1.as_mut_ptr(), u2.as_mut_ptr(), u3.as_mut_ptr());
+            let g = normals.as_ptr() as *const v128;
+            for (t, &a) in amplitude.iter().enumerate() {
+                // SAFETY: t < nt, the length of normals and of each component (checked).
+                unsafe {
+                    let x = f32x4_mul(v128_load(g.add(t)), f32x4_splat(a));
+                    let (p1, p2, p3) = (f32x4_mul(x, w1), f32x4_mul(x, w2), f32x4_mul(x, w3));
+                    // Lanes 0, 1: (re, im) = (p.x + p.z, p.y + p.w).
+                    let sum = |p: v128| f32x4_add(p, i64x2_shuffle::<1, 1>(p, p));
+                    v128_store64_lane::<0>(sum(p1), o1.add(t) as *mut u64);
+                    v128_store64_lane::<0>(sum(p2), o2.add(t) as *mut u64);
+                    v128_store64_lane::<0>(sum(p3), o3.add(t) as *mut u64);
+                }
+            }
+            let zero = Complex32::new(0.0, 0.0);
+            (u1[nt / 2], u2[nt / 2], u3[nt / 2]) = (zero, zero, zero);
+            return;
+        }
         let rows = u1.iter_mut().zip(u2.iter_mut()).zip(u3.iter_mut());
         for ((((v1, v2), v3), &a), g) in rows.zip(amplitude).zip(normals) {
             let x = Vec4::from_array(*g) * a;
