@@ -18,12 +18,8 @@ export function gzipKiB(dir, pattern) {
   return total / 1024;
 }
 
-/**
- * Runs the benchmarks against the built site; returns the results. `gpu`: on the machine's GPU
- * (WINDFIELD_BENCH_GPU=1), adding the real-time view's frame at 1920×1080 and the GPU's name
- * (on stderr).
- */
-export async function benchBrowser({ gpu = false } = {}) {
+/** Runs the benchmarks against the built site; returns the results. */
+export async function benchBrowser() {
   const results = [];
   const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
 
@@ -33,14 +29,6 @@ export async function benchBrowser({ gpu = false } = {}) {
       return performance.now();
     });
     emit('first_frame_ms', firstFrame, 'ms');
-    if (gpu) {
-      const renderer = await page.evaluate(() => {
-        const gl = document.createElement('canvas').getContext('webgl2');
-        const info = gl?.getExtension('WEBGL_debug_renderer_info');
-        return gl ? gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) : 'no WebGL2';
-      });
-      console.error(`bench: WebGL2 renderer ${renderer}`);
-    }
 
     // One plume, 5 s of emission, at `count` blobs: the same volume whatever the count.
     const plume = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));
@@ -72,27 +60,17 @@ export async function benchBrowser({ gpu = false } = {}) {
     emit(`worker_pack_${k}_ms`, worker.pack, 'ms');
     emit(`frame_bytes_${k}`, worker.bytes, 'bytes');
 
-    const frame = (mode, width = 640, height = 360) => page.evaluate(
-      (o) => window.windfield.timeFrames({ ...o, frames: 5, quality: 'standard' }),
-      { mode, width, height },
-    );
+    const frame = (mode) => page.evaluate((m) => window.windfield.timeFrames({ mode: m, width: 640, height: 360, frames: 5, quality: 'standard' }), mode);
     const view = {};
-    const full = {};
     view[100] = await frame('raymarch');
-    if (gpu) full[100] = await frame('raymarch', 1920, 1080);
     const points100 = await frame('points');
     await plumeOf(10_000);
     view[10] = await frame('raymarch');
-    if (gpu) full[10] = await frame('raymarch', 1920, 1080);
-    for (const [k, ms] of Object.entries(full)) {
-      emit(`view_frame_1920x1080_${k}k_ms`, ms, 'ms');
-      emit(`view_fps_1920x1080_${k}k`, 1000 / ms, 'fps');
-    }
     emit('view_frame_640x360_10k_ms', view[10], 'ms');
     emit('view_frame_640x360_100k_ms', view[100], 'ms');
     emit('view_100k_over_10k', view[100] / view[10], 'ratio');
     emit('points_frame_640x360_100k_ms', points100, 'ms');
     emit('view_over_points_100k', view[100] / points100, 'ratio');
-  }, { gpu });
+  });
   return results;
 }

@@ -2,8 +2,7 @@
 // Benchmarks: native (the Rust example), WASM (the built core in Node), an FFTW baseline (when
 // Debian's libfftw3-dev is installed) and the browser (the built site in chromium), medians of
 // several runs. `npm run bench -- --json` prints one JSON object per line; without --json, a
-// table. `--no-browser` skips the browser part. WINDFIELD_BENCH_GPU=1 runs the browser part on
-// the machine's GPU (ANGLE on Vulkan) instead of SwiftShader and adds 1920×1080 frames.
+// table. `--no-browser` skips the browser part.
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -169,7 +168,7 @@ if (!process.argv.includes('--no-browser')) {
   const loader = gzipKiB(`${root}dist`, /^embed\.js$/);
   emit('embed_loader_gzip_kib', loader, 'KiB');
   emit('embed_full_gzip_kib', loader + gzipKiB(`${root}dist/wind-field`, /\.js$/), 'KiB');
-  for (const r of await benchBrowser({ gpu: process.env.WINDFIELD_BENCH_GPU === '1' })) emit(r.name, r.value, r.unit);
+  for (const r of await benchBrowser()) emit(r.name, r.value, r.unit);
 }
 
 if (!json) {

@@ -6,23 +6,19 @@ import { fileURLToPath } from 'node:url';
 
 export const root = fileURLToPath(new URL('..', import.meta.url));
 const PORT = 4179;
-/** WebGL2 on the CPU: the same on every machine. */
-const SWIFTSHADER_FLAGS = ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'];
-/** WebGL2 on the machine's GPU through ANGLE's Vulkan back end (also headless). */
-const GPU_FLAGS = ['--use-angle=vulkan', '--enable-features=Vulkan', '--ignore-gpu-blocklist', '--enable-gpu'];
 
 /**
  * Serves dist/, opens a page on it (`path`, e.g. `?view=points`) once the server answers, runs
  * `fn(page, open)` (`open(path)` navigates again and waits for `window.windfield`), and closes
- * everything. `gpu`: WebGL2 on the machine's GPU instead of SwiftShader.
+ * everything.
  */
-export async function withSite(path, fn, { gpu = false } = {}) {
+export async function withSite(path, fn) {
   const server = spawn('npx', ['vite', 'preview', '--config', 'web/vite.config.js', '--host', '127.0.0.1', '--port', String(PORT), '--strictPort'], {
     cwd: root, stdio: 'ignore', detached: true,
   });
   const browser = await chromium.launch({
     executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
-    args: ['--no-sandbox', ...(gpu ? GPU_FLAGS : SWIFTSHADER_FLAGS), '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   });
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 720 } });
