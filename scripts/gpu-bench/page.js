@@ -1,6 +1,7 @@
 // The real-time view's frame on a real GPU, for scripts/gpu-bench/run.sh: loaded into a copy of
 // the playground, it drives window.windfield and reports through the console (one
-// `GPUBENCH {json}` line per figure), so it needs no driver program beside the browser.
+// `GPUBENCH {json}` line per figure), so it needs no driver program beside the browser. Query:
+// frames, counts, qualities; `profile` adds the volume passes' times (each waits for the GPU).
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
 const frames = Number(query.get('frames') || 10);
@@ -36,7 +37,9 @@ async function main() {
     const blobs = await plumeOf(w, plume, n);
     const frame = async (mode, width, height, quality) => {
       const ms = await w.timeFrames({ mode, width, height, frames, quality });
-      log({ blobs, mode, quality, width, height, ms, fps: 1000 / ms });
+      // With `profile` in the query, the volumes' passes of the last frame (ms each).
+      const passes = mode === 'raymarch' ? w.stats().passes : undefined;
+      log({ blobs, mode, quality, width, height, ms, fps: 1000 / ms, passes });
     };
     for (const quality of qualities) await frame('raymarch', 1920, 1080, quality);
     await frame('raymarch', 640, 360, 'standard');
