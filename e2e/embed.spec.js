@@ -4,7 +4,7 @@
 // with a play button; ready/error events; attributes mirrored as properties and live changes.
 import { test, expect } from '@playwright/test';
 import { gzipSync } from 'node:zlib';
-import { collectErrors } from './helpers.js';
+import { canvasLuminance, collectErrors } from './helpers.js';
 
 /** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
 async function bare(page, name, body) {
@@ -27,27 +27,6 @@ function recordCode(page) {
     fetched.push({ url, gzip: gzipSync(body, { level: 9 }).length });
   });
   return fetched;
-}
-
-/** Luminance spread (max − min over pixels) of a player's canvas. */
-function canvasSpread(page, selector) {
-  return page.evaluate((sel) => {
-    const src = document.querySelector(sel).shadowRoot.querySelector('canvas');
-    const c = document.createElement('canvas');
-    c.width = 96;
-    c.height = 72;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(src, 0, 0, 96, 72);
-    const d = ctx.getImageData(0, 0, 96, 72).data;
-    let min = 255;
-    let max = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      const y = 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2];
-      min = Math.min(min, y);
-      max = Math.max(max, y);
-    }
-    return max - min;
-  }, selector);
 }
 
 test('two embedded players on the docs page both run', async ({ page }) => {
@@ -126,7 +105,7 @@ test('without autoplay a player shows its scene at poster-time with a play butto
   expect(ready[1].time).toBeCloseTo(Math.round(1 / ready[1].dt) * ready[1].dt, 6);
   expect(ready[0].blobs).toBeGreaterThan(ready[1].blobs);
   // The poster frame is drawn: the gas, not an empty box.
-  expect(await canvasSpread(page, '#p')).toBeGreaterThan(30);
+  expect((await canvasLuminance(page, '#p', { shadow: true })).spread).toBeGreaterThan(30);
   // Paused at its poster time until asked to play.
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   expect(await page.evaluate(() => document.querySelector('#p').stats().time)).toBe(ready[0].time);
@@ -275,13 +254,15 @@ test('with reduced motion an autoplay player waits at its poster time with its p
 test('without WebGL a player reports an error instead of an endless wait', async ({ page }) => {
   await page.addInitScript(() => {
     HTMLCanvasElement.prototype.getContext = () => null;
+    // Listening from the start: the player may fail before the test's code runs.
+    window.playerErrors = [];
+    document.addEventListener('error', (e) => e.detail && window.playerErrors.push(e.detail.message), true);
   });
   await bare(page, 'nogl', '<wind-field id="p" preset="default" loading="eager" style="width: 240px"></wind-field>');
   const out = await page.evaluate(async () => {
     const el = document.querySelector('#p');
-    const event = new Promise((r) => el.addEventListener('error', (e) => r(e.detail.message), { once: true }));
     const ready = await el.ready.then(() => 'resolved', (e) => e.message);
-    return { ready, event: await event, alert: el.shadowRoot.querySelector('[role=alert]').textContent };
+    return { ready, event: window.playerErrors[0], alert: el.shadowRoot.querySelector('[role=alert]').textContent };
   });
   expect(out.ready).toMatch(/^could not start the player/);
   expect(out.event).toBe(out.ready);

@@ -10,10 +10,15 @@ export function collectErrors(page) {
   return errors;
 }
 
-/** Mean and standard deviation of the luminance of a canvas (by selector). */
-export async function canvasLuminance(page, selector) {
-  return page.evaluate((sel) => {
-    const src = document.querySelector(sel);
+/**
+ * Luminance statistics of a canvas (by selector; `shadow`: the canvas inside that element's
+ * shadow root), over a 128 × 128 resampling: mean, standard deviation, and the spread
+ * (max − min).
+ */
+export async function canvasLuminance(page, selector, { shadow = false } = {}) {
+  return page.evaluate(({ sel, inShadow }) => {
+    const host = document.querySelector(sel);
+    const src = inShadow ? host.shadowRoot.querySelector('canvas') : host;
     const c = document.createElement('canvas');
     c.width = 128;
     c.height = 128;
@@ -22,13 +27,17 @@ export async function canvasLuminance(page, selector) {
     const d = ctx.getImageData(0, 0, 128, 128).data;
     let sum = 0;
     let sum2 = 0;
+    let min = 255;
+    let max = 0;
     const n = d.length / 4;
     for (let i = 0; i < d.length; i += 4) {
       const y = 0.2126 * d[i] + 0.7152 * d[i + 1] + 0.0722 * d[i + 2];
       sum += y;
       sum2 += y * y;
+      min = Math.min(min, y);
+      max = Math.max(max, y);
     }
     const mean = sum / n;
-    return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)) };
-  }, selector);
+    return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)), spread: max - min };
+  }, { sel: selector, inShadow: shadow });
 }
