@@ -106,13 +106,12 @@ impl VelocitySpectrum {
             });
         let (half, rest) = (nt / 2, nt / 2 + 1);
         while let Some(((ka, mirror_a), ua)) = columns.next() {
-            let mut noise_a = ColumnNoise::new(self.seed, ka, &self.ziggurat);
             let Some(((kb, mirror_b), ub)) = columns.next() else {
-                noise_a.fill(&mut na[..half]);
-                noise_a.fill(&mut na[rest..]);
+                self.normals(ka, na);
                 self.filter_into(ka, na, ua, mirror_a);
                 break;
             };
+            let mut noise_a = ColumnNoise::new(self.seed, ka, &self.ziggurat);
             let mut noise_b = ColumnNoise::new(self.seed, kb, &self.ziggurat);
             ColumnNoise::fill_two(&mut noise_a, &mut noise_b, &mut na[..half], &mut nb[..half]);
             ColumnNoise::fill_two(&mut noise_a, &mut noise_b, &mut na[rest..], &mut nb[rest..]);
@@ -192,14 +191,15 @@ impl VelocitySpectrum {
         // arithmetic would: X₁e₁ + X₂e₂ with √2·X = g a), then the pairs summed.
         let weights = [0, 1, 2].map(|c| Vec4::new(e1[c], e1[c], e2[c], e2[c]));
         let [u1, u2, u3] = u;
+        assert!(normals.len() == nt && [&u1, &u2, &u3].iter().all(|uc| uc.len() == nt));
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        if normals.len() == nt && [&u1, &u2, &u3].iter().all(|uc| uc.len() == nt) {
+        {
             use core::arch::wasm32::*;
             let [w1, w2, w3] = weights.map(|w| f32x4(w.x, w.y, w.z, w.w));
             let (o1, o2, o3) = (u1.as_mut_ptr(), u2.as_mut_ptr(), u3.as_mut_ptr());
             let g = normals.as_ptr() as *const v128;
             for (t, &a) in amplitude.iter().enumerate() {
-                // SAFETY: t < nt, the length of normals and of each component (checked).
+                // SAFETY: t < nt, the length of normals and of each component (asserted).
                 unsafe {
                     let x = f32x4_mul(v128_load(g.add(t)), f32x4_splat(a));
                     let (p1, p2, p3) = (f32x4_mul(x, w1), f32x4_mul(x, w2), f32x4_mul(x, w3));
@@ -210,18 +210,18 @@ impl VelocitySpectrum {
                     v128_store64_lane::<0>(sum(p3), o3.add(t) as *mut u64);
                 }
             }
-            let zero = Complex32::new(0.0, 0.0);
-            (u1[nt / 2], u2[nt / 2], u3[nt / 2]) = (zero, zero, zero);
-            return;
         }
-        let rows = u1.iter_mut().zip(u2.iter_mut()).zip(u3.iter_mut());
-        for ((((v1, v2), v3), &a), g) in rows.zip(amplitude).zip(normals) {
-            let x = Vec4::from_array(*g) * a;
-            let [p1, p2, p3] = weights.map(|w| {
-                let p = x * w;
-                Complex32::new(p.x + p.z, p.y + p.w)
-            });
-            (*v1, *v2, *v3) = (p1, p2, p3);
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+        {
+            let rows = u1.iter_mut().zip(u2.iter_mut()).zip(u3.iter_mut());
+            for ((((v1, v2), v3), &a), g) in rows.zip(amplitude).zip(normals) {
+                let x = Vec4::from_array(*g) * a;
+                let [p1, p2, p3] = weights.map(|w| {
+                    let p = x * w;
+                    Complex32::new(p.x + p.z, p.y + p.w)
+                });
+                (*v1, *v2, *v3) = (p1, p2, p3);
+            }
         }
         let zero = Complex32::new(0.0, 0.0);
         (u1[nt / 2], u2[nt / 2], u3[nt / 2]) = (zero, zero, zero);
