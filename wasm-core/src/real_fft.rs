@@ -121,13 +121,8 @@ mod simd {
         while k + 1 < m {
             let a = v128_load(x.add(2 * k).cast());
             // X_{m−k}*, X_{m−k−1}*.
-            let b = v128_xor(
-                i64x2_shuffle::<1, 0>(
-                    v128_load(x.add(2 * (m - k - 1)).cast()),
-                    v128_load(x.add(2 * (m - k - 1)).cast()),
-                ),
-                conj,
-            );
+            let mirrored = v128_load(x.add(2 * (m - k - 1)).cast());
+            let b = v128_xor(i64x2_shuffle::<1, 0>(mirrored, mirrored), conj);
             let (sum, d) = (f32x4_add(a, b), f32x4_sub(a, b));
             // i w^k = (−Im w, Re w) =: (p, q); (p + iq)(d_re + i d_im).
             let tw = v128_load(w.add(2 * k).cast());
