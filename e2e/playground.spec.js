@@ -63,6 +63,25 @@ test('step(n) is deterministic: same scene, same blobs', async ({ page }) => {
   expect(b).toEqual(a);
 });
 
+test("a playing scene, paused, shows the worker's state: step(n) then takes exactly n steps", async ({ page }) => {
+  await open(page);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    const frames = (n) => new Promise((r) => { const f = (k) => (k ? requestAnimationFrame(() => f(k - 1)) : r()); f(n); });
+    w.play();
+    while (w.stats().time < 0.3) await frames(1);
+    w.pause();
+    await frames(3);
+    const paused = w.stats().time;
+    await frames(3);
+    const still = w.stats().time;
+    await w.step(5);
+    return { paused, still, stepped: w.stats().time, dt: w.getScene().simulation.dt };
+  });
+  expect(out.still).toBe(out.paused);
+  expect(out.stepped - out.paused).toBeCloseTo(5 * out.dt, 9);
+});
+
 test('every GPU view draws something', async ({ page }) => {
   await open(page);
   await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(120); });

@@ -107,3 +107,53 @@ test('a 100,000-blob plume in the real-time view matches its reference still (�
   expect(p).toBeGreaterThanOrEqual(30);
   expect(errors).toEqual([]);
 });
+
+/** `image` ({width, height, rgb}) averaged over blocks of `f × f` pixels. */
+function shrink({ width, height, rgb }, f) {
+  const w = Math.floor(width / f);
+  const h = Math.floor(height / f);
+  const out = new Float64Array(3 * w * h);
+  for (let y = 0; y < h * f; y++) {
+    for (let x = 0; x < w * f; x++) {
+      for (let c = 0; c < 3; c++) out[3 * (Math.floor(y / f) * w + Math.floor(x / f)) + c] += rgb[3 * (y * width + x) + c] / (f * f);
+    }
+  }
+  return Uint8Array.from(out, Math.round);
+}
+
+test('a view past the march budget, marched smaller and upsampled by depth, matches the full-resolution march', async ({ page }) => {
+  test.setTimeout(240_000);
+  const errors = collectErrors(page);
+  await open(page, 'preset=steam-mug');
+  const shots = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    await w.setScene(w.getScene());
+    await w.step(120);
+    const size = { mode: 'raymarch', quality: 'draft' };
+    // draft marches at most 2^17 pixels: 320×180 is marched whole, 1280×720 at 483×272.
+    const whole = await w.captureGPU({ ...size, width: 320, height: 180 });
+    const upsampled = await w.captureGPU({ ...size, width: 1280, height: 720 });
+    // The same view without gas: where it differs from `whole` is where the gas is.
+    await w.setScene({ ...w.getScene(), emitters: [] });
+    const bare = await w.captureGPU({ ...size, width: 320, height: 180 });
+    return { whole, upsampled, bare };
+  });
+  for (const [name, url] of Object.entries(shots)) writeFileSync(test.info().outputPath(`${name}.png`), bytes(url));
+  const whole = decodePng(bytes(shots.whole)).rgb;
+  const bare = decodePng(bytes(shots.bare)).rgb;
+  const upsampled = shrink(decodePng(bytes(shots.upsampled)), 4);
+  // PSNR over the pixels the gas covers (the rest is the opaque pass, drawn alike at any size).
+  let sum = 0;
+  let n = 0;
+  for (let i = 0; i < whole.length; i += 3) {
+    if (Math.max(...[0, 1, 2].map((c) => Math.abs(whole[i + c] - bare[i + c]))) <= 2) continue;
+    for (let c = 0; c < 3; c++) sum += (upsampled[i + c] - whole[i + c]) ** 2;
+    n += 3;
+  }
+  const p = 10 * Math.log10((255 * 255) / (sum / n));
+  console.log(`march upsampled 483×272 → 1280×720, shrunk to 320×180, against 320×180 marched whole, over ${n / 3} gas pixels: ${p.toFixed(1)} dB`);
+  expect(n / 3).toBeGreaterThan(1000);
+  expect(p).toBeGreaterThanOrEqual(30);
+  expect(errors).toEqual([]);
+});

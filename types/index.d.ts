@@ -214,7 +214,7 @@ export interface WindFieldPageAPI extends WindFieldMethods {
   /** A WebM of `frames` fixed steps, one a frame. */
   recordWebM(options?: { frames?: number; width?: number; height?: number; fps?: number; mode?: WindFieldView }): Promise<Blob>;
   /** Times frames drawn from scratch (ms, the median). */
-  timeFrames(options?: { mode?: WindFieldView; width?: number; height?: number; frames?: number; quality?: WindFieldQuality }): Promise<number>;
+  timeFrames(options?: { mode?: WindFieldView; width?: number; height?: number; frames?: number; quality?: WindFieldQuality; rebuild?: boolean }): Promise<number>;
   /** The real-time view's volumes as the GPU holds them, beside the core's twin of them. */
   inspectVolume(options?: { quality?: WindFieldQuality }): Promise<unknown>;
   /** The field's statistics (`windfield stats`). */

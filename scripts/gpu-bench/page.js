@@ -2,6 +2,10 @@
 // the playground, it drives window.windfield and reports through the console (one
 // `GPUBENCH {json}` line per figure), so it needs no driver program beside the browser. Query:
 // frames, counts, qualities; `profile` adds the volume passes' times (each waits for the GPU).
+// Each real-time figure twice: volumes rebuilt every frame (as while the scene plays), and kept
+// (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
+// plume for S seconds in the playground's own view, filling the window, and reports the frame
+// rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
 const frames = Number(query.get('frames') || 10);
@@ -35,16 +39,52 @@ async function main() {
   const plume = await (await fetch('./dense-plume.json')).json();
   for (const n of counts) {
     const blobs = await plumeOf(w, plume, n);
-    const frame = async (mode, width, height, quality) => {
-      const ms = await w.timeFrames({ mode, width, height, frames, quality });
+    const frame = async (mode, width, height, quality, rebuild = true) => {
+      const ms = await w.timeFrames({ mode, width, height, frames, quality, rebuild });
       // With `profile` in the query, the volumes' passes of the last frame (ms each).
-      const passes = mode === 'raymarch' ? w.stats().passes : undefined;
-      log({ blobs, mode, quality, width, height, ms, fps: 1000 / ms, passes });
+      const passes = mode === 'raymarch' && rebuild ? w.stats().passes : undefined;
+      log({ blobs, mode, quality, width, height, rebuild, ms, fps: 1000 / ms, passes });
     };
-    for (const quality of qualities) await frame('raymarch', 1920, 1080, quality);
+    for (const quality of qualities) {
+      await frame('raymarch', 1920, 1080, quality);
+      await frame('raymarch', 1920, 1080, quality, false);
+    }
     await frame('raymarch', 640, 360, 'standard');
     await frame('points', 1920, 1080);
   }
+  const seconds = Number(query.get('live') || 0);
+  if (seconds > 0) {
+    document.head.insertAdjacentHTML('beforeend', '<style>#view { position: fixed !important; inset: 0; z-index: 9; border-radius: 0; }</style>');
+    for (const n of counts) await live(w, plume, n, seconds);
+  }
+}
+
+/**
+ * The playground playing the plume of `n` blobs for `seconds`, one step a display frame (dt =
+ * 1/60 s, so every frame rebuilds the volumes): its last 5 s of frame rate and step time.
+ */
+async function live(w, plume, n, seconds) {
+  const blobs = await plumeOf(w, { ...plume, simulation: { ...plume.simulation, dt: 1 / 60 } }, n);
+  w.play();
+  const samples = [];
+  for (let t = 0; t < seconds; t++) {
+    await new Promise((r) => setTimeout(r, 1000));
+    samples.push(w.stats());
+  }
+  w.pause();
+  const last = samples.slice(-5);
+  const canvas = document.querySelector('#canvas');
+  log({
+    live: true,
+    blobs,
+    quality: query.get('quality') || 'standard',
+    box: [canvas.clientWidth, canvas.clientHeight],
+    canvas: [canvas.width, canvas.height],
+    fps: last.reduce((a, s) => a + s.fps, 0) / last.length,
+    stepMs: last.reduce((a, s) => a + s.stepMs, 0) / last.length,
+    scale: last.at(-1).scale,
+    scales: samples.map((s) => s.scale),
+  });
 }
 
 main().then(() => log({ done: true }), (e) => log({ error: String(e?.stack || e) }));

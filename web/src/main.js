@@ -16,10 +16,12 @@ const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).hre
 const smallScreen = window.matchMedia?.('(max-width: 800px), (max-height: 540px)').matches ?? false;
 /** What the view shows, for its text alternative: the preset's name, or the scene being edited. */
 let sceneName = 'the default scene';
+/** The page's query: `view`, `quality`, `preset`, `profile`. */
+const query = new URLSearchParams(location.search);
 
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
-  profile: new URLSearchParams(location.search).has('profile'),
+  profile: query.has('profile'),
   onProgress: showProgress,
   onMessage: showMessage,
   onFrame: (frame) => {
@@ -37,8 +39,9 @@ const player = new Player($('#canvas'), {
   },
 });
 const state = player.state;
-const initialView = new URLSearchParams(location.search).get('view');
+const initialView = query.get('view');
 state.mode = MODES.includes(initialView) ? initialView : 'raymarch';
+if (Object.hasOwn(QUALITY, query.get('quality') ?? '')) state.quality = query.get('quality');
 player.view.showGuides = true;
 const loadScene = (scene) => player.load(scene);
 const advance = (n) => player.advance(n);
@@ -219,7 +222,7 @@ async function initialScene() {
       showMessage(`The link's scene is invalid (${e.message}); showing the default scene.`);
     }
   }
-  const preset = new URLSearchParams(location.search).get('preset');
+  const preset = query.get('preset');
   const url = preset ? new URL(`./scenes/${encodeURIComponent(preset)}.json`, document.baseURI).href : DEFAULT_SCENE_URL;
   let scene = await fetch(url).then((r) => (r.ok ? r.json() : null)).catch(() => null);
   sceneName = preset ? `the ${preset} scene` : 'the default scene';

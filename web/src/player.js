@@ -23,6 +23,8 @@ export const QUALITY = {
 export const MODES = ['points', 'raymarch', 'exact'];
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
+/** A frame that waited longer than this (ms) for the worker's step was paced by the worker. */
+const WORKER_WAIT_MS = 2;
 
 function bytesToDataUrl(bytes) {
   let binary = '';
@@ -43,12 +45,22 @@ export class Player {
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
     this.stats = { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
     /**
-     * Holds the frame rate by scaling the canvas's internal resolution (`stats().scale`),
-     * starting lower on phone-sized screens.
+     * Holds the frame rate by scaling the canvas's internal resolution and the real-time
+     * view's voxels (`stats().scale`), starting lower on phone-sized screens.
      */
     this.resolution = new ResolutionGovernor({ start: startScale(window.innerWidth, window.innerHeight) });
     this.busy = false;
     this.lastFrame = null;
+    /** The step asked for ahead while playing (a promise of its frame), or null. */
+    this.ahead = null;
+    /** The showing of that step under way (`#settle`), or null. */
+    this.settling = null;
+    /** When the loop last found nothing to do (rAF ms). */
+    this.idleAt = -Infinity;
+    /** Frames per second the view keeps up, from frames drawn back to back (the governor's input). */
+    this.pace = 0;
+    /** How long the last frame waited for the worker (ms). */
+    this.waited = 0;
     this.accumulated = 0;
     this.view = new SceneView(canvas);
     this.view.volume.profile = Boolean(hooks.profile);
@@ -71,6 +83,7 @@ export class Player {
 
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
+    await this.#settle();
     const info = await this.engine.request('load', { scene }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
@@ -101,7 +114,45 @@ export class Player {
 
   async advance(steps) {
     const t0 = performance.now();
-    const frame = await this.engine.request('advance', { steps });
+    await this.#settle();
+    await this.#show(await this.engine.request('advance', { steps }), steps, t0);
+  }
+
+  /**
+   * While playing: the frame `steps` ahead, then the next step asked for at once, so the worker
+   * steps while this frame is drawn (the worker runs one step ahead of the picture, as a frame
+   * in flight; `#settle` shows it before anything else reads or changes the state).
+   */
+  async #play(steps) {
+    const t0 = performance.now();
+    // Both requests go out now, in order, before anything else can ask the worker for more.
+    const ahead = this.ahead;
+    this.ahead = null;
+    const left = ahead ? steps - 1 : steps;
+    const more = left > 0 ? this.engine.request('advance', { steps: left }) : null;
+    let frame = ahead ? await ahead : null;
+    if (more) frame = await more;
+    this.waited = performance.now() - t0;
+    if (this.state.playing) this.ahead = this.engine.request('advance', { steps: 1 });
+    await this.#show(frame, steps, t0);
+  }
+
+  /**
+   * Shows the step asked for ahead, if any, so the picture is the worker's state again. Callers
+   * meanwhile wait for the same showing, and go on in the order they called.
+   */
+  #settle() {
+    if (this.ahead) {
+      const ahead = this.ahead;
+      this.ahead = null;
+      this.settling = ahead.then((frame) => this.#show(frame, 1, performance.now()))
+        .finally(() => { this.settling = null; });
+    }
+    return this.settling ?? Promise.resolve();
+  }
+
+  /** Takes `frame` (after `steps` steps) as the current one and draws it; `t0` when it was asked for. */
+  async #show(frame, steps, t0) {
     this.lastFrame = frame;
     this.view.setFrame(frame);
     this.stats.blobs = frame.count;
@@ -146,6 +197,7 @@ export class Player {
     const c = this.view.canvas;
     const scale = this.state.mode === 'points' ? 1 : this.resolution.scale;
     this.stats.scale = scale;
+    this.view.volumeScale = scale;
     const width = Math.max(Math.round(c.clientWidth * scale), 1);
     const height = Math.max(Math.round(c.clientHeight * scale), 1);
     const now = this.view.size();
@@ -166,10 +218,17 @@ export class Player {
   #drawn(start, end) {
     const busy = start - this.lastDrawn < 100;
     const seconds = (busy ? end - this.lastDrawn : end - start) / 1000;
+    // A frame after an animation frame with nothing to do (a scene stepping slower than the
+    // display), or one that waited for the worker's step, is paced by the scene or the worker,
+    // not by the view: it does not move the resolution.
+    const paced = this.idleAt > this.lastDrawn || this.waited > WORKER_WAIT_MS;
+    this.waited = 0;
     this.lastDrawn = end;
     if (!(seconds > 0)) return;
     this.stats.fps = this.stats.fps > 0 && busy ? 0.8 * this.stats.fps + 0.2 / seconds : 1 / seconds;
-    if (this.state.mode !== 'points' && this.resolution.observe(end, this.stats.fps)) this.resize();
+    if (paced) return;
+    this.pace = this.pace > 0 && busy ? 0.8 * this.pace + 0.2 / seconds : 1 / seconds;
+    if (this.state.mode !== 'points' && this.resolution.observe(end, this.pace)) this.resize();
   }
 
   loop(now) {
@@ -184,23 +243,30 @@ export class Player {
         steps = Math.min(Math.floor(this.accumulated / h), MAX_STEPS_PER_FRAME);
         this.accumulated -= steps * h;
       }
-      if (steps > 0 || this.dirty) {
+      // Paused with a step in flight: show it.
+      const work = steps > 0 ? () => this.#play(steps)
+        : this.ahead && !this.state.playing ? () => this.#settle()
+          : this.dirty ? () => this.draw() : null;
+      if (work) {
         this.busy = true;
         const start = performance.now();
-        (steps > 0 ? this.advance(steps) : this.draw())
+        work()
           .then(() => this.#drawn(start, performance.now()))
           .catch((e) => this.hooks.onMessage?.(e.message))
           .finally(() => { this.busy = false; });
+      } else {
+        this.idleAt = now;
       }
     }
     requestAnimationFrame((t) => this.loop(t));
   }
 
-  /** Runs `fn` when no frame is in flight. */
+  /** Runs `fn` when no frame is in flight, the step asked for ahead shown first. */
   async exclusive(fn) {
     while (this.busy) await new Promise((r) => setTimeout(r, 5));
     this.busy = true;
     try {
+      await this.#settle();
       return await fn();
     } finally {
       this.busy = false;
@@ -213,15 +279,15 @@ export class Player {
    */
   offscreen({ mode, quality = this.state.quality, standIns = false, width, height }, fn) {
     return this.exclusive(async () => {
-      const before = { size: this.view.size(), mode: this.state.mode, quality: this.state.quality, guides: this.view.showGuides };
+      const before = { size: this.view.size(), mode: this.state.mode, quality: this.state.quality, guides: this.view.showGuides, volumeScale: this.view.volumeScale };
       Object.assign(this.state, { mode, quality });
-      Object.assign(this.view, { standIns, showGuides: false });
+      Object.assign(this.view, { standIns, showGuides: false, volumeScale: 1 });
       try {
         this.view.resize(width, height);
         return await fn();
       } finally {
         Object.assign(this.state, { mode: before.mode, quality: before.quality });
-        Object.assign(this.view, { standIns: false, showGuides: before.guides });
+        Object.assign(this.view, { standIns: false, showGuides: before.guides, volumeScale: before.volumeScale });
         this.view.resize(before.size.width, before.size.height);
       }
     });
@@ -259,14 +325,15 @@ export class Player {
 
   /**
    * The median time (ms) of drawing the current state `frames` times in `mode` at `width ×
-   * height`, each frame from scratch (the real-time view's volumes rebuilt, as after a step) and
-   * finished on the GPU. For benchmarks.
+   * height`, finished on the GPU: each frame from scratch (the real-time view's volumes rebuilt,
+   * as after a step), or with `rebuild: false` the volumes kept (as when orbiting a paused scene
+   * or between steps). For benchmarks.
    */
-  timeFrames({ mode = 'raymarch', width = 640, height = 360, frames = 5, quality = this.state.quality } = {}) {
+  timeFrames({ mode = 'raymarch', width = 640, height = 360, frames = 5, quality = this.state.quality, rebuild = true } = {}) {
     return this.offscreen({ mode, quality, width, height }, async () => {
       const times = [];
       for (let i = 0; i <= frames; i++) {
-        this.view.volume.invalidate();
+        if (rebuild) this.view.volume.invalidate();
         const t0 = performance.now();
         await this.draw({ width, height });
         waitForGpu(this.view.renderer);

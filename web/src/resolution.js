@@ -1,5 +1,6 @@
 // Holds a frame rate by scaling the internal resolution of the marched views: the canvas's
-// drawing buffer is its box times `scale`, and the browser stretches it to the box. Below the
+// drawing buffer is its box times `scale`, and the browser stretches it to the box; the
+// real-time view's volumes follow it too (voxels scale³ as many, `VolumeLayer.prepare`). Below the
 // target the scale falls at once; above it, it rises slowly and not straight back to where it
 // last fell from, so it settles instead of oscillating. Small screens (phones) start lower.
 

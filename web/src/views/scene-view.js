@@ -46,6 +46,8 @@ export class SceneView {
     this.background = [0, 0, 0];
     /** Draw plain cylinders in place of models (for comparisons with the CPU still). */
     this.standIns = false;
+    /** The resolution scale the real-time view's volumes follow (`VolumeLayer.prepare`). */
+    this.volumeScale = 1;
     /** Wind guides and the drag handle, drawn over the frame when `showGuides` is set. */
     this.overlay = new THREE.Scene();
     this.guides = new GuidesLayer(this.overlay, this.camera, canvas, this.controls);
@@ -175,7 +177,7 @@ export class SceneView {
       const layer = mode === 'exact' ? this.exact : this.volume;
       gas.shadowSource.value = mode === 'exact' ? 1 : 2;
       // The volumes first: the objects read their shadows from the light volume.
-      if (mode === 'raymarch') this.volume.prepare(this.renderer, quality);
+      if (mode === 'raymarch') this.volume.prepare(this.renderer, quality, this.volumeScale);
       this.points.points.visible = false;
       this.renderer.setRenderTarget(this.target);
       this.scene.background = null;

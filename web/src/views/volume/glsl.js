@@ -37,6 +37,7 @@ float erf1(float x) {
  * A voxel grid and its 3-D texture: `sampleVolume(tex, grid, p)` interpolates trilinearly
  * between voxel centres (held beyond the outermost ones, as `VoxelGrid::sample` in the core).
  * The texture may be larger than the grid (`size`), so that it is remade only now and then.
+ * `atlasVoxel` and `atlasTexel` address a grid's slices laid out as the tiles of a 2-D atlas.
  */
 export const GRID_GLSL = /* glsl */ `
 precision highp sampler3D;
@@ -50,6 +51,16 @@ vec4 sampleVolume(sampler3D tex, Grid g, vec3 p) {
   vec3 c = clamp((p - g.lo) / g.h, vec3(0.5), vec3(g.dims) - 0.5);
   return texture(tex, c / g.size);
 }
+// A grid's slices as tiles of a 2-D atlas, slice k at column k mod cols, row ⌊k / cols⌋: the
+// voxel v at atlas texel px (false past the grid), and the texel of voxel v.
+bool atlasVoxel(ivec2 px, ivec3 dims, int cols, out ivec3 v) {
+  ivec2 tile = px / dims.xy;
+  v = ivec3(px - tile * dims.xy, tile.y * cols + tile.x);
+  return tile.x < cols && v.z < dims.z;
+}
+ivec2 atlasTexel(ivec3 v, ivec3 dims, int cols) {
+  return ivec2(v.z % cols, v.z / cols) * dims.xy + v.xy;
+}
 // Distance from x (inside the box) along unit d to the box's boundary.
 float exitDistance(vec3 x, vec3 d, vec3 lo, vec3 hi) {
   vec3 far = mix(lo, hi, step(vec3(0.0), d));
@@ -57,6 +68,14 @@ float exitDistance(vec3 x, vec3 d, vec3 lo, vec3 hi) {
   t = mix(t, vec3(1e30), equal(d, vec3(0.0)));
   return max(min(t.x, min(t.y, t.z)), 0.0);
 }
+`;
+
+/** The start of a fragment shader drawing into an atlas of a grid's slices: precisions, GRID_GLSL. */
+export const ATLAS_PASS_GLSL = /* glsl */ `
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+${GRID_GLSL}
 `;
 
 /** The uniform value of a `Grid` for a fitted grid held in a texture of `size` texels per axis. */

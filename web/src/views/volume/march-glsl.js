@@ -1,7 +1,8 @@
 // GLSL of the real-time view's ray march: the light volume read at any point (objects included),
-// and the march through the density volume with jittered steps.
+// and the march through the density volume with jittered steps, leaping over empty bricks.
 
 import { GRID_GLSL } from './glsl.js';
+import { BRICK_GLSL } from './occupancy-pass.js';
 import { MAX_LIGHTS } from '../gas-uniforms.js';
 
 /** Gas shadows from the light volume: `volumeColumn(l, x)`, ∫ρ ds from x towards light l. */
@@ -37,8 +38,13 @@ float volumeColumn(int l, vec3 x, vec3 toLight, float toLightDistance) {
 
 export const MAX_MARCH_STEPS = 1024;
 
-/** The march: front-to-back compositing of the voxel density (DESIGN §4 on the volume). */
+/**
+ * The march: front-to-back compositing of the voxel density (DESIGN §4 on the volume). Samples
+ * sit at s0 + (k + j)·ds; where a brick holds no gas the march goes on at the first such sample
+ * past the brick, so it takes the same samples wherever there is gas as a march without leaps.
+ */
 export const MARCH_GLSL = /* glsl */ `
+${BRICK_GLSL}
 uniform sampler3D densityVolume;
 uniform sampler3D sourceVolume;
 uniform bool emissive;
@@ -57,10 +63,17 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
   if (s1 <= s0) return;
   float ds = stepScale * grid.h;
   float j = jitter(gl_FragCoord.xy);
-  for (int k = 0; k < ${MAX_MARCH_STEPS}; k++) {
-    float s = s0 + (float(k) + j) * ds;
+  float k = 0.0;
+  for (int n = 0; n < ${MAX_MARCH_STEPS}; n++, k += 1.0) {
+    float s = s0 + (k + j) * ds;
     if (s >= s1) break;
     vec3 x = camPos + rd * s;
+    vec3 lo, hi;
+    if (emptyBrick(x, lo, hi)) {
+      float out_ = s + exitDistance(x, rd, lo, hi);
+      k = max(k, ceil((out_ - s0) / ds - j) - 1.0);
+      continue;
+    }
     vec4 d = sampleVolume(densityVolume, grid, x);
     if (d.x <= 0.0) continue;
     vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));

@@ -8,7 +8,8 @@
 // grid a class: it does not grow with the blobs' widths.
 
 import * as THREE from 'three';
-import { BLOB_GLSL, GRID_GLSL } from './glsl.js';
+import { ScreenPass } from '../screen-pass.js';
+import { ATLAS_PASS_GLSL, BLOB_GLSL, GRID_GLSL } from './glsl.js';
 import { blurKernel, classSigma, DIRECT_LIMIT, MAX_BLUR_RADIUS } from './grid.js';
 import { ADDITIVE, additivePoints } from './point-draws.js';
 
@@ -74,15 +75,8 @@ void main() {
 }
 `;
 
-const blurVertex = /* glsl */ `
-void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }
-`;
-
 const blurFragment = /* glsl */ `
-precision highp float;
-precision highp int;
-precision highp sampler2D;
-${GRID_GLSL}
+${ATLAS_PASS_GLSL}
 uniform Grid grid;
 uniform int atlasCols;
 uniform sampler2D meshDensity;
@@ -94,27 +88,30 @@ uniform float kernel[${2 * MAX_BLUR_RADIUS + 1}];
 layout(location = 0) out vec4 outDensity;
 layout(location = 1) out vec4 outSource;
 
-ivec2 texel(ivec3 v) {
-  return ivec2((v.z % atlasCols) * grid.dims.x + v.x, (v.z / atlasCols) * grid.dims.y + v.y);
-}
-
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  ivec2 tile = px / grid.dims.xy;
-  ivec3 v = ivec3(px - tile * grid.dims.xy, tile.y * atlasCols + tile.x);
+  ivec3 v;
   outDensity = vec4(0.0);
   outSource = vec4(0.0);
-  if (tile.x >= atlasCols || v.z >= grid.dims.z) return;
-  int n = grid.dims[axis];
-  for (int i = 0; i <= ${2 * MAX_BLUR_RADIUS}; i++) {
-    if (i > 2 * radius) break;
-    ivec3 from = v;
-    from[axis] += i - radius;
-    if (from[axis] < 0 || from[axis] >= n) continue;
-    float w = kernel[i];
-    ivec2 at = texel(from);
-    outDensity += w * texelFetch(meshDensity, at, 0);
-    if (emissive) outSource += w * texelFetch(meshSource, at, 0);
+  if (!atlasVoxel(px, grid.dims, atlasCols, v)) return;
+  // Taps from voxel first to last along the axis (inside the grid); along x and y they lie in
+  // this slice's tile, a texel apart.
+  int first = max(v[axis] - radius, 0);
+  int last = min(v[axis] + radius, grid.dims[axis] - 1);
+  int i = first - v[axis] + radius;
+  if (axis < 2) {
+    ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    ivec2 at = px + step * (first - v[axis]);
+    for (int t = first; t <= last; t++, i++, at += step) {
+      outDensity += kernel[i] * texelFetch(meshDensity, at, 0);
+      if (emissive) outSource += kernel[i] * texelFetch(meshSource, at, 0);
+    }
+  } else {
+    for (int t = first; t <= last; t++, i++) {
+      ivec2 at = atlasTexel(ivec3(v.xy, t), grid.dims, atlasCols);
+      outDensity += kernel[i] * texelFetch(meshDensity, at, 0);
+      if (emissive) outSource += kernel[i] * texelFetch(meshSource, at, 0);
+    }
   }
 }
 `;
@@ -129,25 +126,16 @@ export class MeshPass {
     // One deposit draw a σ class (k − 1 upper share, k lower share), reused frame to frame.
     this.depositScene = new THREE.Scene();
     this.deposits = [];
-    this.blur = new THREE.ShaderMaterial({
-      glslVersion: THREE.GLSL3,
-      vertexShader: blurVertex,
-      fragmentShader: blurFragment,
-      uniforms: {
-        grid: shared.grid, atlasCols: shared.atlasCols,
-        meshDensity: { value: null }, meshSource: { value: null }, emissive: { value: false },
-        axis: { value: 0 }, radius: { value: 1 }, kernel: { value: new Array(2 * MAX_BLUR_RADIUS + 1).fill(0) },
-      },
-      depthTest: false,
-      depthWrite: false,
+    // Blur x and y into scratch, z added into the density atlas (the same uniforms).
+    this.blur = new ScreenPass(blurFragment, {
+      grid: shared.grid, atlasCols: shared.atlasCols,
+      meshDensity: { value: null }, meshSource: { value: null }, emissive: { value: false },
+      axis: { value: 0 }, radius: { value: 1 }, kernel: { value: new Array(2 * MAX_BLUR_RADIUS + 1).fill(0) },
     });
-    this.blurAdd = this.blur.clone();
+    this.blurAdd = this.blur.material.clone();
     Object.assign(this.blurAdd, ADDITIVE);
-    this.blurAdd.uniforms = this.blur.uniforms;
-    this.quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), this.blur);
-    this.quad.frustumCulled = false;
-    this.blurScene = new THREE.Scene();
-    this.blurScene.add(this.quad);
+    this.blurAdd.uniforms = this.blur.material.uniforms;
+    this.blurCopy = this.blur.material;
   }
 
   #deposit(i) {
@@ -172,10 +160,12 @@ export class MeshPass {
 
   /**
    * Adds the wide blobs of `frame` ({classes, emissive}) into `target` through the
-   * mesh, using `a` and `b` (atlases like `target`) as scratch.
+   * mesh, using `a` and `b` (atlases like `target`) as scratch. With `clock` (a stopwatch of GPU
+   * passes, ms since its last call) returns the time of the deposits and of the blurs.
    */
-  render(renderer, frame, h, target, a, b) {
-    const u = this.blur.uniforms;
+  render(renderer, frame, h, target, a, b, clock = () => 0) {
+    const times = { deposit: 0, blur: 0 };
+    const u = this.blur.material.uniforms;
     u.emissive.value = frame.emissive;
     const autoClear = renderer.autoClear;
     renderer.autoClear = false;
@@ -197,21 +187,24 @@ export class MeshPass {
       renderer.setClearColor(0x000000, 0);
       renderer.clear(true, false, false);
       renderer.render(this.depositScene, this.camera);
+      times.deposit += clock();
       // Blur x (a → b), y (b → a), z (a → target, added).
       const kernel = blurKernel(classSigma(k), h);
       u.radius.value = (kernel.length - 1) / 2;
       u.kernel.value.fill(0);
       kernel.forEach((w, i) => { u.kernel.value[i] = w; });
-      const passes = [[0, a, b, this.blur], [1, b, a, this.blur], [2, a, target, this.blurAdd]];
+      const passes = [[0, a, b, this.blurCopy], [1, b, a, this.blurCopy], [2, a, target, this.blurAdd]];
       for (const [axis, from, to, material] of passes) {
         u.axis.value = axis;
         u.meshDensity.value = from.textures[0];
         u.meshSource.value = from.textures[frame.emissive ? 1 : 0];
-        this.quad.material = material;
+        this.blur.quad.material = material;
         renderer.setRenderTarget(to);
-        renderer.render(this.blurScene, this.camera);
+        this.blur.render(renderer);
       }
+      times.blur += clock();
     }
     renderer.autoClear = autoClear;
+    return times;
   }
 }

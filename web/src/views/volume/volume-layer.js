@@ -1,11 +1,12 @@
 // The real-time volume view (DESIGN §1, §5 `raymarch`): the frame's blobs splatted on the GPU
 // into a density volume, a light volume of shadow columns computed from it, and a ray march of
-// the volume with jittered steps, composited over the opaque pass by depth. Its cost per frame
-// grows with pixels and with the voxels the gas fills, not with the blob count (only the splat,
-// a few fragments a blob, does). The splat draws into a 2-D atlas of slices, which is copied
-// slice by slice into 3-D textures for hardware trilinear sampling. The volumes are rebuilt
-// only when the frame, the quality or the lights change: orbiting a paused scene re-runs the
-// march alone.
+// the volume with jittered steps that leap over empty bricks, composited over the opaque pass by
+// depth. Its cost per frame grows with pixels and with the voxels the gas fills, not with the
+// blob count (only the splat, a few fragments a blob, does). The splat and the light pass draw
+// into 2-D atlases of slices, copied several slices a draw into 3-D textures for hardware
+// trilinear sampling. A view larger than the quality's march budget is marched at a lower
+// resolution and upsampled by depth. The volumes are rebuilt only when the frame, the quality
+// or the lights change: orbiting a paused scene re-runs the march alone.
 
 import * as THREE from 'three';
 import { LIGHTS_GLSL } from '../gas-uniforms.js';
@@ -15,18 +16,22 @@ import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
 import { MARCH_GLSL, VOLUME_SHADOW_GLSL } from './march-glsl.js';
+import { marchSize, MarchUpsample, SPLIT_OUTPUTS_GLSL } from './march-upsample.js';
 import { MeshPass } from './mesh-pass.js';
+import { brickDims, OccupancyPass } from './occupancy-pass.js';
+import { SliceCopy } from './slice-copy.js';
 import { SplatPass } from './splat-pass.js';
 
 /**
  * Per quality: the voxel budget of the density grid, the smallest voxel in units of the
  * narrowest blob's σ (finer voxels would resolve nothing more, as no blob is narrower), the
- * march's step and the light columns' step (both in voxels).
+ * march's step and the light columns' step (both in voxels), and the most pixels the march
+ * draws (a larger view is marched at a lower resolution: `march-upsample.js`).
  */
 export const VOLUME_QUALITY = {
-  draft: { budget: 2 ** 18, voxelPerSigma: 1, step: 1, column: 1.5 },
-  standard: { budget: 2 ** 20, voxelPerSigma: 1, step: 0.75, column: 1 },
-  high: { budget: 2 ** 22, voxelPerSigma: 0.35, step: 0.5, column: 1 },
+  draft: { budget: 2 ** 18, voxelPerSigma: 1, step: 1, column: 1.5, marchPixels: 2 ** 17 },
+  standard: { budget: 2 ** 20, voxelPerSigma: 1, step: 0.75, column: 1, marchPixels: 2 ** 18 },
+  high: { budget: 2 ** 22, voxelPerSigma: 0.35, step: 0.5, column: 1, marchPixels: Infinity },
 };
 
 const fragmentShader = /* glsl */ `
@@ -35,6 +40,9 @@ ${LIGHTS_GLSL}
 ${VOLUME_SHADOW_GLSL}
 ${MARCH_GLSL}
 uniform bool hasGas;
+#ifdef SPLIT
+${SPLIT_OUTPUTS_GLSL}
+#endif
 
 void main() {
   vec3 rd, behind;
@@ -43,7 +51,11 @@ void main() {
   vec3 rad = vec3(0.0);
   vec3 T = vec3(1.0);
   if (hasGas) marchVolume(camPos, rd, sMax, rad, T);
+#ifdef SPLIT
+  writeSplit(rad, T);
+#else
   outColor = vec4(encode(rad + T * behind), 1.0);
+#endif
 }
 `;
 
@@ -112,8 +124,18 @@ export class VolumeLayer extends MarchQuad {
       emissive: { value: false },
       stepScale: { value: 0.75 },
       hasGas: { value: false },
+      occupancy: { value: null },
+      bricks: { value: [1, 1, 1] },
+      brickCols: { value: 1 },
     };
     super(fragmentShader, { ...gas, ...own });
+    /** The same march writing radiance and transmittance apart, for a lower resolution. */
+    this.splitMaterial = this.material.clone();
+    this.splitMaterial.uniforms = this.material.uniforms;
+    this.splitMaterial.defines = { SPLIT: 1 };
+    this.fullMaterial = this.material;
+    this.upsample = new MarchUpsample(this.material.uniforms);
+    this.marchPixels = Infinity;
     this.gas = gas;
     this.blobs = blobs;
     this.own = own;
@@ -121,9 +143,17 @@ export class VolumeLayer extends MarchQuad {
     this.splat = new SplatPass({ blobTex: own.blobTex, grid: gas.grid, ...this.atlasUniforms });
     this.mesh = new MeshPass({ blobTex: own.blobTex, grid: gas.grid, ...this.atlasUniforms });
     this.light = new LightPass({ ...gas, densityVolume: own.densityVolume });
-    /** The splat's atlas and the mesh's two scratch atlases; the 3-D targets: density, emitted source, light columns. */
+    this.occupancyPass = new OccupancyPass({ grid: gas.grid, ...this.atlasUniforms });
+    /** Made on the first build (it needs the context). */
+    this.copier = null;
+    /**
+     * The splat's atlas and the mesh's two scratch atlases, the light pass's atlas, the bricks'
+     * atlas; the 3-D targets: density, emitted source, light columns.
+     */
     this.atlas = null;
     this.scratch = [null, null];
+    this.lightAtlas = null;
+    this.bricks = null;
     this.density = null;
     this.source = null;
     this.columns = null;
@@ -151,18 +181,21 @@ export class VolumeLayer extends MarchQuad {
     this.builtKey = '';
   }
 
-  #ensureTargets(renderer, grid, layout, emissive) {
+  #ensureTargets(renderer, grid, layouts, emissive) {
     const type = renderer.extensions.has('EXT_float_blend') ? THREE.FloatType : THREE.HalfFloatType;
-    const caps = renderer.capabilities;
+    const maxSize = renderer.capabilities.maxTextureSize;
     const max3d = renderer.getContext().getParameter(renderer.getContext().MAX_3D_TEXTURE_SIZE);
     const count = emissive ? 2 : 1;
-    this.atlas = atlasTarget(this.atlas, layout, type, count, caps.maxTextureSize);
-    this.scratch = this.scratch.map((t) => atlasTarget(t, layout, type, count, caps.maxTextureSize));
+    this.atlas = atlasTarget(this.atlas, layouts.density, type, count, maxSize);
+    this.scratch = this.scratch.map((t) => atlasTarget(t, layouts.density, type, count, maxSize));
+    this.lightAtlas = atlasTarget(this.lightAtlas, layouts.light, THREE.FloatType, 1, maxSize);
+    this.bricks = atlasTarget(this.bricks, layouts.bricks, type, 1, maxSize);
     this.density = volumeTarget(this.density, grid.dims, type, max3d);
     if (emissive) this.source = volumeTarget(this.source, grid.dims, type, max3d);
     this.columns = volumeTarget(this.columns, halved(grid).dims, THREE.FloatType, max3d);
     // Copies land in the 3-D textures before anything is drawn into them: allocate them now.
     for (const t of [this.density, this.source, this.columns]) if (t) renderer.initRenderTarget(t);
+    this.copier ??= new SliceCopy(renderer);
   }
 
   /** A stopwatch of GPU passes when profiling: each call returns ms since the last (0 if not). */
@@ -179,26 +212,16 @@ export class VolumeLayer extends MarchQuad {
     };
   }
 
-  /** Copies the atlas's slices (attachment `i`) into the 3-D target `volume`. */
-  #copySlices(renderer, i, volume, grid, cols) {
-    const [nx, ny, nz] = grid.dims;
-    const box = new THREE.Box2();
-    const at = new THREE.Vector3();
-    for (let k = 0; k < nz; k++) {
-      box.min.set((k % cols) * nx, Math.floor(k / cols) * ny);
-      box.max.set(box.min.x + nx, box.min.y + ny);
-      renderer.copyTextureToTexture(this.atlas.textures[i], volume.texture, box, at.set(0, 0, k));
-    }
-  }
-
   /**
    * Builds the density and light volumes for the current frame at `quality` unless they are
-   * already built. Returns false when there is no gas.
+   * already built. Returns false when there is no gas. `scale` (0–1], the view's resolution
+   * scale, scales the voxels' count by scale³ (their side by 1/scale), as it scales the pixels'
+   * side: the voxels keep their size in pixels and the whole view's cost follows the scale.
    */
-  prepare(renderer, quality) {
+  prepare(renderer, quality, scale = 1) {
     const info = this.info;
     const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
-    const key = `${this.frameSerial}|${quality}|${this.gas.hasShadows.value}`;
+    const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}`;
     if (key === this.builtKey) return this.own.hasGas.value;
     this.builtKey = key;
     const hasGas = Boolean(info && info.count > 0);
@@ -210,40 +233,58 @@ export class VolumeLayer extends MarchQuad {
     const maxSize = renderer.capabilities.maxTextureSize;
     const sigmaMax = Math.max(...info.classes.map((c) => c.sigmaMax));
     const minH = Math.max(minVoxelFor(sigmaMax), q.voxelPerSigma * info.sigmaMin);
-    let budget = q.budget;
+    let budget = q.budget * scale ** 3;
     let grid;
-    let layout;
+    let layouts;
     for (;;) {
       grid = fitGrid(info.lo, info.hi, { budget, minH });
-      layout = atlasLayout(grid.dims, maxSize);
-      if (layout) break;
+      layouts = {
+        density: atlasLayout(grid.dims, maxSize),
+        light: atlasLayout(halved(grid).dims, maxSize),
+        bricks: atlasLayout(brickDims(grid.dims), maxSize),
+      };
+      if (layouts.density) break;
       budget /= 2;
     }
+    const layout = layouts.density;
     this.grid = grid;
-    this.#ensureTargets(renderer, grid, layout, info.emissive);
+    this.#ensureTargets(renderer, grid, layouts, info.emissive);
     this.gas.grid.value = gridUniform(grid, sizeOf(this.density));
     this.gas.lightGrid.value = gridUniform(halved(grid), sizeOf(this.columns));
     this.atlasUniforms.atlasCols.value = layout.cols;
-    this.atlasUniforms.atlasSize.value = [this.atlas.width, this.atlas.height];
+    // Draw over the layouts only: a target kept from a larger grid is bigger than its layout.
+    const draw = (target, l) => target.viewport.set(0, 0, l.width, l.height);
+    for (const t of [this.atlas, ...this.scratch]) draw(t, layout);
+    draw(this.lightAtlas, layouts.light);
+    draw(this.bricks, layouts.bricks);
+    this.atlasUniforms.atlasSize.value = [layout.width, layout.height];
     this.own.blobTex.value = this.blobs.texture;
     this.own.emissive.value = info.emissive;
     this.own.stepScale.value = q.step;
+    this.marchPixels = q.marchPixels;
     const clock = this.#clock(renderer);
     this.splat.render(renderer, this.atlas, info.classes, grid.h);
     const splat = clock();
-    this.mesh.render(renderer, info, grid.h, this.atlas, ...this.scratch);
-    const mesh = clock();
-    this.#copySlices(renderer, 0, this.density, grid, layout.cols);
-    if (info.emissive) this.#copySlices(renderer, 1, this.source, grid, layout.cols);
+    const { deposit, blur } = this.mesh.render(renderer, info, grid.h, this.atlas, ...this.scratch, clock);
+    this.copier.copy(this.atlas.textures[0], this.density.texture, grid.dims, layout.cols);
+    if (info.emissive) this.copier.copy(this.atlas.textures[1], this.source.texture, grid.dims, layout.cols);
     const copy = clock();
+    const bricks = brickDims(grid.dims);
+    this.occupancyPass.fill(renderer, this.bricks, this.atlas.textures[0], bricks, layouts.bricks.cols);
+    this.own.occupancy.value = this.bricks.texture;
+    this.own.bricks.value = bricks;
+    this.own.brickCols.value = layouts.bricks.cols;
+    const occupancy = clock();
     this.own.densityVolume.value = this.density.texture;
     this.own.sourceVolume.value = (info.emissive ? this.source : this.density).texture;
     if (this.gas.hasShadows.value && this.gas.lightCount.value > 0) {
-      this.light.render(renderer, this.columns, halved(grid).dims[2], q.column);
+      const lightGrid = halved(grid);
+      this.light.fill(renderer, this.lightAtlas, layouts.light.cols, q.column);
+      this.copier.copy(this.lightAtlas.texture, this.columns.texture, lightGrid.dims, layouts.light.cols);
     }
     this.gas.lightVolume.value = this.columns.texture;
     const light = clock();
-    if (this.profile) this.timings = { splat, mesh, copy, light };
+    if (this.profile) this.timings = { splat, deposit, blur, copy, occupancy, light };
     renderer.setRenderTarget(null);
     return true;
   }
@@ -275,7 +316,32 @@ export class VolumeLayer extends MarchQuad {
     return result;
   }
 
+  /**
+   * Draws the march into the renderer's current target: straight, or where the view has more
+   * pixels than the quality's budget, at a lower resolution upsampled over the opaque pass.
+   */
+  render(renderer) {
+    const resolution = this.material.uniforms.resolution.value;
+    const [width, height] = [resolution.x, resolution.y];
+    const [w, h] = marchSize(width, height, this.marchPixels);
+    if (w === width && h === height) {
+      this.quad.material = this.fullMaterial;
+      super.render(renderer);
+      return;
+    }
+    const output = renderer.getRenderTarget();
+    this.quad.material = this.splitMaterial;
+    resolution.set(w, h);
+    renderer.setRenderTarget(this.upsample.targetFor(w, h));
+    super.render(renderer);
+    resolution.set(width, height);
+    renderer.setRenderTarget(output);
+    this.upsample.composite(renderer);
+  }
+
   dispose() {
-    for (const t of [this.atlas, ...this.scratch, this.density, this.source, this.columns]) t?.dispose();
+    for (const t of [this.atlas, ...this.scratch, this.lightAtlas, this.bricks, this.density, this.source, this.columns]) t?.dispose();
+    this.copier?.dispose();
+    this.upsample.dispose();
   }
 }
