@@ -70,8 +70,8 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     vec3 x = camPos + rd * s;
     vec3 lo, hi;
     if (emptyBrick(x, lo, hi)) {
-      float out_ = s + exitDistance(x, rd, lo, hi);
-      k = max(k, ceil((out_ - s0) / ds - j) - 1.0);
+      float past = s + exitDistance(x, rd, lo, hi);
+      k = max(k, ceil((past - s0) / ds - j) - 1.0);
       continue;
     }
     vec4 d = sampleVolume(densityVolume, grid, x);

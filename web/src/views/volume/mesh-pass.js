@@ -50,8 +50,8 @@ void main() {
   float wz = s == 0 ? 1.0 - vFraction.z : vFraction.z;
   int k = int(i0.z) + s;
   vScale = share * wz * mass / (grid.h * grid.h * grid.h);
-  vec2 corner = vec2(float((k % atlasCols) * grid.dims.x), float((k / atlasCols) * grid.dims.y)) + i0.xy;
-  vCorner = ivec2(corner);
+  vCorner = atlasTexel(ivec3(ivec2(i0.xy), k), grid.dims, atlasCols);
+  vec2 corner = vec2(vCorner);
   gl_Position = vec4((corner + 1.0) / atlasSize * 2.0 - 1.0, 0.0, 1.0);
 }
 `;

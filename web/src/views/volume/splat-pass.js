@@ -64,9 +64,8 @@ void main() {
   vInvWidth = inv;
   vScale = mass / (grid.h * grid.h * grid.h) * wz / (nx * ny);
   vRange = ivec4(first.xy, last.xy);
-  int slice = int(k);
-  vec2 corner = vec2(float((slice % atlasCols) * grid.dims.x), float((slice / atlasCols) * grid.dims.y)) + first.xy;
-  vCorner = ivec2(corner);
+  vCorner = atlasTexel(ivec3(ivec2(first.xy), int(k)), grid.dims, atlasCols);
+  vec2 corner = vec2(vCorner);
   float size = max(last.x - first.x, last.y - first.y) + 1.0;
   gl_PointSize = size;
   gl_Position = vec4((corner + 0.5 * size) / atlasSize * 2.0 - 1.0, 0.0, 1.0);

@@ -247,10 +247,11 @@ export class VolumeLayer extends MarchQuad {
       budget /= 2;
     }
     const layout = layouts.density;
+    const lightGrid = halved(grid);
     this.grid = grid;
     this.#ensureTargets(renderer, grid, layouts, info.emissive);
     this.gas.grid.value = gridUniform(grid, sizeOf(this.density));
-    this.gas.lightGrid.value = gridUniform(halved(grid), sizeOf(this.columns));
+    this.gas.lightGrid.value = gridUniform(lightGrid, sizeOf(this.columns));
     this.atlasUniforms.atlasCols.value = layout.cols;
     // Draw over the layouts only: a target kept from a larger grid is bigger than its layout.
     const draw = (target, l) => target.viewport.set(0, 0, l.width, l.height);
@@ -278,7 +279,6 @@ export class VolumeLayer extends MarchQuad {
     this.own.densityVolume.value = this.density.texture;
     this.own.sourceVolume.value = (info.emissive ? this.source : this.density).texture;
     if (this.gas.hasShadows.value && this.gas.lightCount.value > 0) {
-      const lightGrid = halved(grid);
       this.light.fill(renderer, this.lightAtlas, layouts.light.cols, q.column);
       this.copier.copy(this.lightAtlas.texture, this.columns.texture, lightGrid.dims, layouts.light.cols);
     }
