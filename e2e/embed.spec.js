@@ -101,7 +101,10 @@ test('without autoplay a player shows its scene at poster-time with a play butto
     await Promise.all(els.map((e) => e.ready));
     return els.map((e) => ({ time: e.stats().time, dt: e.getScene().simulation.dt, blobs: e.stats().blobs }));
   });
-  expect(ready[0].time).toBeCloseTo(Math.round(3 / ready[0].dt) * ready[0].dt, 6);
+  // Without poster-time the poster shows the scene's render.time.
+  const renderTime = await page.evaluate(() => document.querySelector('#p').getScene().render.time);
+  expect(renderTime).toBe(4);
+  expect(ready[0].time).toBeCloseTo(Math.round(renderTime / ready[0].dt) * ready[0].dt, 6);
   expect(ready[1].time).toBeCloseTo(Math.round(1 / ready[1].dt) * ready[1].dt, 6);
   expect(ready[0].blobs).toBeGreaterThan(ready[1].blobs);
   // The poster frame is drawn: the gas, not an empty box.
@@ -228,7 +231,7 @@ test('attributes are mirrored as properties; changing preset or src loads the ne
   expect(out.cigarette).toBe(2);
   expect(out.afterPreset.emitters).toBe(2);
   expect(out.afterPreset.object).toBe('cylinder');
-  expect(out.afterSrc).toEqual({ emitters: 1, objects: 0 });
+  expect(out.afterSrc).toEqual({ emitters: 1, objects: 3 });
   expect(out.label).toBe('Gas in a turbulent wind: the scene default');
   expect(out.viewButton).toBe('View: points');
   expect(errors).toEqual([]);

@@ -1,4 +1,4 @@
-// Shared e2e helpers: console-error capture and canvas pixel statistics.
+// Shared e2e helpers: console-error capture, canvas pixel statistics and the panel's folders.
 
 /** Collects console errors and uncaught page errors into an array. */
 export function collectErrors(page) {
@@ -40,4 +40,23 @@ export async function canvasLuminance(page, selector, { shadow = false } = {}) {
     const mean = sum / n;
     return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)), spread: max - min };
   }, { sel: selector, inShadow: shadow });
+}
+
+/** The lil-gui folder titled `title` (exactly). */
+export function folder(page, title) {
+  return page.locator(`xpath=//div[contains(@class,"lil-gui")][./*[contains(@class,"lil-title")][normalize-space()="${title}"]]`);
+}
+
+/** Opens the lil-gui folder titled `title` (if closed) and returns it. */
+export async function openFolder(page, title) {
+  const f = folder(page, title);
+  if (await f.evaluate((el) => el.classList.contains('lil-closed'))) await f.locator('.lil-title').first().click();
+  return f;
+}
+
+/** Types `value` into the number field named `name` in folder `f`, and commits it. */
+export async function setNumber(f, name, value) {
+  const input = f.locator('.lil-controller', { has: f.page().locator(`.lil-name:text-is("${name}")`) }).locator('input').first();
+  await input.fill(String(value));
+  await input.press('Enter');
 }

@@ -4,13 +4,21 @@ import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { canvasLuminance, collectErrors } from './helpers.js';
+import { canvasLuminance, collectErrors, openFolder, setNumber } from './helpers.js';
 import { cliPath } from '../tests/support/core.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
+import { encodeScene } from '../web/src/state/url-codec.js';
 
-/** Opens the playground (its view as points unless `url` asks otherwise: the tests capture). */
-async function open(page, url = './?view=points') {
+/**
+ * A small plume (3,000 blobs of σ0 = 3 cm from a disk at the origin): cheap to step and draw,
+ * the scene these tests open on unless they ask for another.
+ */
+const smallPlume = JSON.parse(readFileSync(new URL('../tests/fixtures/small-plume.json', import.meta.url), 'utf8'));
+const smallPlumeUrl = `./?view=points#${await encodeScene(smallPlume)}`;
+
+/** Opens the playground (the small plume in the points view unless `url` asks otherwise). */
+async function open(page, url = smallPlumeUrl) {
   await page.goto(url);
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
@@ -147,7 +155,7 @@ test('a dense plume, merged for the exact march, matches the exact reference sti
     s.render.camera = { position: [0, 0.15, 0.7], target: [0, 0.12, 0], up: [0, 1, 0], fov_y_deg: 40 };
     await w.setScene(s);
     await w.step(33);
-    const size = { width: 160, height: 120 };
+    const size = { width: 80, height: 60 };
     return {
       gpu: {
         standard: await w.captureGPU({ mode: 'exact', ...size, quality: 'standard' }),
@@ -266,23 +274,6 @@ test('a failed worker shows a message, restarts, and the scene runs on', async (
   expect(restarted.list.blobs).toEqual(fresh.list.blobs);
 });
 
-/** The lil-gui folder titled `title` (exactly). */
-function folder(page, title) {
-  return page.locator(`xpath=//div[contains(@class,"lil-gui")][./*[contains(@class,"lil-title")][normalize-space()="${title}"]]`);
-}
-
-async function openFolder(page, title) {
-  const f = folder(page, title);
-  if (await f.evaluate((el) => el.classList.contains('lil-closed'))) await f.locator('.lil-title').first().click();
-  return f;
-}
-
-async function setNumber(f, name, value) {
-  const input = f.locator('.lil-controller', { has: f.page().locator(`.lil-name:text-is("${name}")`) }).locator('input').first();
-  await input.fill(String(value));
-  await input.press('Enter');
-}
-
 test('the scene editor adds, edits, switches off and removes primitives, emitters and lights', async ({ page }) => {
   const errors = collectErrors(page);
   await open(page);
@@ -366,7 +357,7 @@ test('wind guides draw over the view; the drag handle moves an emitter', async (
   await page.mouse.down();
   for (let k = 1; k <= 8; k += 1) await page.mouse.move(at.x + 10 * k, at.y);
   await page.mouse.up();
-  await expect.poll(async () => (await page.evaluate(() => window.windfield.getScene())).emitters[0].center[0]).toBeGreaterThan(0.05);
+  await expect.poll(async () => (await page.evaluate(() => window.windfield.getScene())).emitters[0].center[0]).toBeGreaterThan(at.before[0] + 0.05);
   const after = (await page.evaluate(() => window.windfield.getScene())).emitters[0].center;
   expect([after[1], after[2]]).toEqual([at.before[1], at.before[2]]);
   expect(errors).toEqual([]);
@@ -387,6 +378,9 @@ test('the wind slice draws the wind on a plane over the view and stays out of ca
   await settle(page);
   const sliced = await canvasShot(page);
   writeFileSync(test.info().outputPath('wind-slice.png'), dataUrlBytes(sliced));
+  // Its legend: the colour bar's top in m/s, the slice's fastest wind.
+  await expect(page.locator('#slice-legend')).toBeVisible();
+  await expect(page.locator('#slice-legend .legend-max')).toHaveText(/^\d[\d.e+-]* m\/s$/);
   // The square fills the view's height at the target: much of the frame is coloured.
   const changed = changedPixels(plain, decodePng(dataUrlBytes(sliced)).rgb);
   expect(changed, 'pixels the slice draws').toBeGreaterThan(plain.length / 3 / 4);
@@ -395,6 +389,7 @@ test('the wind slice draws the wind on a plane over the view and stays out of ca
   await settle(page);
   await settle(page);
   expect(decodePng(dataUrlBytes(await canvasShot(page))).rgb).toEqual(plain);
+  await expect(page.locator('#slice-legend')).toBeHidden();
   expect(errors).toEqual([]);
 });
 
@@ -427,6 +422,7 @@ test('runs over the step budget are refused before they start, naming simulation
     w.pause();
     const s = w.getScene();
     s.simulation.dt = 1e-6;
+    s.render.time = 0.5;
     await w.setScene(s);
     const outcome = (p) => p.then(() => 'accepted', (e) => e.message);
     return {

@@ -1,23 +1,33 @@
 #!/usr/bin/env bash
 # Builds the core for the browser: wasm32 with SIMD (see wasm-core/.cargo/config.toml),
 # wasm-bindgen's ES-module glue into web/pkg/, then binaryen's wasm-opt -O3 (from npm), which
-# makes the module both smaller and faster. Skips wasm-opt when the module is unchanged.
+# makes the module both smaller and faster. Skips wasm-bindgen and wasm-opt when the module is
+# unchanged. scripts/setup.sh installs wasm-bindgen and the npm packages.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root/wasm-core"
-export PATH="$HOME/.cargo/bin:$PATH"
-cargo build --lib --release --target wasm32-unknown-unknown --no-default-features
-raw=target/wasm32-unknown-unknown/release/windfield.wasm
-stamp=target/wasm32-unknown-unknown/release/windfield.wasm-opt.stamp
+export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
+log() { printf '[build-wasm] %s\n' "$*"; }
+
+target_dir="${CARGO_TARGET_DIR:-target}"
+raw="$target_dir/wasm32-unknown-unknown/release/windfield.wasm"
+stamp="$target_dir/wasm32-unknown-unknown/release/windfield.wasm-opt.stamp"
 out="$root/web/pkg/windfield_bg.wasm"
+
+# cargo runs quietly (warnings and errors still show); one line says when it has work to do.
+if [[ ! -f "$raw" ]]; then
+  log "compiling the core for wasm32 from scratch (about 2 minutes on 2 cores)"
+elif [[ -n "$(find src Cargo.toml Cargo.lock .cargo -newer "$raw" -print -quit 2>/dev/null)" ]]; then
+  log "recompiling the core for wasm32 (about a minute on 2 cores)"
+fi
+cargo build --quiet --lib --release --target wasm32-unknown-unknown --no-default-features
 if [[ -f "$stamp" && -f "$out" && "$stamp" -nt "$raw" ]] && cmp -s "$stamp" "$out"; then
   exit 0
 fi
-wasm-bindgen --target web --out-dir ../web/pkg --out-name windfield "$raw"
+
+command -v wasm-bindgen >/dev/null || { log "wasm-bindgen is missing; run bash scripts/setup.sh first" >&2; exit 1; }
 wasm_opt="$root/node_modules/.bin/wasm-opt"
-if [[ ! -x "$wasm_opt" ]]; then
-  echo "build-wasm: $wasm_opt is missing; run npm install first" >&2
-  exit 1
-fi
+[[ -x "$wasm_opt" ]] || { log "$wasm_opt is missing; run bash scripts/setup.sh (or npm ci) first" >&2; exit 1; }
+wasm-bindgen --target web --out-dir ../web/pkg --out-name windfield "$raw"
 "$wasm_opt" -O3 "$out" -o "$out"
 cp "$out" "$stamp"

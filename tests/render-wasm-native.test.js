@@ -53,7 +53,8 @@ test('a scene simulated then rendered agrees too', () => {
 });
 
 test('the ray march\'s merged list keeps the mass and the still (WASM)', () => {
-  const scene = JSON.parse(readFileSync(`${root}public/scenes/default.json`, 'utf8'));
+  // A disk emitter at the origin (the small plume), emitting fast.
+  const scene = JSON.parse(readFileSync(`${root}tests/fixtures/small-plume.json`, 'utf8'));
   Object.assign(scene.emitters[0], { rate: 8000 });
   Object.assign(scene.gas, { max_blobs: 4000, dissipation: 0, min_mass: 0 });
   const sim = new core.SceneSimulation(JSON.stringify(scene));

@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadCore, root } from './support/core.js';
-import { LISTS, TEMPLATES } from '../web/src/scene-editor.js';
+import { latticeChoices, LISTS, TEMPLATES } from '../web/src/scene-editor.js';
 import { anchorOf, moved } from '../web/src/views/guides-layer.js';
 
 const core = await loadCore();
@@ -41,4 +41,17 @@ test('moving an anchor moves the item by the drag', () => {
     p.forEach((v, a) => assert.ok(Math.abs(v - (r.path[k][a + 1] + [0.5, -0.25, 1][a])) < 1e-12));
   });
   assert.deepEqual(r.path[0], [0, -1, 0.6, 0], 'the original is untouched');
+});
+
+test('the lattice list offers only extents the core accepts with the scene\'s k_inertial', () => {
+  for (const k of [0.5, 2, 4, 7.5, 15]) {
+    const offered = latticeChoices(32, k);
+    for (const n of offered) {
+      const scene = structuredClone(base);
+      scene.field.size = [n, n, n, 8];
+      scene.field.spectrum.k_inertial = k;
+      assert.doesNotThrow(() => core.validateScene(JSON.stringify(scene)), `n = ${n} with k_inertial = ${k}`);
+    }
+    if (k === 4) assert.ok(!offered.includes(8), 'a lattice of 8 cannot hold k_inertial = 4');
+  }
 });

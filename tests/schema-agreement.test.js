@@ -40,8 +40,10 @@ const CROSS_FIELD = [
   /key times must increase strictly/, // a repulsor's path
   /k_inertial: .*half the smallest spatial extent/, // depends on field.size
   /field\.size: .*points/, // the lattice's product, at most 2^24
-  /reversed sets keep every step/, // blobs × reverse_from / dt
-  /simulation\.dt: .* steps, over the limit/, // reverse_from / dt, the step budget
+  /reversed sets keep every step/, // blobs × (reverse_from / dt + 1), and the steps
+  /simulation\.dt: .* steps, over the limit/, // reverse_from / dt and render.time / dt, the step budget
+  /emitters: .* births a step, over the limit/, // Σ rate × simulation.dt
+  /shapes: all shapes together make .* blobs, over the limit/, // Σ count
 ];
 
 /** A scene with every variant: each primitive, emitter shape, light, object, phase and solid. */
@@ -73,6 +75,7 @@ const EVERY_VARIANT = {
     lights: [{ type: 'point', position: [1, 3, 1], color: [2, 2, 2] }, { type: 'directional', direction: [0, -1, 0], color: [1, 1, 1] }],
     shadows: true,
     background: [0.1, 0.1, 0.1],
+    time: 1.5,
     objects: [
       { type: 'sphere', center: [0, 0.5, 0], radius: 0.2, color: [0.5, 0.5, 0.5] },
       { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.3, 0.3, 0.3] },
@@ -83,7 +86,8 @@ const EVERY_VARIANT = {
 
 const SCENES = {
   ...Object.fromEntries(readdirSync(`${root}public/scenes`).filter((f) => f.endsWith('.json'))
-    .map((f) => [f, JSON.parse(readFileSync(`${root}public/scenes/${f}`, 'utf8'))])),
+    .map((f) => [f, JSON.parse(readFileSync(`${root}public/scenes/${f}`, 'utf8'))])
+    .filter(([, json]) => 'version' in json)), // scenes, not the presets' index
   'tests/fixtures/plume.json': JSON.parse(readFileSync(`${root}tests/fixtures/plume.json`, 'utf8')),
   'every variant': EVERY_VARIANT,
   'minimal': { version: 1 },
@@ -135,11 +139,46 @@ test('the ranges a schema-driven editor once let through are in the schema', () 
     [['simulation', 'dt'], -1], [['gas', 'dissipation'], 900000], [['emitters', 0, 'rate'], 1e7],
     [['field', 'amplitude'], -3], [['field', 'period', 1], 0], [['render', 'camera', 'fov_y_deg'], 180],
     [['render', 'medium', 'phase', 'g'], 1], [['wind', 3, 'path', 0, 1], 2e6], [['shapes', 0, 'count'], 0],
+    [['render', 'time'], -1], [['render', 'time'], 2e5], [['gas', 'max_blobs'], 1_000_001],
   ]) {
     const scene = withValue(EVERY_VARIANT, path, v);
     assert.equal(schemaAccepts(scene), false, `schema on ${path.join('.')} = ${v}`);
     assert.notEqual(coreRefusal(scene), null, `core on ${path.join('.')} = ${v}`);
   }
+});
+
+test('every list one past its limit: the schema and the core both refuse it', () => {
+  const longer = (path, n) => {
+    const list = path.reduce((node, k) => node[k], EVERY_VARIANT);
+    return withValue(EVERY_VARIANT, path, Array.from({ length: n }, (_, i) => structuredClone(list[i % list.length])));
+  };
+  const path = (n) => Array.from({ length: n }, (_, t) => [t, 0, 1, 0]);
+  for (const [list, limit] of [
+    [['wind'], 256], [['emitters'], 256], [['shapes'], 256], [['render', 'lights'], 64], [['render', 'objects'], 256],
+  ]) {
+    // Longer lists of the scene's own items.
+    const scene = longer(list, limit + 1);
+    assert.equal(schemaAccepts(scene), false, `schema on ${list.join('.')} of ${limit + 1}`);
+    assert.match(coreRefusal(scene) ?? 'accepted', new RegExp(`${list.join('\\.')}: must hold at most ${limit}`));
+    judge(longer(list, limit), `${list.join('.')} of ${limit}`);
+  }
+  const keys = withValue(EVERY_VARIANT, ['wind', 3, 'path'], path(10_001));
+  assert.equal(schemaAccepts(keys), false);
+  assert.match(coreRefusal(keys), /wind\[3\]\.path: must hold at most 10000 keys/);
+  assert.equal(coreRefusal(withValue(EVERY_VARIANT, ['wind', 3, 'path'], path(10_000))), null);
+});
+
+test('the hostile scenes: refused by both, or by the core for a rule the schema states in words', () => {
+  const dir = `${root}wasm-core/tests/hostile`;
+  for (const name of readdirSync(dir).filter((f) => f.endsWith('.json'))) {
+    const scene = JSON.parse(readFileSync(`${dir}/${name}`, 'utf8'));
+    const { coreOk } = judge(scene, name);
+    assert.equal(coreOk, name === 'tiny-sigma.json', name);
+  }
+  // A showcase of exactly 1,000,000 blobs is valid to both.
+  const showcase = withValue(SCENES['steam-mug.json'], ['gas', 'max_blobs'], 1_000_000);
+  assert.equal(coreRefusal(showcase), null);
+  assert.ok(schemaAccepts(showcase));
 });
 
 test('every number set in and out of its range: the schema and the core agree', () => {

@@ -18,9 +18,10 @@ const scene = `${root}public/scenes/default.json`;
 const run = promisify(execFile);
 const frames = (out, ...extra) => ['render', scene, '--frames', '0..12', '--fps', '24', '--width', '80', '--height', '60', '--out', out, ...extra];
 
-/** Name → bytes of every file in `d`. */
+/** Name → bytes of every file in `d` but the sequence's manifest. */
 function files(d) {
-  return Object.fromEntries(readdirSync(d).sort().map((n) => [n, readFileSync(join(d, n))]));
+  return Object.fromEntries(readdirSync(d).filter((n) => !n.endsWith('.windfield.json')).sort()
+    .map((n) => [n, readFileSync(join(d, n))]));
 }
 
 /** Runs the CLI expecting input to be refused: its stderr. */
@@ -42,6 +43,10 @@ test('shards in parallel write exactly the unsharded frames', async () => {
   const a = files(whole);
   const b = files(sharded);
   assert.deepEqual(Object.keys(a), Array.from({ length: 12 }, (_, k) => `f${String(k).padStart(3, '0')}.png`));
+  // Beside the frames, the manifest the shards share: what makes their bytes.
+  const manifest = JSON.parse(readFileSync(join(sharded, 'f%03d.png.windfield.json'), 'utf8'));
+  assert.deepEqual([manifest.fps, manifest.width, manifest.height], [24, 80, 60]);
+  assert.ok(readFileSync(join(whole, 'f%03d.png.windfield.json')).equals(readFileSync(join(sharded, 'f%03d.png.windfield.json'))));
   assert.deepEqual(Object.keys(b), Object.keys(a));
   for (const name of Object.keys(a)) assert.ok(a[name].equals(b[name]), `${name} differs`);
   // Frames are the scene at successive times: the gas moves between the first and the last.
@@ -115,17 +120,23 @@ test('runs over a million steps are refused before they start, naming simulation
   const tiny = join(dir, 'tiny-dt.json');
   const s = JSON.parse(readFileSync(scene, 'utf8'));
   s.simulation = { ...s.simulation, dt: 1e-9 };
+  delete s.render.time;
   writeFileSync(tiny, JSON.stringify(s));
   const out = join(dir, 'budget');
-  for (const args of [
-    ['simulate', tiny, '--seconds', '2', '--out', `${out}/blobs.json`],
-    ['render', tiny, '--seconds', '2', '--out', `${out}/still.png`],
-    ['render', tiny, '--frames', '0..48', '--fps', '24', '--out', `${out}/f%03d.png`],
+  for (const [args, seconds] of [
+    [['simulate', tiny, '--seconds', '2', '--out', `${out}/blobs.json`], /2 s/],
+    [['render', tiny, '--seconds', '2', '--out', `${out}/still.png`], /2 s/],
+    [['render', tiny, '--frames', '0..48', '--fps', '24', '--out', `${out}/f%03d.png`], /1\.958\d* s/],
+    // A still without --seconds is at render.time, 3 s when the scene names none.
+    [['render', tiny, '--out', `${out}/still.png`], /3 s/],
   ]) {
     const message = refused(args);
     assert.match(message, /simulation\.dt/);
     assert.match(message, /1000000/);
-    assert.match(message, /(2|1\.958\d*) s of simulated time/);
+    assert.match(message, new RegExp(`${seconds.source} of simulated time`));
   }
+  // A scene's own render.time is a run like any other: checked as the scene is read.
+  writeFileSync(tiny, JSON.stringify({ ...s, render: { ...s.render, time: 5 } }));
+  assert.match(refused(['simulate', tiny, '--seconds', '0', '--out', `${out}/blobs.json`]), /simulation\.dt: 5 s of simulated time/);
   assert.equal(existsSync(out), false);
 });

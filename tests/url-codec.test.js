@@ -35,3 +35,19 @@ test('no scene in the hash is null; damaged links throw readable errors', async 
   const notObject = await encodeScene([1, 2]);
   await assert.rejects(decodeScene(notObject), /scene object/);
 });
+
+test('messages name what is wrong in a reader\'s words, never a browser\'s internals', async () => {
+  for (const hash of ['#scene=garbage', '#scene=1.!!!', '#scene=1.AAAAA', '#scene=1.AAAA']) {
+    const err = await decodeScene(hash).then(() => null, (e) => e);
+    assert.equal(err?.message, 'the link is damaged or cut short', hash);
+  }
+});
+
+test('a link that inflates past 4 MiB is refused before it is read further', async () => {
+  // 1.5 GB of spaces would deflate to about 1.5 MB; 16 MiB deflates to about 16 KB.
+  const bomb = `{"version": 1, "note": "${' '.repeat(16 << 20)}"}`;
+  const hash = await encodeScene(JSON.parse(bomb));
+  assert.ok(hash.length < 100_000, `${hash.length} chars`);
+  await assert.rejects(decodeScene(hash), /larger than 4 MiB/);
+  await assert.rejects(decodeScene(`#scene=1.${'A'.repeat((1 << 20) + 100)}`), /longer than 1 MiB/);
+});

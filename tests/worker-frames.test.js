@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadCore, root } from './support/core.js';
 import { createHandlers } from '../web/src/engine/handlers.js';
+import { BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, SHADOW_GRID_HEADER, SPHERE_FLOATS, WORDS_PER_BLOB } from '../web/src/generated/contract.js';
 
 const core = await loadCore();
 const scene = JSON.parse(readFileSync(`${root}public/scenes/psychedelic-steam.json`, 'utf8'));
@@ -31,9 +32,12 @@ test('frames are whole typed arrays, and the packed blobs are the blob list', as
   const { moved: frame, bytes } = assertWholeBuffers('advance', handlers.advance({ steps: 60 }));
   assert.ok(frame.count > 1000, `${frame.count} blobs`);
   assert.ok(frame.blobs instanceof Uint32Array && frame.info instanceof Float32Array && frame.spheres instanceof Float32Array);
-  // Eight words a blob, padded to whole texture rows (1,024 blobs a row).
-  assert.equal(frame.blobs.length % (8 * 1024), 0);
-  assert.ok(bytes < 32 * (frame.count + 8192) + 4096, `${bytes} bytes for ${frame.count} blobs`);
+  // WORDS_PER_BLOB words a blob, padded to whole texture rows (BLOBS_PER_ROW blobs a row).
+  assert.equal(frame.blobs.length % (WORDS_PER_BLOB * BLOBS_PER_ROW), 0);
+  assert.ok(bytes < 4 * WORDS_PER_BLOB * (frame.count + 8 * BLOBS_PER_ROW) + 4096, `${bytes} bytes for ${frame.count} blobs`);
+  // The description and the spheres follow the contract's layout.
+  assert.equal(frame.info.length, INFO_HEADER + INFO_PER_CLASS * frame.info[INFO_HEADER - 1]);
+  assert.equal(frame.spheres.length % SPHERE_FLOATS, 0);
   // The packed centres, σ and masses are the blob list's, class by class.
   const list = handlers.blobList({}).result;
   assert.equal(list.blobs.length, frame.count);
@@ -41,10 +45,11 @@ test('frames are whole typed arrays, and the packed blobs are the blob list', as
   const key = (c, s, m) => `${c.map((v) => Math.fround(v)).join()}|${Math.fround(s)}|${Math.fround(m)}`;
   const packed = new Set();
   for (let i = 0; i < frame.count; i++) {
-    packed.add(key(Array.from(floats.subarray(8 * i, 8 * i + 3)), floats[8 * i + 3], floats[8 * i + 4]));
+    const w = WORDS_PER_BLOB * i;
+    packed.add(key(Array.from(floats.subarray(w, w + 3)), floats[w + 3], floats[w + 4]));
   }
   for (const b of list.blobs) assert.ok(packed.has(key(b.center, b.sigma, b.mass)), 'a blob of the list is missing from the frame');
-  assertWholeBuffers('reset', handlers.reset({}));
+  assertWholeBuffers('reset', await handlers.reset({}));
 });
 
 test('the exact march\'s frame is whole typed arrays too', async () => {
@@ -52,7 +57,28 @@ test('the exact march\'s frame is whole typed arrays too', async () => {
   await handlers.load({ id: 1, scene });
   handlers.advance({ steps: 30 });
   const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16 }));
-  assert.ok(moved.count > 0 && moved.heads.length % (4 * 1024) === 0 && moved.list.length % 1024 === 0);
+  assert.ok(moved.count > 0 && moved.heads.length % (4 * BLOBS_PER_ROW) === 0 && moved.list.length % BLOBS_PER_ROW === 0);
+  // The shadow grid's header, then `lights × res³` columns padded to whole rows.
+  const [res, lights] = [moved.grid[6], moved.grid[7]];
+  assert.equal(moved.grid.length, SHADOW_GRID_HEADER);
+  assert.ok(res === 16 && lights >= 1, `res ${res}, lights ${lights}`);
+  assert.equal(moved.columns.length, Math.ceil((lights * res ** 3) / BLOBS_PER_ROW) * BLOBS_PER_ROW);
+});
+
+test('a frame is made whole by one core call: no getter depends on the call before it', () => {
+  const sim = new core.SceneSimulation(JSON.stringify(scene));
+  sim.step(30);
+  const view = sim.packFrame();
+  const march = sim.marchFrame(0.5, 8);
+  // The march's frame made in between leaves the view's frame as it was: each is its own object.
+  const again = sim.packFrame();
+  assert.deepEqual(Object.keys(view).sort(), ['info', 'spheres', 'words']);
+  assert.deepEqual(Object.keys(march).sort(), ['grid', 'info', 'words']);
+  assert.deepEqual(again.info, view.info);
+  assert.deepEqual(again.words, view.words);
+  // Removed getters of the old, order-dependent protocol.
+  for (const name of ['frameInfo', 'marchGrid', 'movingSpheres']) assert.equal(typeof sim[name], 'undefined', name);
+  sim.free();
 });
 
 test('the worker refuses a run over the step budget, or a step count that is not one, before it starts', async () => {

@@ -1,12 +1,19 @@
-// Vite, library mode: dist/embed.js, the standalone <wind-field> for plain pages. embed.js
-// itself is only the loader (a few KiB); the player's code (three.js, the views, the engine
-// client) is a chunk in dist/wind-field/, and so is the engine worker with the WASM core
-// inlined. The loader imports the chunk, and the chunk starts the worker, by URLs relative to
-// their own modules: copy embed.js, wind-field/ and scenes/ together to any static host.
+// Vite: dist/embed.js, the standalone <wind-field> for plain pages. embed.js itself is only the
+// loader (a few KiB); the player's code (three.js, the views, the engine client) is a chunk in
+// dist/wind-field/, and so are the engine worker and the WASM core, as files: nothing is
+// inlined, so the element runs under a strict Content Security Policy (`script-src 'self'
+// 'wasm-unsafe-eval'`, no inline styles). The loader imports the chunk, and the chunk starts the
+// worker, by URLs relative to their own modules: copy embed.js, wind-field/ and scenes/ together
+// to any static host.
 import { defineConfig } from 'vite';
 import { fileURLToPath } from 'node:url';
 
 const here = (p) => fileURLToPath(new URL(p, import.meta.url));
+const names = {
+  entryFileNames: 'embed.js',
+  chunkFileNames: 'wind-field/[name]-[hash].js',
+  assetFileNames: 'wind-field/[name]-[hash][extname]',
+};
 
 export default defineConfig({
   root: here('.'),
@@ -17,8 +24,16 @@ export default defineConfig({
     emptyOutDir: false,
     target: 'es2022',
     assetsDir: 'wind-field',
-    lib: { entry: here('src/embed.js'), formats: ['es'], fileName: () => 'embed.js' },
-    rollupOptions: { output: { chunkFileNames: 'wind-field/[name]-[hash].js' } },
+    assetsInlineLimit: 0,
+    chunkSizeWarningLimit: 1500,
+    rollupOptions: {
+      input: here('src/embed.js'),
+      preserveEntrySignatures: 'exports-only',
+      output: names,
+    },
   },
-  worker: { format: 'es' },
+  worker: {
+    format: 'es',
+    rollupOptions: { output: { ...names, entryFileNames: 'wind-field/[name]-[hash].js' } },
+  },
 });

@@ -5,8 +5,9 @@
 use glam::Vec3;
 use std::time::Instant;
 use windfield::field::{FieldParams, TurbulentField};
+use windfield::frame::PackedFrame;
 use windfield::gas::Blob;
-use windfield::render::{PackedFrame, RenderOptions, Renderer};
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// The blob-step benchmark scene: a 32^4 field plus uniform, vortex and source primitives.

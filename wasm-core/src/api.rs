@@ -1,21 +1,57 @@
-//! The only door between JavaScript and the core: every `#[wasm_bindgen]` export lives here.
+//! The only door between JavaScript and the core: every `#[wasm_bindgen]` export lives here,
+//! and nothing else does. Each export converts its arguments from JavaScript's types to the
+//! core's, calls the core, and converts the result back; errors become thrown `Error`s whose
+//! message names the parameter (`field.size[1]: must be an even number between 4 and 256`).
+//! Nothing panics across the boundary.
 //!
-//! Calls are few and fat: parameters cross as one JSON string, lattice data and slices cross
-//! as whole `Float32Array`s. Bad input becomes a thrown `Error` whose message names the
-//! parameter path; nothing panics across the boundary.
+//! Calls are few and fat: parameters cross as one JSON string, lattice data, slices and frames
+//! as whole typed arrays. A frame crosses as one plain object made in one call
+//! (`packFrame`, `marchFrame`), never as getters that depend on the order of calls.
+//!
+//! Compiled for wasm32 only: the native core and command line do not link wasm-bindgen.
 
-use crate::blob_list::{BlobList, Encoding};
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+use crate::field::spectrum::SpectrumParams;
+use crate::field::statistics;
 use crate::field::{FieldParams, Synthesis, TurbulentField};
-use crate::gas::Blob;
-use crate::render::volume::{light_columns, splat, Towards, VoxelGrid};
-use crate::render::{encode_png, merge_blobs, LinearImage, PackedFrame, RenderOptions, Renderer};
-use crate::scene::Scene;
-use crate::simulation::Simulation;
-use crate::spectrum::SpectrumParams;
-use crate::stats;
-use glam::Vec3;
+use crate::frame::light_volume::light_twin;
+use crate::frame::volume::{density_twin, VoxelGrid};
+use crate::frame::{merged_list, MarchFrame, PackedFrame, ViewFrame};
+use crate::gas::blob_list::{BlobList, Encoding};
+use crate::gas::figure1::{Figure1, Figure1Params};
+use crate::gas::simulation::{Edit, Simulation};
+use crate::gas::wind_slice::SlicePlane;
+use crate::gas::Scene;
+use crate::render::{encode_png, BandedRender, RenderOptions, Renderer};
 use std::sync::Arc;
 use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen]
+extern "C" {
+    /// JavaScript's `Object.fromEntries`: a plain object from `[key, value]` pairs.
+    #[wasm_bindgen(js_namespace = Object, js_name = fromEntries)]
+    fn object_from_entries(entries: Vec<JsValue>) -> JsValue;
+}
+
+#[wasm_bindgen(typescript_custom_section)]
+const FRAME_TYPES: &str = r#"
+/** The points and volume views' frame (`frame::ViewFrame`): the packed blobs
+ *  (`frame::packed`), their description (`PackedFrame::info`) and the moving spheres. */
+export interface ViewFrame { words: Uint32Array; info: Float32Array; spheres: Float32Array; }
+/** The exact march's frame (`frame::MarchFrame`): the merged blobs packed, their description
+ *  and the shadow grid (`frame::shadow_grid`). */
+export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Float32Array; }
+"#;
+
+/// A plain JavaScript object of `entries` (name, value).
+fn object(entries: Vec<(&str, JsValue)>) -> JsValue {
+    let pairs = entries
+        .into_iter()
+        .map(|(k, v)| JsValue::from(vec![JsValue::from_str(k), v]))
+        .collect();
+    object_from_entries(pairs)
+}
 
 fn js_error(e: impl std::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
@@ -23,6 +59,17 @@ fn js_error(e: impl std::fmt::Display) -> JsError {
 
 fn parse<T: serde::de::DeserializeOwned>(json: &str, what: &str) -> Result<T, JsError> {
     serde_json::from_str(json).map_err(|e| JsError::new(&format!("{what}: {e}")))
+}
+
+/// Three numbers from a typed array; another length reads as not finite, so that the core's
+/// check refuses it with its own message.
+fn xyz(a: &[f32]) -> [f32; 3] {
+    <[f32; 3]>::try_from(a).unwrap_or([f32::NAN; 3])
+}
+
+/// Three counts from a typed array; another length reads as zeros (refused by the core).
+fn counts3(a: &[u32]) -> [u32; 3] {
+    <[u32; 3]>::try_from(a).unwrap_or([0; 3])
 }
 
 /// A field synthesis in progress; `step()` runs one stage so a worker can report progress.
@@ -37,7 +84,7 @@ impl FieldSynthesis {
     #[wasm_bindgen(constructor)]
     pub fn new(params_json: &str) -> Result<FieldSynthesis, JsError> {
         let params: FieldParams = parse(params_json, "field")?;
-        let inner = Synthesis::new(&params).map_err(|e| JsError::new(&e.to_string()))?;
+        let inner = Synthesis::new(&params).map_err(js_error)?;
         Ok(Self { inner: Some(inner) })
     }
 
@@ -102,20 +149,10 @@ impl WindField {
         self.inner.sample_lattice([x, y, z, t]).to_vec()
     }
 
-    /// Samples the plane `z = z` (lattice units) at time `t` on a `width × height` grid that
-    /// spans one period in x and y: `width*height*3` velocities, row-major from y = 0.
+    /// The plane z = `z` at time `t` (lattice units) on a `width × height` grid over one
+    /// period in x and y (`TurbulentField::slice_xy`).
     pub fn slice_xy(&self, z: f64, t: f64, width: u32, height: u32) -> Vec<f32> {
-        let [nx, ny, _, _] = self.inner.lattice.size;
-        let (w, h) = (width.max(1) as usize, height.max(1) as usize);
-        let mut out = Vec::with_capacity(w * h * 3);
-        for j in 0..h {
-            let y = j as f64 * ny as f64 / h as f64;
-            for i in 0..w {
-                let x = i as f64 * nx as f64 / w as f64;
-                out.extend_from_slice(&self.inner.sample_lattice([x, y, z, t]));
-            }
-        }
-        out
+        self.inner.slice_xy(z, t, width, height)
     }
 
     /// Statistics (JSON) of the field against `spectrum_json` (or its own spectrum if empty).
@@ -125,8 +162,8 @@ impl WindField {
         } else {
             parse(spectrum_json, "spectrum")?
         };
-        let report = stats::analyse(&self.inner, &spectrum);
-        serde_json::to_string(&report).map_err(|e| JsError::new(&e.to_string()))
+        let report = statistics::analyse(&self.inner, &spectrum);
+        serde_json::to_string(&report).map_err(js_error)
     }
 }
 
@@ -144,16 +181,11 @@ pub fn scene_field_params(scene_json: &str) -> Result<String, JsError> {
     serde_json::to_string(&scene.field_params()).map_err(js_error)
 }
 
-/// A running scene: wind and gas advanced in fixed steps. Blob data comes out as whole typed
-/// arrays: per frame one packed buffer (`packFrame`, see `render::frame`) and its description
-/// (`frameInfo`).
+/// A running scene: wind and gas advanced in fixed steps. Frames come out whole, as one object
+/// of typed arrays per call (`packFrame`, `marchFrame`).
 #[wasm_bindgen]
 pub struct SceneSimulation {
     inner: Simulation,
-    /// `frameInfo()` of the last `packFrame()` or `marchFrame()`.
-    info: Vec<f32>,
-    /// The shadow grid of the last `marchFrame()`.
-    grid: Vec<f32>,
 }
 
 #[wasm_bindgen]
@@ -163,16 +195,50 @@ impl SceneSimulation {
     pub fn new(scene_json: &str) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let inner = Simulation::new(scene).map_err(js_error)?;
-        Ok(Self::wrap(inner))
+        Ok(Self { inner })
     }
 
     /// Builds a simulation on an existing field, which must have the scene's field parameters.
     #[wasm_bindgen(js_name = withField)]
     pub fn with_field(scene_json: &str, field: &WindField) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
-        let field = (scene.field.amplitude > 0.0).then(|| field.inner.clone());
-        let inner = Simulation::with_field(scene, field).map_err(js_error)?;
-        Ok(Self::wrap(inner))
+        let inner = Simulation::with_field(scene, Some(field.inner.clone())).map_err(js_error)?;
+        Ok(Self { inner })
+    }
+
+    /// Applies an edited scene to the running simulation, keeping its blobs and time
+    /// (`Simulation::edit`), on the small-scale field in use (the scene's is synthesised
+    /// meanwhile and swapped in with `setField`). True when the edit restarted the scene
+    /// instead (its `shapes` changed).
+    pub fn edit(&mut self, scene_json: &str) -> Result<bool, JsError> {
+        let field = self.inner.field().cloned();
+        self.edit_on(scene_json, field)
+    }
+
+    /// [`Self::edit`] on `field`, which has the edited scene's field settings.
+    #[wasm_bindgen(js_name = editWithField)]
+    pub fn edit_with_field(
+        &mut self,
+        scene_json: &str,
+        field: &WindField,
+    ) -> Result<bool, JsError> {
+        self.edit_on(scene_json, Some(field.inner.clone()))
+    }
+
+    /// Swaps in the small-scale field synthesised for the scene's field settings.
+    #[wasm_bindgen(js_name = setField)]
+    pub fn set_field(&mut self, field: &WindField) -> Result<(), JsError> {
+        self.inner
+            .set_field(Some(field.inner.clone()))
+            .map_err(js_error)
+    }
+
+    /// Stirs the gas from the next step on (`Simulation::stir_at`): a wind of `velocity` (m/s,
+    /// xyz) at `position` (m, xyz), falling off as exp(−distance/`radius`); `radius` 0 stops it.
+    pub fn stir(&mut self, position: &[f32], velocity: &[f32], radius: f32) -> Result<(), JsError> {
+        self.inner
+            .stir_at(xyz(position), xyz(velocity), radius)
+            .map_err(js_error)
     }
 
     /// Runs `n` fixed steps.
@@ -180,17 +246,11 @@ impl SceneSimulation {
         self.inner.run(n as u64);
     }
 
-    /// Refuses a run of `steps` fixed steps over the budget (DESIGN §7: 1,000,000), with an
-    /// error naming `simulation.dt` and the time; `steps` must be a whole number, 0 or more.
+    /// Refuses a run of `steps` fixed steps that is not a whole number or is over the budget
+    /// (`Simulation::check_steps`).
     #[wasm_bindgen(js_name = checkSteps)]
     pub fn check_steps(&self, steps: f64) -> Result<(), JsError> {
-        if !(steps.is_finite() && steps >= 0.0 && steps.fract() == 0.0) {
-            return Err(JsError::new(&format!(
-                "steps: must be a whole number, 0 or more (got {steps})"
-            )));
-        }
-        let dt = self.inner.scene.simulation.dt;
-        self.inner.budgeted_steps(steps * dt).map_err(js_error)?;
+        self.inner.check_steps(steps).map_err(js_error)?;
         Ok(())
     }
 
@@ -209,73 +269,24 @@ impl SceneSimulation {
         self.inner.blobs().position.clone()
     }
 
-    /// Blob σ (m).
-    pub fn sigma(&self) -> Vec<f32> {
-        self.inner.blobs().sigma.clone()
-    }
-
-    /// Blob masses.
-    pub fn mass(&self) -> Vec<f32> {
-        self.inner.blobs().mass.clone()
-    }
-
-    /// Blob albedo, rgb interleaved; a negative red channel means the medium's albedo.
-    pub fn albedo(&self) -> Vec<f32> {
-        self.inner.blobs().albedo.clone()
-    }
-
-    /// Blob self-emission, rgb interleaved.
-    pub fn emission(&self) -> Vec<f32> {
-        self.inner.blobs().emission.clone()
-    }
-
-    /// Blob ages (s) at the current time.
-    pub fn age(&self) -> Vec<f32> {
-        let t = self.inner.time();
-        self.inner
-            .blobs()
-            .birth
-            .iter()
-            .map(|b| (t - b) as f32)
-            .collect()
-    }
-
-    /// The opaque objects at the current time (the scene's, and visible repulsor spheres), as
-    /// DESIGN §4's `objects` JSON.
-    pub fn objects(&self) -> String {
-        serde_json::to_string(&self.inner.render_settings().objects).unwrap_or_default()
-    }
-
-    /// Adds blobs born now at `positions` (xyz interleaved) with σ0 and m0, medium albedo.
+    /// Adds blobs born now at `positions` (xyz interleaved) with σ0 and m0, medium albedo
+    /// (`Simulation::add_blobs`).
     #[wasm_bindgen(js_name = addBlobs)]
     pub fn add_blobs(&mut self, positions: &[f32], sigma0: f32, mass0: f32) -> Result<(), JsError> {
-        if positions.len() % 3 != 0 || !(sigma0 > 0.0 && mass0 > 0.0) {
-            return Err(JsError::new(
-                "addBlobs: positions must be xyz triples, sigma0 and mass0 positive",
-            ));
-        }
-        let birth = self.inner.time();
-        for p in positions.chunks_exact(3) {
-            let blob = Blob::new(Vec3::from_slice(p), sigma0, mass0, birth);
-            self.inner.gas.blobs.push(&blob, sigma0, mass0);
-        }
-        Ok(())
-    }
-
-    /// Emitted, split, dissipated and capped counts since the start (JSON).
-    pub fn counts(&self) -> String {
-        serde_json::to_string(&self.inner.gas.counts).unwrap_or_default()
+        self.inner
+            .add_blobs(positions, sigma0, mass0)
+            .map_err(js_error)
     }
 
     /// The blob list of DESIGN §4 for the current state (JSON).
     #[wasm_bindgen(js_name = blobList)]
-    pub fn blob_list(&self) -> String {
-        serde_json::to_string(&self.inner.blob_list()).unwrap_or_default()
+    pub fn blob_list(&self) -> Result<String, JsError> {
+        serde_json::to_string(&self.inner.blob_list()).map_err(js_error)
     }
 
-    /// The whole wind u = u_l + u_s (Eq. 3) now, on an `nu × nv` grid over the parallelogram
-    /// `origin + a·u + b·v` (a, b in [0, 1], sampled at cell centres; metres): `3·nu·nv` m/s,
-    /// u-index fastest.
+    /// The whole wind u = u_l + u_s (Eq. 3) now on the parallelogram `origin + a·u + b·v` (m),
+    /// sampled at the centres of `nu × nv` cells: `3·nu·nv` m/s, u-index fastest
+    /// (`SlicePlane`).
     #[wasm_bindgen(js_name = windSlice)]
     pub fn wind_slice(
         &self,
@@ -285,92 +296,50 @@ impl SceneSimulation {
         nu: u32,
         nv: u32,
     ) -> Result<Vec<f32>, JsError> {
-        let vector = |a: &[f32], name: &str| match a {
-            [x, y, z] if a.iter().all(|c| c.is_finite()) => Ok(Vec3::new(*x, *y, *z)),
-            _ => Err(JsError::new(&format!(
-                "windSlice: {name} must be 3 finite numbers"
-            ))),
-        };
-        let (origin, u, v) = (vector(origin, "origin")?, vector(u, "u")?, vector(v, "v")?);
-        if !(1..=256).contains(&nu) || !(1..=256).contains(&nv) {
-            return Err(JsError::new(
-                "windSlice: nu and nv must be between 1 and 256",
-            ));
-        }
-        let frame = self.inner.wind.frame(self.inner.time());
-        let mut out = Vec::with_capacity(3 * (nu * nv) as usize);
-        for j in 0..nv {
-            for i in 0..nu {
-                let a = (i as f32 + 0.5) / nu as f32;
-                let b = (j as f32 + 0.5) / nv as f32;
-                out.extend_from_slice(&frame.velocity(origin + a * u + b * v).to_array());
-            }
-        }
-        Ok(out)
+        let plane = SlicePlane::new(xyz(origin), xyz(u), xyz(v), nu, nv).map_err(js_error)?;
+        Ok(self.inner.wind_slice(&plane))
     }
 
-    /// The current blobs packed for the browser's views: `render::frame`'s eight words per blob,
-    /// sorted into σ classes (`frameInfo()` describes them). One whole buffer per frame.
-    #[wasm_bindgen(js_name = packFrame)]
-    pub fn pack_frame(&mut self) -> Vec<u32> {
-        let frame = self.packed();
-        self.info = frame.info();
-        frame.words
+    /// The current frame for the points and volume views, whole (`frame::ViewFrame`):
+    /// `{words, info, spheres}`, the blobs packed eight words each in σ classes, their
+    /// description (`PackedFrame::info`) and the moving spheres.
+    #[wasm_bindgen(js_name = packFrame, unchecked_return_type = "ViewFrame")]
+    pub fn pack_frame(&self) -> JsValue {
+        let frame = ViewFrame::of(&self.inner);
+        object(vec![
+            ("info", frame.packed.info().into()),
+            ("words", frame.packed.words.into()),
+            ("spheres", frame.spheres.into()),
+        ])
     }
 
-    /// The last packed frame's description: `[count, lo.xyz, hi.xyz, emissive, σ_min, classes,
-    /// then offset, count, σ_max per class]` (`PackedFrame::info`).
-    #[wasm_bindgen(js_name = frameInfo)]
-    pub fn frame_info(&self) -> Vec<f32> {
-        self.info.clone()
+    /// The exact march's frame, whole (`frame::MarchFrame`): `{words, info, grid}`, the blobs
+    /// merged as `marchList(fraction)` merges them and packed as `packFrame` packs, and the
+    /// shadow grid at `res`³ (`frame::shadow_grid`).
+    #[wasm_bindgen(js_name = marchFrame, unchecked_return_type = "MarchFrame")]
+    pub fn march_frame(&self, fraction: f32, res: u32) -> Result<JsValue, JsError> {
+        let frame = MarchFrame::of(&self.inner, fraction, res).map_err(js_error)?;
+        Ok(object(vec![
+            ("info", frame.packed.info().into()),
+            ("words", frame.packed.words.into()),
+            ("grid", frame.shadow_grid.into()),
+        ]))
     }
 
-    /// The visible repulsor spheres now, `[x, y, z, radius, r, g, b]` each (m, linear colour), in
-    /// the order they follow the scene's objects in `blobList()`.
-    #[wasm_bindgen(js_name = movingSpheres)]
-    pub fn moving_spheres(&self) -> Vec<f32> {
-        self.inner
-            .wind
-            .visible_spheres(self.inner.time())
-            .iter()
-            .flat_map(|(c, r, rgb)| [c.x, c.y, c.z, *r, rgb[0], rgb[1], rgb[2]])
-            .collect()
-    }
-
-    /// The exact march's input: the blobs merged as `marchList(fraction)` merges them, packed as
-    /// `packFrame` packs (`frameInfo()` describes them), and the shadow grid at `res`³ (read with
-    /// `marchGrid()`; 8 zeros without shadows or lights).
-    #[wasm_bindgen(js_name = marchFrame)]
-    pub fn march_frame(&mut self, fraction: f32, res: u32) -> Result<Vec<u32>, JsError> {
-        let mut list = self.inner.blob_list();
-        if fraction > 0.0 {
-            list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
-        }
-        self.grid = shadow_grid_of(&list, res)?;
-        let frame = PackedFrame::of_list(&list);
-        self.info = frame.info();
-        Ok(frame.words)
-    }
-
-    /// The shadow grid of the last `marchFrame()` (`shadowGrid`'s layout).
-    #[wasm_bindgen(js_name = marchGrid)]
-    pub fn march_grid(&self) -> Vec<f32> {
-        self.grid.clone()
-    }
-
-    /// The real-time view's density volume for the current blobs, as `render::volume` computes
-    /// it on the grid of `dims` voxels of side `h` from `lo`: `[ρ, ρΩ_rgb]` per voxel, then
-    /// `[ρ(1−Ω)Q_rgb, 0]` per voxel (x fastest). The twin the browser's GPU volume is tested against.
+    /// The real-time view's density volume for the current blobs on the grid of `dims` voxels
+    /// of side `h` from `lo` (`frame::volume::density_twin`): the twin the browser's GPU volume
+    /// is tested against.
     #[wasm_bindgen(js_name = volumeTwin)]
     pub fn volume_twin(&self, lo: &[f32], h: f32, dims: &[u32]) -> Result<Vec<f32>, JsError> {
-        let grid = Self::grid(lo, h, dims)?;
-        let v = splat(&self.packed(), &grid);
-        Ok([v.density, v.source].concat())
+        let grid = VoxelGrid::new(xyz(lo), h, counts3(dims)).map_err(js_error)?;
+        Ok(density_twin(
+            &PackedFrame::of_simulation(&self.inner),
+            &grid,
+        ))
     }
 
-    /// The light volume on the same grid: for each voxel of the half-resolution grid, the column
-    /// ∫ρ ds towards each of the scene's first four lights (`render::volume::light_columns`,
-    /// steps of `step × h`), four floats per voxel.
+    /// The light volume on the same grid towards the scene's first lights, in steps of
+    /// `step × h` (`frame::light_volume::light_twin`).
     #[wasm_bindgen(js_name = lightTwin)]
     pub fn light_twin(
         &self,
@@ -379,78 +348,37 @@ impl SceneSimulation {
         dims: &[u32],
         step: f32,
     ) -> Result<Vec<f32>, JsError> {
-        let grid = Self::grid(lo, h, dims)?;
-        if !(step.is_finite() && step > 0.0) {
-            return Err(JsError::new("lightTwin: step must be positive"));
-        }
-        let lights: Vec<Towards> = self
-            .inner
-            .scene
-            .render
-            .lights
-            .iter()
-            .map(Towards::of)
-            .collect();
-        Ok(light_columns(&splat(&self.packed(), &grid), &lights, step).1)
+        let grid = VoxelGrid::new(xyz(lo), h, counts3(dims)).map_err(js_error)?;
+        let packed = PackedFrame::of_simulation(&self.inner);
+        light_twin(&packed, &grid, &self.inner.scene.render.lights, step).map_err(js_error)
     }
 
     /// The blob list for the GPU ray march (JSON): blobs closer than `fraction × σ` merged by
-    /// moments (`render::lod`); `fraction` ≤ 0 gives the exact list.
+    /// moments (`frame::lod`); `fraction` ≤ 0 gives the exact list.
     #[wasm_bindgen(js_name = marchList)]
-    pub fn march_list(&self, fraction: f32) -> String {
-        let mut list = self.inner.blob_list();
-        if fraction > 0.0 {
-            list.blobs = merge_blobs(&list.blobs, list.medium.albedo, fraction);
-        }
-        serde_json::to_string(&list).unwrap_or_default()
+    pub fn march_list(&self, fraction: f32) -> Result<String, JsError> {
+        serde_json::to_string(&merged_list(self.inner.blob_list(), fraction)).map_err(js_error)
     }
 }
 
 impl SceneSimulation {
-    fn wrap(inner: Simulation) -> Self {
-        Self {
-            inner,
-            info: PackedFrame::default().info(),
-            grid: Vec::new(),
-        }
-    }
-
-    /// The current blobs packed for the GPU (albedo resolved against the medium's).
-    fn packed(&self) -> PackedFrame {
-        let medium = Vec3::from_array(self.inner.scene.render.medium.albedo);
-        PackedFrame::of_blobs(&self.inner.blobs(), medium)
-    }
-
-    /// The voxel grid `lo` (3 numbers, m), `h` (m), `dims` (3 counts), checked.
-    fn grid(lo: &[f32], h: f32, dims: &[u32]) -> Result<VoxelGrid, JsError> {
-        match (lo, dims) {
-            ([x, y, z], [nx, ny, nz])
-                if lo.iter().all(|v| v.is_finite())
-                    && h.is_finite()
-                    && h > 0.0
-                    && dims.iter().all(|&n| (1..=512).contains(&n)) =>
-            {
-                Ok(VoxelGrid {
-                    lo: Vec3::new(*x, *y, *z),
-                    h,
-                    dims: [*nx as usize, *ny as usize, *nz as usize],
-                })
-            }
-            _ => Err(JsError::new(
-                "voxel grid: lo must be 3 finite numbers, h positive, dims 3 counts from 1 to 512",
-            )),
-        }
+    fn edit_on(
+        &mut self,
+        scene_json: &str,
+        field: Option<Arc<TurbulentField>>,
+    ) -> Result<bool, JsError> {
+        let scene = Scene::from_json(scene_json).map_err(js_error)?;
+        let outcome = self.inner.edit(scene, field).map_err(js_error)?;
+        Ok(outcome == Edit::Restarted)
     }
 }
 
 /// A reference still in progress: the CPU renderer of DESIGN §4, a band of rows at a time so a
-/// worker can report progress.
+/// worker can report progress (`render::BandedRender`).
 #[wasm_bindgen]
 pub struct ReferenceRender {
-    renderer: Renderer,
+    inner: BandedRender,
     encoding: Encoding,
-    data: Vec<f32>,
-    next_row: u32,
 }
 
 #[wasm_bindgen]
@@ -458,118 +386,59 @@ impl ReferenceRender {
     /// `blob_list_json`: a blob list (DESIGN §4); `width`/`height` of 0 keep the list's size.
     #[wasm_bindgen(constructor)]
     pub fn new(blob_list_json: &str, width: u32, height: u32) -> Result<ReferenceRender, JsError> {
-        let value: serde_json::Value = serde_json::from_str(blob_list_json)
-            .map_err(|e| JsError::new(&format!("blob list: {e}")))?;
+        let value: serde_json::Value = parse(blob_list_json, "blob list")?;
         let list = BlobList::from_value(value).map_err(js_error)?;
         let size = (width > 0 && height > 0).then_some((width, height));
         let renderer = Renderer::new(&list, size, RenderOptions::default()).map_err(js_error)?;
-        let data = vec![0.0; 3 * (renderer.width * renderer.height) as usize];
         Ok(Self {
-            renderer,
+            inner: BandedRender::new(renderer),
             encoding: list.image.encoding,
-            data,
-            next_row: 0,
         })
     }
 
     /// Renders up to `rows` more rows; false once the image is complete.
     pub fn step(&mut self, rows: u32) -> bool {
-        let row_len = 3 * self.renderer.width as usize;
-        let end = (self.next_row + rows).min(self.renderer.height);
-        for j in self.next_row..end {
-            let start = j as usize * row_len;
-            self.renderer
-                .render_row(j, &mut self.data[start..start + row_len]);
-        }
-        self.next_row = end;
-        self.next_row < self.renderer.height
+        self.inner.step(rows)
     }
 
     /// Fraction of rows done, 0..1.
     pub fn progress(&self) -> f64 {
-        self.next_row as f64 / self.renderer.height.max(1) as f64
+        self.inner.progress()
     }
 
     pub fn width(&self) -> u32 {
-        self.renderer.width
+        self.inner.width()
     }
 
     pub fn height(&self) -> u32 {
-        self.renderer.height
+        self.inner.height()
     }
 
-    /// The finished image as 8-bit RGB in the list's encoding (rows rendered so far).
+    /// The image as 8-bit RGB in the list's encoding (rows rendered so far).
     pub fn rgb(&self) -> Vec<u8> {
-        self.image().to_rgb8(self.encoding)
+        self.inner.image().to_rgb8(self.encoding)
     }
 
-    /// The finished image as PNG bytes.
+    /// The image as PNG bytes.
     pub fn png(&self) -> Result<Vec<u8>, JsError> {
-        encode_png(self.renderer.width, self.renderer.height, &self.rgb()).map_err(js_error)
+        encode_png(self.inner.width(), self.inner.height(), &self.rgb()).map_err(js_error)
     }
-
-    fn image(&self) -> LinearImage {
-        LinearImage {
-            width: self.renderer.width,
-            height: self.renderer.height,
-            data: self.data.clone(),
-        }
-    }
-}
-
-/// Shadow columns ∫ρ ds towards each light on a `res³` grid over the gas's bounds (padded by a
-/// cell), for the exact march to interpolate: `[min.xyz, max.xyz, res, lights]` then
-/// `lights × res³` columns (x fastest). Empty (8 zeros) without blobs, lights or shadows.
-fn shadow_grid_of(list: &BlobList, res: u32) -> Result<Vec<f32>, JsError> {
-    let renderer = Renderer::new(list, None, RenderOptions::default()).map_err(js_error)?;
-    let res = res.clamp(2, 96) as usize;
-    let lights = renderer.light_count();
-    let bounds = renderer.gas_bounds().filter(|_| list.shadows && lights > 0);
-    let Some((lo, hi)) = bounds else {
-        return Ok(vec![0.0; 8]);
-    };
-    let pad = (hi - lo) / (res - 1) as f32;
-    let (lo, hi) = (lo - pad, hi + pad);
-    let cell = (hi - lo) / (res - 1) as f32;
-    let mut out = vec![
-        lo.x,
-        lo.y,
-        lo.z,
-        hi.x,
-        hi.y,
-        hi.z,
-        res as f32,
-        lights as f32,
-    ];
-    out.reserve(lights * res * res * res);
-    for k in 0..lights {
-        for z in 0..res {
-            for y in 0..res {
-                for x in 0..res {
-                    let p = lo + cell * Vec3::new(x as f32, y as f32, z as f32);
-                    out.push(renderer.column_to_light(p, k));
-                }
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// The paper's Figure 1: a square of density in a 2-D wind, on a grid (Eq. 12) and as blobs.
 #[wasm_bindgen(js_name = Figure1Demo)]
 pub struct Figure1Demo {
-    inner: crate::figure1::Figure1,
+    inner: Figure1,
 }
 
 #[wasm_bindgen(js_class = Figure1Demo)]
 impl Figure1Demo {
-    /// `params_json`: [`crate::figure1::Figure1Params`] (any subset; the rest default).
+    /// `params_json`: [`Figure1Params`] (any subset; the rest default).
     #[wasm_bindgen(constructor)]
     pub fn new(params_json: &str) -> Result<Figure1Demo, JsError> {
-        let params: crate::figure1::Figure1Params = serde_json::from_str(params_json)
-            .map_err(|e| JsError::new(&format!("Figure 1 setup: {e}")))?;
+        let params: Figure1Params = parse(params_json, "Figure 1 setup")?;
         Ok(Self {
-            inner: crate::figure1::Figure1::new(params).map_err(js_error)?,
+            inner: Figure1::new(params).map_err(js_error)?,
         })
     }
 

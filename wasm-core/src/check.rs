@@ -1,4 +1,7 @@
-//! Range checks that name the offending value by its path in the scene or blob list.
+//! Per-value checks that name the offending value by its path in the scene or blob list
+//! (`field.period[1]: must be a finite number between 0.001 and 10000 (got 0)`). The walks
+//! that apply them are `gas::validate` (scenes and blob lists) and the field's own parameters
+//! (`FieldParams::validate`, `SpectrumParams::validate`).
 
 use crate::error::ParamError;
 
@@ -10,6 +13,31 @@ pub fn range(path: &str, v: f64, lo: f64, hi: f64) -> Result<(), ParamError> {
         Err(ParamError::new(
             path,
             format!("must be a finite number between {lo} and {hi} (got {v})"),
+        ))
+    }
+}
+
+/// A whole number in `[lo, hi]` (counts, sizes, seeds).
+pub fn integer(path: &str, n: u64, lo: u64, hi: u64) -> Result<(), ParamError> {
+    if n >= lo && n <= hi {
+        Ok(())
+    } else {
+        Err(ParamError::new(
+            path,
+            format!("must be an integer between {lo} and {hi} (got {n})"),
+        ))
+    }
+}
+
+/// A list of at most `max` items (`what` names them in the message): the memory guards on
+/// list lengths, checked before anything is built from the list.
+pub fn length(path: &str, len: usize, max: usize, what: &str) -> Result<(), ParamError> {
+    if len <= max {
+        Ok(())
+    } else {
+        Err(ParamError::new(
+            path,
+            format!("must hold at most {max} {what} (got {len})"),
         ))
     }
 }

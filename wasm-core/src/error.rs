@@ -26,15 +26,3 @@ impl fmt::Display for ParamError {
 }
 
 impl std::error::Error for ParamError {}
-
-/// Checks that `value` is finite and within `[lo, hi]`.
-pub fn check_range(path: &str, value: f64, lo: f64, hi: f64) -> Result<f64, ParamError> {
-    if value.is_finite() && value >= lo && value <= hi {
-        Ok(value)
-    } else {
-        Err(ParamError::new(
-            path,
-            format!("must be a finite number between {lo} and {hi} (got {value})"),
-        ))
-    }
-}

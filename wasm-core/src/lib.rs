@@ -1,41 +1,41 @@
-//! windfield: turbulent wind fields for gaseous phenomena, after Stam & Fiume,
-//! "Turbulent Wind Fields for Gaseous Phenomena" (SIGGRAPH 1993).
+//! windfield: turbulent wind fields for gaseous phenomena, after Stam & Fiume, "Turbulent Wind
+//! Fields for Gaseous Phenomena" (SIGGRAPH 1993).
 //!
-//! The core is plain Rust. [`field`] synthesises the small-scale turbulence (paper §3) on a
-//! [`lattice`] from an energy [`spectrum`]; [`stats`] measures it against the paper's formulas.
-//! [`scene`] reads the scene format; [`wind`] superposes the large-scale primitives on the field
-//! (Eq. 3); [`gas`] animates Gaussian blobs born by [`emitter`]s (§4); [`simulation`] drives
-//! them and exports the [`blob_list`] that [`render`] turns into verified stills. [`api`] is the one module that speaks
-//! to JavaScript.
+//! The folders are the architecture. Data flows one way, down this list; a module uses only
+//! those above it and the shared helpers:
+//!
+//! ```text
+//! field/    §3          the small-scale turbulence u_s: energy spectrum, 4-D lattice, the
+//!                       spectral synthesis (noise, Eq. 7 filter, inverse FFT), statistics
+//! gas/      §4, §6      the scene format, the wind u = u_l + u_s (Eq. 3), emitters and initial
+//!                       blob sets, the blob gas (Eqs. 12–16), the simulation, and the blob list
+//!                       it hands over (DESIGN §3, §4)
+//! render/   §5, App. B  the CPU reference renderer of a blob list
+//! frame/                the browser's GPU frame: blobs packed for the shaders, the exact
+//!                       march's level of detail and shadow grid, the real-time view's twin
+//! contract              the numbers shared with the page's code, written to JavaScript
+//! api       (wasm32)    the one door to JavaScript: conversions and errors only
+//! ```
+//!
+//! Shared helpers: [`error`] (the error that names a parameter by its path), [`check`] (the
+//! per-value checks), [`lanes`] (four-wide SIMD helpers).
+//!
+//! The core is plain Rust. The native command line (`src/bin/windfield`) and the WASM build
+//! use the same core; only the WASM build compiles `api` and links wasm-bindgen.
 
+#[cfg(target_arch = "wasm32")]
 pub mod api;
-pub mod blob_list;
 pub mod check;
-pub mod emitter;
+pub mod contract;
 pub mod error;
-pub mod fft4;
 pub mod field;
-pub mod figure1;
+pub mod frame;
 pub mod gas;
 pub mod lanes;
-pub mod lattice;
-pub mod noise;
-pub mod npy;
-pub mod real_fft;
 pub mod render;
-pub mod scene;
-pub mod shapes;
-pub mod simulation;
-pub mod spectrum;
-pub mod spline;
-pub mod stats;
-pub mod synthesis;
-pub mod velocity_spectrum;
-pub mod wind;
 
 pub use error::ParamError;
+pub use field::lattice::Lattice;
+pub use field::spectrum::{SpectrumLaw, SpectrumParams};
 pub use field::{FieldParams, Synthesis, TurbulentField};
-pub use lattice::Lattice;
-pub use scene::Scene;
-pub use simulation::Simulation;
-pub use spectrum::{SpectrumLaw, SpectrumParams};
+pub use gas::{Scene, Simulation};

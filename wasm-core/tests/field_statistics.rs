@@ -1,10 +1,10 @@
 //! The synthesised field against the paper's formulas (DESIGN §6), fixed seeds throughout.
 
 use rustfft::num_complex::Complex64;
+use windfield::field::lattice::wave_number;
+use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
+use windfield::field::statistics::{analyse, FieldStats};
 use windfield::field::{hermitian_spectrum, FieldParams, TurbulentField};
-use windfield::lattice::wave_number;
-use windfield::spectrum::{SpectrumLaw, SpectrumParams};
-use windfield::stats::{analyse, FieldStats};
 
 fn params(size: [usize; 4], spectrum: SpectrumParams, seed: u64) -> FieldParams {
     FieldParams {

@@ -5,6 +5,11 @@
 //! message; none may panic. Accepted scenes are built into simulations and stepped, accepted
 //! blob lists rendered, so that what the parsers let through is safe to use too.
 //!
+//! The corpus includes the hostile inputs of `tests/hostile/` (floods of emitters, shapes and
+//! kept steps, long lists, deep nesting, a vanishing temporal spread), each of which once made
+//! the core allocate gigabytes, abort or fill a field with NaN; a test of its own checks that
+//! each is still refused with its JSON path (or, for σ → 0, gives a finite field).
+//!
 //! `WINDFIELD_FUZZ_INPUTS` sets the number of inputs (default 120,000, shared between the
 //! three targets; `npm run fuzz` runs 1,000,000 or more). The summary is printed on stdout.
 
@@ -13,10 +18,13 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 use serde_json::Value;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
-use windfield::blob_list::BlobList;
+use windfield::field::npy;
+use windfield::field::spectrum::SpectrumParams;
 use windfield::field::{FieldParams, TurbulentField};
+use windfield::gas::blob_list::BlobList;
+use windfield::gas::limits::MAX_LIST_BLOBS;
 use windfield::render::{RenderOptions, Renderer};
-use windfield::{npy, Scene, Simulation};
+use windfield::{Scene, Simulation};
 
 const DEFAULT_INPUTS: usize = 120_000;
 
@@ -34,11 +42,12 @@ fn read_dir_json(dir: &str) -> Vec<Vec<u8>> {
     files.iter().map(|p| std::fs::read(p).unwrap()).collect()
 }
 
-/// Scenes: the presets and the test fixtures.
+/// Scenes: the presets, the test fixtures and the hostile inputs.
 fn scene_corpus() -> Vec<Vec<u8>> {
     let mut c = read_dir_json("public/scenes");
     c.extend(read_dir_json("tests/fixtures"));
     c.extend(read_dir_json("wasm-core/examples"));
+    c.extend(read_dir_json("wasm-core/tests/hostile"));
     c
 }
 
@@ -54,23 +63,30 @@ fn blob_list_corpus() -> Vec<Vec<u8>> {
     c
 }
 
-/// `.npy` fields: small syntheses of a few shapes.
+/// `.npy` fields: small syntheses of a few shapes, one with a NaN in it.
 fn npy_corpus() -> Vec<Vec<u8>> {
-    [[4, 4, 4, 4], [8, 4, 4, 8]]
-        .iter()
-        .map(|&size| {
-            let mut params = FieldParams {
-                size,
-                ..FieldParams::default()
-            };
-            params.spectrum.k_inertial = 1.0;
-            let field = TurbulentField::generate(&params).unwrap();
-            let [nx, ny, nz, nt] = size;
-            let mut bytes = Vec::new();
-            npy::write_f32(&mut bytes, &[nt, nz, ny, nx, 3], &field.data).unwrap();
-            bytes
-        })
-        .collect()
+    [
+        ([4, 4, 4, 4], None),
+        ([8, 4, 4, 8], None),
+        ([4, 4, 4, 4], Some(77)),
+    ]
+    .iter()
+    .map(|&(size, nan)| {
+        let mut params = FieldParams {
+            size,
+            ..FieldParams::default()
+        };
+        params.spectrum.k_inertial = 1.0;
+        let mut field = TurbulentField::generate(&params).unwrap();
+        if let Some(i) = nan {
+            field.data[i] = f32::NAN;
+        }
+        let [nx, ny, nz, nt] = size;
+        let mut bytes = Vec::new();
+        npy::write_f32(&mut bytes, &[nt, nz, ny, nx, 3], &field.data).unwrap();
+        bytes
+    })
+    .collect()
 }
 
 struct Mutator {
@@ -303,10 +319,19 @@ fn scene_target(bytes: &[u8]) -> Result<(), String> {
     let text = std::str::from_utf8(bytes).map_err(|e| e.to_string())?;
     let scene = Scene::from_json(text).map_err(|e| e.to_string())?;
     let [nx, ny, nz, nt] = scene.field.size;
+    let dt = scene.simulation.dt;
+    let kept_steps: f64 = scene
+        .shapes
+        .iter()
+        .filter_map(|s| s.reverse_from)
+        .map(|t| t / dt)
+        .sum();
     let cheap = nx * ny * nz * nt <= 16usize.pow(4)
         && scene.gas.max_blobs <= 5_000
         && scene.emitters.iter().all(|e| e.rate <= 1e4)
-        && scene.simulation.dt >= 1e-3;
+        && dt >= 1e-3
+        && scene.shapes.iter().map(|s| s.blob_count()).sum::<usize>() <= 5_000
+        && kept_steps <= 2_000.0;
     if cheap {
         let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
         sim.run(3);
@@ -332,9 +357,218 @@ fn blob_list_target(bytes: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// A `.npy` field: read; the reader refuses what it cannot take.
+/// A `.npy` field: read; the reader refuses what it cannot take. A field's shape on a valid
+/// lattice becomes a field, which refuses values that are not finite.
 fn npy_target(bytes: &[u8]) -> Result<(), String> {
-    npy::read_f32(bytes).map(|_| ()).map_err(|e| e.to_string())
+    let (shape, data) = npy::read_f32(bytes).map_err(|e| e.to_string())?;
+    if let [nt, nz, ny, nx, 3] = shape[..] {
+        let params = FieldParams {
+            size: [nx, ny, nz, nt],
+            ..FieldParams::default()
+        };
+        if params.validate().is_ok() {
+            TurbulentField::from_data(params, data).map_err(|e| e.to_string())?;
+        }
+    }
+    Ok(())
+}
+
+/// Parses a scene file of `tests/hostile/`: its refusal's text, or None when it is accepted.
+fn hostile(name: &str) -> Option<String> {
+    let text = std::fs::read_to_string(root().join("wasm-core/tests/hostile").join(name)).unwrap();
+    Scene::from_json(&text).err().map(|e| e.to_string())
+}
+
+#[test]
+fn hostile_scenes_stay_refused_before_any_work_with_their_path() {
+    for (name, start, words) in [
+        (
+            "emitter-flood.json",
+            "emitters: ",
+            "100000000 births a step, over the limit of 100000",
+        ),
+        (
+            "shape-flood.json",
+            "shapes: ",
+            "40000000 blobs, over the limit of 1000000",
+        ),
+        (
+            "reversed-split-flood.json",
+            "shapes: ",
+            "reversed sets keep every step",
+        ),
+        (
+            "reversed-steps-flood.json",
+            "shapes: ",
+            "the steps, reverse_from / dt + 1,",
+        ),
+        (
+            "long-lists.json",
+            "wind: ",
+            "at most 256 primitives (got 300)",
+        ),
+        (
+            "many-lights.json",
+            "render.lights: ",
+            "at most 64 lights (got 65)",
+        ),
+        (
+            "render-time-flood.json",
+            "simulation.dt: ",
+            "100 s of simulated time",
+        ),
+        ("deep-nesting.json", "scene: ", "recursion limit exceeded"),
+    ] {
+        let e = hostile(name).unwrap_or_else(|| panic!("{name} was accepted"));
+        assert!(e.starts_with(start) && e.contains(words), "{name}: {e}");
+    }
+}
+
+#[test]
+fn every_list_is_refused_one_past_its_limit_and_accepted_at_it() {
+    use serde_json::json;
+    let repulsor = |n: usize| {
+        let path: Vec<Value> = (0..n).map(|t| json!([t, 0, 0, 0])).collect();
+        json!({"type": "repulsor", "radius": 0.1, "strength": 1, "path": path})
+    };
+    let light = json!({"type": "directional", "direction": [0, -1, 0], "color": [0.1, 0.1, 0.1]});
+    let object = json!({"type": "sphere", "center": [0, 0, 0], "radius": 0.1, "color": [1, 1, 1]});
+    let shape = json!({"shape": "points", "points": [[0, 0, 0]]});
+    let emitter = json!({"rate": 1});
+    let wind = json!({"type": "uniform", "velocity": [0, 0, 0]});
+    type Case = (&'static str, usize, Box<dyn Fn(usize) -> Value>);
+    let cases: Vec<Case> = vec![
+        (
+            "wind",
+            256,
+            Box::new(move |n| json!({"wind": vec![wind.clone(); n]})),
+        ),
+        (
+            "emitters",
+            256,
+            Box::new(move |n| json!({"emitters": vec![emitter.clone(); n]})),
+        ),
+        (
+            "shapes",
+            256,
+            Box::new(move |n| json!({"shapes": vec![shape.clone(); n]})),
+        ),
+        (
+            "render.lights",
+            64,
+            Box::new(move |n| json!({"render": {"lights": vec![light.clone(); n]}})),
+        ),
+        (
+            "render.objects",
+            256,
+            Box::new(move |n| json!({"render": {"objects": vec![object.clone(); n]}})),
+        ),
+        (
+            "wind[0].path",
+            10_000,
+            Box::new(move |n| json!({"wind": [repulsor(n)]})),
+        ),
+    ];
+    for (path, limit, scene) in cases {
+        let parse = |n: usize| {
+            let mut v = scene(n);
+            v["version"] = json!(1);
+            Scene::from_value(v)
+        };
+        assert!(
+            parse(limit).is_ok(),
+            "{path} at {limit}: {:?}",
+            parse(limit).err()
+        );
+        let e = parse(limit + 1).unwrap_err();
+        assert_eq!(e.path, path, "{e}");
+        assert!(e.message.contains(&format!("at most {limit}")), "{e}");
+    }
+    // Shapes: 200,000 blobs a set, 1,000,000 for all sets together (exactly that is valid).
+    let sets = |counts: &[usize]| {
+        let shapes: Vec<Value> = counts
+            .iter()
+            .map(|c| json!({"shape": "cube", "count": c}))
+            .collect();
+        Scene::from_value(json!({"version": 1, "shapes": shapes}))
+    };
+    assert!(sets(&[200_000; 5]).is_ok());
+    assert_eq!(
+        sets(&[200_000, 200_000, 200_000, 200_000, 200_000, 1])
+            .unwrap_err()
+            .path,
+        "shapes"
+    );
+    // Births: Σ rate × dt over the enabled emitters; disabled ones do not count.
+    let births = |rates: &[(f64, bool)], dt: f64| {
+        let emitters: Vec<Value> = rates
+            .iter()
+            .map(|&(r, on)| json!({"rate": r, "enabled": on}))
+            .collect();
+        Scene::from_value(json!({"version": 1, "emitters": emitters, "simulation": {"dt": dt}}))
+    };
+    assert!(births(&[(1e6, true), (1e6, false)], 0.1).is_ok());
+    assert_eq!(
+        births(&[(1e6, true), (1e6, true)], 0.1).unwrap_err().path,
+        "emitters"
+    );
+    // max_blobs: a showcase of exactly 1,000,000 is valid, one more is not.
+    let gas = |n: usize| Scene::from_value(json!({"version": 1, "gas": {"max_blobs": n}}));
+    assert!(gas(1_000_000).is_ok());
+    assert_eq!(gas(1_000_001).unwrap_err().path, "gas.max_blobs");
+}
+
+#[test]
+fn blob_lists_are_refused_past_their_limits_as_they_are_read() {
+    let blob = r#"{"center":[0,0,0],"sigma":1,"mass":1}"#;
+    let list = |n: usize| format!("{{\"blobs\":[{}]}}", vec![blob; n].join(","));
+    let e = BlobList::from_json(&list(MAX_LIST_BLOBS + 1)).unwrap_err();
+    assert!(e.path.starts_with("blobs"), "{e}");
+    assert!(
+        e.message
+            .contains(&format!("at most {MAX_LIST_BLOBS} blobs")),
+        "{e}"
+    );
+    let e =
+        BlobList::from_value(serde_json::from_str(&list(MAX_LIST_BLOBS + 1)).unwrap()).unwrap_err();
+    assert!(e.path.starts_with("blobs"), "{e}");
+    assert_eq!(BlobList::from_json(&list(3)).unwrap().blobs.len(), 3);
+    // A blob list is one moment: it has no `time` (a scene's render section has).
+    let e = BlobList::from_json(r#"{"time": 3, "blobs": []}"#).unwrap_err();
+    assert!(e.to_string().contains("unknown field `time`"), "{e}");
+    let light = r#"{"type":"point","position":[0,3,0],"color":[1,1,1]}"#;
+    let lights = format!("{{\"lights\":[{}]}}", vec![light; 65].join(","));
+    assert_eq!(BlobList::from_json(&lights).unwrap_err().path, "lights");
+}
+
+#[test]
+fn a_vanishing_temporal_spread_gives_the_frozen_field_not_nan() {
+    assert_eq!(hostile("tiny-sigma.json"), None);
+    let params = |sigma: f64| FieldParams {
+        size: [8; 4],
+        spectrum: SpectrumParams {
+            sigma,
+            k_inertial: 1.0,
+            ..SpectrumParams::default()
+        },
+        seed: 3,
+    };
+    let frozen = TurbulentField::generate(&params(0.0)).unwrap();
+    for sigma in [1e-300, 1e-200, 1e-162, 1e-150] {
+        let field = TurbulentField::generate(&params(sigma)).unwrap();
+        field.check_finite().unwrap();
+        assert_eq!(field.data, frozen.data, "σ = {sigma:e}");
+    }
+    let text =
+        std::fs::read_to_string(root().join("wasm-core/tests/hostile/tiny-sigma.json")).unwrap();
+    let mut sim = Simulation::new(Scene::from_json(&text).unwrap()).unwrap();
+    sim.run(30);
+    let list = sim.blob_list();
+    assert!(!list.blobs.is_empty());
+    assert!(list
+        .blobs
+        .iter()
+        .all(|b| b.center.iter().all(|c| c.is_finite())));
 }
 
 #[test]

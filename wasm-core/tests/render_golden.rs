@@ -3,7 +3,7 @@
 //! Regenerate after an intended change with `npm run goldens` (sets WINDFIELD_REGENERATE=1).
 
 use std::path::PathBuf;
-use windfield::blob_list::BlobList;
+use windfield::gas::blob_list::BlobList;
 use windfield::render::{decode_png, encode_png, psnr, RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 

@@ -1,11 +1,12 @@
-//! The GPU ray march's level of detail (`render::lod`) against the exact blob list: the
+//! The GPU ray march's level of detail (`frame::lod`) against the exact blob list: the
 //! reference renderer draws both, and the merged list must stay within a PSNR well above the
 //! 30 dB the browser's ray march is held to, while a dense plume shrinks to a count that grows
 //! far more slowly than its blob count.
 
-use windfield::blob_list::BlobList;
-use windfield::render::lod::DEFAULT_FRACTION;
-use windfield::render::{merge_blobs, psnr, RenderOptions, Renderer};
+use windfield::frame::lod::DEFAULT_FRACTION;
+use windfield::frame::merge_blobs;
+use windfield::gas::blob_list::BlobList;
+use windfield::render::{psnr, RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// PSNR the merged list's still must reach against the exact list's.
@@ -27,10 +28,14 @@ fn simulate(scene: serde_json::Value, seconds: f64) -> BlobList {
     sim.blob_list()
 }
 
-/// The browser benchmark's plume: the default scene emitting `n` blobs in its first half second,
-/// without dissipation.
+/// A dense plume: the small plume (a disk at the origin, `tests/fixtures/small-plume.json`)
+/// emitting `n` blobs in its first half second, without dissipation.
 fn bench_plume(n: usize) -> BlobList {
-    let mut scene = scene_file("default");
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/fixtures/small-plume.json"),
+    )
+    .unwrap();
+    let mut scene: serde_json::Value = serde_json::from_str(&text).unwrap();
     scene["emitters"][0]["rate"] = (2 * n).into();
     scene["gas"]["max_blobs"] = n.into();
     scene["gas"]["dissipation"] = 0.into();

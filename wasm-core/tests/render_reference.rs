@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use serde_json::json;
-use windfield::blob_list::{BlobList, Encoding};
+use windfield::gas::blob_list::{BlobList, Encoding};
 use windfield::render::{psnr, RenderOptions, Renderer, TRUNCATION};
 use windfield::{Scene, Simulation};
 
@@ -63,12 +63,12 @@ fn twin(list: &BlobList) -> Vec<f64> {
         .lights
         .iter()
         .map(|l| match l {
-            windfield::blob_list::Light::Point { position, color } => (
+            windfield::gas::blob_list::Light::Point { position, color } => (
                 Some(DVec3::from_array(position.map(f64::from))),
                 DVec3::ZERO,
                 DVec3::from_array(color.map(f64::from)),
             ),
-            windfield::blob_list::Light::Directional { direction, color } => (
+            windfield::gas::blob_list::Light::Directional { direction, color } => (
                 None,
                 -DVec3::from_array(direction.map(f64::from)).normalize(),
                 DVec3::from_array(color.map(f64::from)),
@@ -80,8 +80,8 @@ fn twin(list: &BlobList) -> Vec<f64> {
         None => (l.1, f64::INFINITY),
     };
     let phase = |cos: f64| match list.medium.phase {
-        windfield::blob_list::Phase::Isotropic => 1.0,
-        windfield::blob_list::Phase::HenyeyGreenstein { g } => {
+        windfield::gas::blob_list::Phase::Isotropic => 1.0,
+        windfield::gas::blob_list::Phase::HenyeyGreenstein { g } => {
             let g = g as f64;
             (1.0 - g * g) / (1.0 + g * g - 2.0 * g * cos).powf(1.5)
         }
@@ -97,7 +97,7 @@ fn twin(list: &BlobList) -> Vec<f64> {
             let mut hit: Option<(f64, DVec3, DVec3)> = None;
             for obj in &list.objects {
                 let cand = match obj {
-                    windfield::blob_list::Object::Sphere {
+                    windfield::gas::blob_list::Object::Sphere {
                         center,
                         radius,
                         color,
@@ -115,7 +115,7 @@ fn twin(list: &BlobList) -> Vec<f64> {
                             )
                         })
                     }
-                    windfield::blob_list::Object::Plane {
+                    windfield::gas::blob_list::Object::Plane {
                         point,
                         normal,
                         color,

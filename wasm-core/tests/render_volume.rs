@@ -1,15 +1,17 @@
-//! The real-time view's volumes (`render::volume`, the twin of the browser's GPU passes) against
-//! the exact model of DESIGN §4 on a preset's plume: the density volume holds the blobs' mass,
-//! and the light volume's shadow columns match the reference renderer's exact columns ∫ρ ds
-//! towards the light at points inside the gas.
+//! The real-time view's volumes (`frame::volume` and `frame::light_volume`, the twins of the
+//! browser's GPU passes) against the exact model of DESIGN §4 on a preset's plume: the density
+//! volume holds the blobs' mass, and the light volume's shadow columns match the reference
+//! renderer's exact columns ∫ρ ds towards the light at points inside the gas.
 
 use glam::Vec3;
-use windfield::render::volume::{column, light_columns, splat, Towards, VoxelGrid};
-use windfield::render::{PackedFrame, RenderOptions, Renderer};
+use windfield::frame::light_volume::{column, light_columns, Towards};
+use windfield::frame::volume::{splat, VoxelGrid};
+use windfield::frame::PackedFrame;
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// A preset simulated for `seconds`: its blob list and packed frame.
-fn preset(name: &str, seconds: f64) -> (windfield::blob_list::BlobList, PackedFrame) {
+fn preset(name: &str, seconds: f64) -> (windfield::gas::blob_list::BlobList, PackedFrame) {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join(format!("../public/scenes/{name}.json"));
     let value: serde_json::Value =

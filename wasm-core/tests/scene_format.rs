@@ -1,7 +1,7 @@
 //! The scene format (DESIGN §3): strict parsing with path-naming errors, defaults, versions,
 //! and the shipped JSON Schema.
 
-use windfield::scene::{json_schema, Scene};
+use windfield::gas::scene::{json_schema, Scene};
 
 const GOOD: &str = r#"{
   "version": 1, "seed": 1,
@@ -42,6 +42,22 @@ fn the_full_example_parses_and_round_trips() {
     assert_eq!(s.wind.len(), 4);
     let again = Scene::from_json(&s.to_json()).unwrap();
     assert_eq!(s, again);
+}
+
+#[test]
+fn render_time_is_optional_and_kept_as_given() {
+    let s = Scene::from_json(r#"{"version": 1}"#).unwrap();
+    assert_eq!((s.render.time, s.render.still_time()), (None, 3.0));
+    assert!(
+        !s.to_json().contains("\"time\""),
+        "no time is written when none was given"
+    );
+    let t = Scene::from_json(r#"{"version": 1, "render": {"time": 0}}"#).unwrap();
+    assert_eq!(t.render.still_time(), 0.0);
+    assert_eq!(Scene::from_json(&t.to_json()).unwrap(), t);
+    // A blob list made from the scene is one moment: it carries no time.
+    let list = windfield::gas::blob_list::BlobList::new(t.render.clone(), Vec::new());
+    assert!(!serde_json::to_string(&list).unwrap().contains("\"time\""));
 }
 
 #[test]
@@ -327,6 +343,21 @@ fn malformed_scenes_are_rejected_with_their_path() {
             set("/render/shadows", json!("yes")),
             "render.shadows",
             "invalid type",
+        ),
+        (
+            insert("/render", "time", json!(-1)),
+            "render.time",
+            "between 0 and 100000",
+        ),
+        (
+            insert("/render", "time", json!("soon")),
+            "render.time",
+            "invalid type",
+        ),
+        (
+            insert("/render", "time", json!(20_000)),
+            "simulation.dt",
+            "20000 s of simulated time",
         ),
     ];
     assert!(cases.len() >= 20);

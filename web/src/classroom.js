@@ -1,8 +1,9 @@
 // The classroom page: the field's measured spectrum and temporal spread against the paper's
 // laws, a slice of the field, the Figure 1 demo (grid against blobs), and one plume shown with
 // turbulence off, on, and carried by the mean wind. `window.classroom` exposes the plotted data
-// (`ready`: the plots and Figure 1 drawn; `snapshots`: Figure 1's row filled; `sideBySide`: the
-// three players, which load as they near the viewport, running their variants).
+// (`ready`: the plots and Figure 1 drawn; `axes`: each chart's tick values as drawn;
+// `snapshots`: Figure 1's row filled; `sideBySide`: the three players, which load as they near
+// the viewport, running their variants).
 
 import './embed.js';
 import init, { Figure1Demo } from '../pkg/windfield.js';
@@ -10,49 +11,12 @@ import { Engine } from './engine/client.js';
 import { showMessage } from './page-ui.js';
 import { SliceView } from './views/slice-view.js';
 import { viridis } from './colormap.js';
+import { ColourBar } from './colour-bar.js';
+import { CHART, drawChart, linearAxis, logAxis } from './plot-axes.js';
 import { DEFAULT_FIELD } from './field-params.js';
 
 const $ = (s) => document.querySelector(s);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
-
-/** Log-log (or linear) scatter of `points` with the curve `line`, on a 2-D canvas. */
-function plot(canvas, { points, line, xLabel, yLabel, log = true }) {
-  const ctx = canvas.getContext('2d');
-  const { width: w, height: h } = canvas;
-  const pad = 44;
-  const f = (v) => (log ? Math.log10(v) : v);
-  const all = [...points, ...line].filter(([x, y]) => x > 0 && (!log || y > 0));
-  const xs = all.map(([x]) => f(x));
-  const ys = all.map(([, y]) => f(y));
-  const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
-  const [y0, y1] = [Math.min(...ys), Math.max(...ys)];
-  const px = (x) => pad + ((f(x) - x0) / (x1 - x0 || 1)) * (w - 2 * pad);
-  const py = (y) => h - pad - ((f(y) - y0) / (y1 - y0 || 1)) * (h - 2 * pad);
-  ctx.fillStyle = '#101418';
-  ctx.fillRect(0, 0, w, h);
-  ctx.strokeStyle = '#556';
-  ctx.strokeRect(pad, pad, w - 2 * pad, h - 2 * pad);
-  ctx.fillStyle = '#ccd';
-  ctx.font = '13px sans-serif';
-  ctx.fillText(xLabel, w / 2 - 20, h - 12);
-  ctx.save();
-  ctx.translate(14, h / 2 + 30);
-  ctx.rotate(-Math.PI / 2);
-  ctx.fillText(yLabel, 0, 0);
-  ctx.restore();
-  ctx.strokeStyle = '#f0a040';
-  ctx.lineWidth = 2;
-  ctx.beginPath();
-  line.filter(([x, y]) => x > 0 && (!log || y > 0)).forEach(([x, y], i) => (i ? ctx.lineTo(px(x), py(y)) : ctx.moveTo(px(x), py(y))));
-  ctx.stroke();
-  ctx.fillStyle = '#7fc8ff';
-  for (const [x, y] of points) {
-    if (x <= 0 || (log && y <= 0)) continue;
-    ctx.beginPath();
-    ctx.arc(px(x), py(y), 3, 0, 2 * Math.PI);
-    ctx.fill();
-  }
-}
 
 /** The plotted series from a `windfield stats` report (the shells inside the inertial range). */
 export function spectrumSeries(report) {
@@ -65,8 +29,26 @@ export function spectrumSeries(report) {
   };
 }
 
-const classroom = { report: null, series: null, figure1: null, figure1Loops: 0, ready: null, snapshots: null, sideBySide: null };
+const classroom = { report: null, series: null, axes: {}, figure1: null, figure1Loops: 0, ready: null, snapshots: null, sideBySide: null };
 window.classroom = classroom;
+
+/**
+ * Draws the chart `spec` (see `drawChart`) into the canvas `#id`, again whenever the canvas is
+ * resized; records the tick values drawn in `classroom.axes[id]` and the canvas's data-x-ticks
+ * and data-y-ticks.
+ */
+function chart(id, spec) {
+  const canvas = $(`#${id}`);
+  const draw = () => {
+    if (!canvas.clientWidth) return;
+    const labels = drawChart(canvas, spec);
+    classroom.axes[id] = { x: labels.xLabels, y: labels.yLabels, xTitle: spec.x.title, yTitle: spec.y.title };
+    canvas.dataset.xTicks = labels.xLabels.join(' ');
+    canvas.dataset.yTicks = labels.yLabels.join(' ');
+  };
+  draw();
+  new ResizeObserver(draw).observe(canvas);
+}
 
 async function fieldLesson() {
   const engine = new Engine({ onError: (m) => showMessage(m) });
@@ -75,10 +57,38 @@ async function fieldLesson() {
   classroom.report = report;
   classroom.series = spectrumSeries(report);
   const s = classroom.series;
-  plot($('#spectrum'), { points: s.measured, line: s.target, xLabel: 'k', yLabel: 'E(k)' });
-  plot($('#spread'), { points: s.spread, line: s.spreadTarget, xLabel: 'k', yLabel: 'spread', log: false });
+  const ys = (...lists) => lists.flat().map(([, y]) => y);
+  const ks = s.measured.map(([k]) => k);
+  const kAxis = (log) => ({
+    ...(log ? logAxis(Math.min(...ks), Math.max(...ks)) : linearAxis(0, Math.max(...ks))),
+    title: 'wave number k (cycles per period)',
+  });
+  const energies = ys(s.measured, s.target).filter((e) => e > 0);
+  const spreads = ys(s.spread, s.spreadTarget);
+  chart('spectrum', {
+    x: kAxis(true),
+    y: { ...logAxis(Math.min(...energies), Math.max(...energies)), title: 'E(k) (lattice units)' },
+    series: [
+      { points: s.target, style: 'line', colour: CHART.line, label: 'law (slope −5/3)' },
+      { points: s.measured, style: 'dots', colour: CHART.dots, label: 'measured shells' },
+    ],
+  });
+  chart('spread', {
+    x: kAxis(false),
+    y: { ...linearAxis(0, Math.max(...spreads)), title: 'RMS ω (cycles per period)' },
+    series: [
+      { points: s.spreadTarget, style: 'line', colour: CHART.line, label: 'law kσ (clipped)' },
+      { points: s.spread, style: 'dots', colour: CHART.dots, label: 'measured shells' },
+    ],
+    key: 'bottom-right',
+  });
   $('#spectrum-caption').textContent = `Shell energy E(k), log-log: fitted slope ${report.slope.toFixed(3)} (Kolmogorov −5/3 ≈ −1.667); energy ${(report.energy_ratio * 100).toFixed(1)} % of the target.`;
-  const view = new SliceView($('#slice'));
+  const slice = $('#slice');
+  const view = new SliceView(slice, { legend: $('#slice-scale') });
+  new ResizeObserver(() => {
+    view.resize(slice.clientWidth, slice.clientHeight);
+    view.render();
+  }).observe(slice);
   let t = 0;
   const draw = async () => {
     const slice = await engine.request('slice', { z: 0, t, width: 64, height: 64 });
@@ -127,6 +137,7 @@ const FIGURE1_STEP = 1 / 30;
  * the panels show the latest snapshot, once.
  */
 async function figure1Lesson() {
+  new ColourBar($('#density-legend'), { title: 'density ρ / ρ₀, ρ₀ the square\'s initial density' }).set(0, 1);
   await init();
   let demo = new Figure1Demo('{}');
   classroom.figure1 = demo;

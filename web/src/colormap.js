@@ -16,3 +16,6 @@ export function viridis(v, out, offset) {
   const b = STOPS[i + 1];
   for (let c = 0; c < 3; c++) out[offset + c] = Math.round(255 * (a[c] + f * (b[c] - a[c])));
 }
+
+/** The map's stops as CSS colours, evenly spaced over [0, 1]: a canvas gradient through them is the map. */
+export const VIRIDIS_CSS = STOPS.map((s) => `rgb(${s.map((c) => Math.round(255 * c)).join(', ')})`);

@@ -7,10 +7,12 @@
 // Attributes (each mirrored by a property): `src` (scene JSON URL), `preset` (a name in
 // scenes/), `controls`, `autoplay`, `loading` (`lazy` | `eager`), `poster` (an image URL shown
 // until the scene is ready), `poster-time` (`posterTime`: seconds; without `autoplay` the scene
-// is shown simulated to this time, default 3, with a play button), `view` (`raymarch`, the
-// real-time volume view, by default; `points`; `exact`), `alt` (the text alternative; by
-// default one naming the scene). Events: `ready`, `error` (`detail.message`). Methods: DESIGN
-// §5's; called before the scene is ready they wait for it (`ready`), and reject with a clear
+// is shown simulated to this time, by default the scene's `render.time`, with a play button),
+// `view` (`raymarch`, the real-time volume view, by default; `points`; `exact`), `alt` (the text
+// alternative; by default one naming the scene), `stir` (dragging over the view stirs the gas
+// instead of orbiting it; off unless set). Events: `ready`, `error` (`detail.message`). Methods:
+// the player's scripting API (getScene, setScene, editScene, setStepper, pause, play, step,
+// stats, exportBlobs, captureGPU, renderReference); called before the scene is ready they wait for it (`ready`), and reject with a clear
 // Error if it fails or the element is not in a document. Each element owns its worker and
 // canvas, is sized by CSS (4:3 unless told otherwise), and pauses while off-screen.
 
@@ -33,8 +35,7 @@ button:focus-visible { outline: 3px solid #7cc4ff; outline-offset: 2px; }
 [hidden] { display: none !important; }
 `;
 
-const TEMPLATE = `<style>${STYLE}</style>
-<canvas part="canvas" role="img"></canvas>
+const TEMPLATE = `<canvas part="canvas" role="img"></canvas>
 <img class="poster" part="poster" alt="" hidden>
 <div class="bar" part="progress"></div>
 <div class="status" part="status" role="status" hidden></div>
@@ -62,6 +63,19 @@ const MODULE_DIR = new URL(/* @vite-ignore */ './', import.meta.url);
 const SCENES = /\/(src|assets)\/$/.test(MODULE_DIR.pathname)
   ? new URL('./scenes/', document.baseURI)
   : new URL('./scenes/', MODULE_DIR);
+
+let sheet = null;
+/**
+ * The element's styles, one constructed stylesheet shared by every player (adopted by each
+ * shadow root: no inline <style>, so pages with a strict CSP style it too).
+ */
+function styleSheet() {
+  if (!sheet) {
+    sheet = new CSSStyleSheet();
+    sheet.replaceSync(STYLE);
+  }
+  return sheet;
+}
 
 let playerCode = null;
 /** The player's code, imported once for every element on the page (a failed import is retried). */
@@ -96,7 +110,7 @@ function deferred() {
 }
 
 /** The properties that mirror attributes. */
-const PROPERTIES = ['src', 'preset', 'poster', 'alt', 'controls', 'autoplay', 'loading', 'posterTime', 'view'];
+const PROPERTIES = ['src', 'preset', 'poster', 'alt', 'controls', 'autoplay', 'loading', 'posterTime', 'view', 'stir'];
 
 /** `text` URL-decoded, or as it is when it is not valid URL encoding. */
 function decoded(text) {
@@ -109,7 +123,7 @@ function decoded(text) {
 
 class WindFieldElement extends HTMLElement {
   static get observedAttributes() {
-    return ['src', 'preset', 'controls', 'autoplay', 'loading', 'poster', 'poster-time', 'view', 'alt'];
+    return ['src', 'preset', 'controls', 'autoplay', 'loading', 'poster', 'poster-time', 'view', 'alt', 'stir'];
   }
 
   #parts;
@@ -133,6 +147,7 @@ class WindFieldElement extends HTMLElement {
   constructor() {
     super();
     const root = this.attachShadow({ mode: 'open' });
+    root.adoptedStyleSheets = [styleSheet()];
     root.innerHTML = TEMPLATE;
     const $ = (s) => root.querySelector(s);
     this.#parts = {
@@ -175,12 +190,20 @@ class WindFieldElement extends HTMLElement {
   /** `lazy` (the default: load when near the viewport) or `eager`. */
   get loading() { return this.getAttribute('loading') === 'eager' ? 'eager' : 'lazy'; }
   set loading(v) { this.setAttribute('loading', v); }
-  /** Seconds the scene is simulated to before it is shown, when not playing (default 3). */
+  /**
+   * Seconds the scene is simulated to before it is shown, when not playing: the attribute, else
+   * the scene's `render.time`, else 3.
+   */
   get posterTime() {
-    const t = Number(this.getAttribute('poster-time') ?? DEFAULT_POSTER_TIME);
-    return Number.isFinite(t) && t >= 0 ? t : DEFAULT_POSTER_TIME;
+    const fallback = this.#player?.state.scene?.render.time ?? DEFAULT_POSTER_TIME;
+    const attribute = this.getAttribute('poster-time');
+    const t = attribute === null ? fallback : Number(attribute);
+    return Number.isFinite(t) && t >= 0 ? t : fallback;
   }
   set posterTime(v) { this.setAttribute('poster-time', String(v)); }
+  /** Whether dragging over the view stirs the gas (instead of orbiting); off unless set. */
+  get stir() { return this.hasAttribute('stir'); }
+  set stir(v) { this.toggleAttribute('stir', Boolean(v)); }
   /** `raymarch` (the real-time volume view, default), `points` or `exact`. */
   get view() {
     const v = this.getAttribute('view');
@@ -244,6 +267,8 @@ class WindFieldElement extends HTMLElement {
       if (after !== null && this.#player && !reducedMotion()) this.play();
     } else if (name === 'loading') {
       if (after === 'eager' && this.isConnected) this.load();
+    } else if (name === 'stir') {
+      if (this.#player) this.#player.stirring.enabled = this.stir;
     } else if (name === 'view') {
       if (this.#player) {
         this.#player.state.mode = this.view;
@@ -293,6 +318,8 @@ class WindFieldElement extends HTMLElement {
         p.bar.style.width = `${Math.round(progress * 100)}%`;
         this.#showStatus(`${stage} (${Math.round(progress * 100)} %)`);
       },
+      // The player cannot go on (its GPU context is gone, its scene stops the engine): an error.
+      onFault: (message) => this.#fail(new Error(message)),
       // The engine's messages (a failed worker restarts with the scene) fade; a failed load's stay.
       onMessage: (text) => {
         this.#showMessage(text);
@@ -304,6 +331,7 @@ class WindFieldElement extends HTMLElement {
     p.canvas.style.touchAction = 'pan-y';
     player.state.mode = this.view;
     player.state.visible = false;
+    player.stirring.enabled = this.stir;
     this.#player = player;
     this.#api = player.api(this.ready);
     const resize = new ResizeObserver(() => player.resize());
@@ -315,11 +343,13 @@ class WindFieldElement extends HTMLElement {
     this.#observers = [resize, visibility];
   }
 
-  /** The URL of the scene the attributes name. */
+  /** The URL of the scene the attributes name; a preset is a name, not a path. */
   #sceneUrl() {
     const src = this.getAttribute('src');
     if (src) return new URL(src, document.baseURI);
-    return new URL(`${encodeURIComponent(this.getAttribute('preset') || 'default')}.json`, SCENES);
+    const preset = this.getAttribute('preset') || 'default';
+    if (!/^[a-z0-9-]+$/.test(preset)) throw new Error(`preset: "${preset}" is not a scene name (lower-case letters, digits and hyphens)`);
+    return new URL(`${preset}.json`, SCENES);
   }
 
   /** A name for the scene the attributes pick, for the text alternative. */
@@ -378,7 +408,10 @@ class WindFieldElement extends HTMLElement {
     this.#hideStatus();
     this.#showMessage(message);
     this.#updateControls();
+    this.#updatePoster();
     const error = err instanceof Error ? err : new Error(message);
+    // A player that was ready and then failed is ready no more: `ready` rejects from now on.
+    if (this.#ready.settled) this.#ready = deferred();
     this.#ready.reject(error);
     this.dispatchEvent(new CustomEvent('error', { detail: { message } }));
   }
@@ -471,6 +504,17 @@ class WindFieldElement extends HTMLElement {
     this.#updateControls();
   }
 
+  /** Applies an edited scene to the running one, keeping its blobs and time; rejects like `setScene`. */
+  async editScene(scene) {
+    await this.#whenReady();
+    return this.#run((player) => player.edit(scene));
+  }
+
+  /** Chooses what steps the gas: 'cpu', 'gpu' or 'auto'; resolves with the one that steps now. */
+  async setStepper(kind) {
+    return (await this.#whenReady()).setStepper(kind);
+  }
+
   /** Takes `n` fixed steps (deterministic) and draws. */
   async step(n = 1) {
     const api = await this.#whenReady();
@@ -481,7 +525,7 @@ class WindFieldElement extends HTMLElement {
   stats() {
     return this.#api
       ? this.#api.stats()
-      : { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
+      : { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1, frames: 0, limitedBy: 'paused', stepper: 'cpu' };
   }
 
   async exportBlobs(size) {

@@ -45,7 +45,7 @@ const engine = new Engine({
   onError: (message) => showMessage(message),
   onRestart: () => { regenerate(); },
 });
-const view = new SliceView($('#canvas'));
+const view = new SliceView($('#canvas'), { legend: $('#speed-legend') });
 
 function describe(report) {
   const [nx, ny, nz, nt] = info.size;
@@ -126,7 +126,7 @@ function frame(now) {
 }
 
 function buildControls() {
-  const gui = new GUI({ container: $('#panel'), title: 'Small-scale turbulence' });
+  const gui = new GUI({ container: $('#panel'), title: 'Small-scale turbulence', injectStyles: false });
   const spectrum = gui.addFolder('Spectrum (paper §3.2)');
   const s = state.field.spectrum;
   spectrum.add(s, 'law', LAWS).name('law').onFinishChange(regenerate);
@@ -141,11 +141,12 @@ function buildControls() {
     if (s.k_inertial > kMax) s.k_inertial = kMax;
     kController.updateDisplay();
     state.sliceZ = Math.min(state.sliceZ, state.field.size[2] - 1);
+    zController.max(state.field.size[2] - 1).updateDisplay();
     regenerate();
   });
   lattice.add(state.field, 'seed', 0, 100000, 1).name('seed').onFinishChange(regenerate);
   const viewFolder = gui.addFolder('View');
-  viewFolder.add(state, 'sliceZ', 0, 63, 0.25).name('slice z (lattice)').onChange(() => drawSlice());
+  const zController = viewFolder.add(state, 'sliceZ', 0, state.field.size[2] - 1, 0.25).name('slice z (lattice)').onChange(() => drawSlice());
   viewFolder.add(state, 'playing').name('play');
   viewFolder.add(state, 'speed', 0, 4, 0.05).name('time speed');
   $('#panel').append($('#status'));
@@ -153,7 +154,7 @@ function buildControls() {
 }
 
 buildControls();
-window.addEventListener('resize', resize);
+new ResizeObserver(resize).observe($('#canvas'));
 resize();
 const ready = regenerate();
 requestAnimationFrame(frame);

@@ -1,9 +1,13 @@
-// The playground: a Player runs the scene; this page adds the controls, keeps the scene in the
-// URL hash, imports and exports, and exposes `window.windfield` (DESIGN §5).
+// The playground: a Player runs the scene; this page adds the scene picker, the panel, the
+// status line, stirring and notices, keeps the scene in the URL, imports and exports, and
+// exposes `window.windfield`.
 
 import GUI from 'lil-gui';
 import { showMessage, showProgress } from './page-ui.js';
 import { MODES, Player, QUALITY } from './player.js';
+import { presetCatalog, PRESET_NAME, scenePicker } from './pages/scene-picker.js';
+import { drawSliceLegend } from './pages/slice-legend.js';
+import { statusText } from './pages/status-line.js';
 import { sceneEditor } from './scene-editor.js';
 import { moved } from './views/guides-layer.js';
 import { SLICE_PLANES } from './views/wind-slice-layer.js';
@@ -11,27 +15,34 @@ import { decodeScene, encodeScene } from './state/url-codec.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
-const DEFAULT_SCENE_URL = new URL('./scenes/default.json', document.baseURI).href;
 /** Phone-sized screens start with the panel collapsed (its title opens it). */
 const smallScreen = window.matchMedia?.('(max-width: 800px), (max-height: 540px)').matches ?? false;
-/** What the view shows, for its text alternative: the preset's name, or the scene being edited. */
-let sceneName = 'the default scene';
-/** The page's query: `view`, `quality`, `preset`, `profile`. */
+/**
+ * The page's query: `preset`, `view`, `quality`, `profile`, and `timeout` (seconds the engine
+ * may go without answering a request before it is restarted; 30 unless given).
+ */
 const query = new URLSearchParams(location.search);
+/** The default scene's preset name. */
+const DEFAULT = 'default';
+/** How often the status line is rewritten (ms). */
+const STATUS_EVERY = 250;
 
+/** What the view shows, in the user's words: a preset's title, the link's scene, an import. */
+let sceneName = 'the default scene';
+/** The catalogue of presets ([{name, title, quote, section}]; empty until loaded). */
+let presets = [];
+const titleOf = (name) => presets.find((p) => p.name === name)?.title ?? name;
+const nameOfDefault = () => `the default scene (${titleOf(DEFAULT).toLowerCase()})`;
+
+let lastStatus = 0;
+const timeout = Number(query.get('timeout'));
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
+  ...(timeout > 0 && { requestTimeoutMs: 1000 * timeout }),
   profile: query.has('profile'),
   onProgress: showProgress,
-  onMessage: showMessage,
-  onFrame: (frame) => {
-    const st = player.stats;
-    const grid = state.mode === 'raymarch' ? player.view.volume.grid : null;
-    const volume = grid ? ` · volume ${grid.dims.join('×')}` : '';
-    const scale = state.mode === 'points' ? '' : ` · resolution ${Math.round(st.scale * 100)} %`;
-    $('#status').textContent = `t = ${frame.time.toFixed(2)} s · ${frame.count} blobs · field ${st.fieldMs.toFixed(0)} ms`
-      + ` · step ${st.stepMs.toFixed(2)} ms · ${st.fps.toFixed(0)} fps${scale}${volume}`;
-  },
+  onMessage: (text) => showMessage(text),
+  onFrame: () => updateStatus(),
   onScene: async (scene) => {
     $('#canvas').setAttribute('aria-label', `Gas in a turbulent wind: ${sceneName}, ${scene.emitters.length} emitter${scene.emitters.length === 1 ? '' : 's'}, ${scene.wind.length} wind primitive${scene.wind.length === 1 ? '' : 's'}`);
     history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
@@ -42,14 +53,24 @@ const state = player.state;
 const initialView = query.get('view');
 state.mode = MODES.includes(initialView) ? initialView : 'raymarch';
 if (Object.hasOwn(QUALITY, query.get('quality') ?? '')) state.quality = query.get('quality');
-player.view.showGuides = true;
-const loadScene = (scene) => player.load(scene);
-const advance = (n) => player.advance(n);
-const draw = () => player.draw();
-/** Draws after a change of the wind slice; a slice plane turns the guides on (it is one). */
+player.setGuides(true);
+
+/** The status line: always visible over the view, rewritten at most four times a second. */
+function updateStatus(force = false) {
+  const now = performance.now();
+  if (!$('#status') || (!force && now - lastStatus < STATUS_EVERY)) return;
+  lastStatus = now;
+  $('#status').textContent = statusText(player.snapshot(), { mode: state.mode, volume: player.volumeDims(), stirring: player.stirring.enabled });
+  const legend = player.sliceLegend();
+  $('#slice-legend').hidden = !legend;
+  if (legend) drawSliceLegend($('#slice-legend'), legend.maxSpeed);
+}
+setInterval(() => updateStatus(true), 1000);
+
+/** Redraws after a change of the wind slice; a slice plane turns the guides on (it is one). */
 const showSlice = () => {
-  if (player.view.slicePlane !== 'off') player.view.showGuides = true;
-  draw();
+  if (player.slicePlane !== 'off') player.setGuides(true);
+  player.invalidate();
 };
 
 function download(name, href) {
@@ -59,24 +80,66 @@ function download(name, href) {
   a.click();
 }
 
+/** Loads a whole new scene (it starts at t = 0) named `name` for notices and the canvas. */
+async function loadScene(scene, name) {
+  const previous = sceneName;
+  sceneName = name;
+  try {
+    return await player.load(scene);
+  } catch (e) {
+    sceneName = previous;
+    throw e;
+  }
+}
+
+/**
+ * Applies an edited scene to the running one (the gas keeps moving); a refused edit leaves a
+ * notice and the controls on the last good scene.
+ */
+async function tryEdit(next) {
+  try {
+    await player.edit(next);
+    if (!sceneName.endsWith(', edited')) sceneName += ', edited';
+  } catch (e) {
+    if (e.message.startsWith('cancelled')) return; // a newer scene is loading
+    showMessage(`That change was not applied: ${e.message}`);
+    controls?.refresh();
+  }
+}
+
+/** Stirring on or off (the Stir button and the `s` key). */
+function setStirring(on) {
+  player.stirring.enabled = on;
+  $('#stir').setAttribute('aria-pressed', String(on));
+  $('#stir').textContent = on ? 'Stirring: drag the smoke' : 'Stir';
+  updateStatus(true);
+}
+
 let controls = null;
 function buildControls() {
-  const gui = new GUI({ container: $('#panel'), title: 'windfield' });
+  // lil-gui's stylesheet is linked (style.css), not injected: the page runs under a strict CSP.
+  const gui = new GUI({ container: $('#panel'), title: 'windfield', injectStyles: false });
   if (smallScreen) gui.close();
   const actions = {
     play: () => { state.playing = true; },
     pause: () => { state.playing = false; },
-    step: () => advance(1),
-    reset: () => player.engine.request('reset').then(() => advance(0)),
-    copyLink: () => navigator.clipboard?.writeText(location.href).then(() => showMessage('Link copied')),
+    step: () => player.step(1),
+    reset: () => player.reset().catch((e) => showMessage(`Could not restart the scene: ${e.message}`)),
+    copyLink: () => navigator.clipboard?.writeText(location.href).then(() => showMessage('Link copied', { transient: true })),
     exportScene: () => download('scene.json', URL.createObjectURL(new Blob([JSON.stringify(state.scene, null, 2)], { type: 'application/json' }))),
     importScene: () => $('#import').click(),
     still: async () => {
-      const url = await player.renderReference({ width: 480, height: 360 });
+      const size = { width: 480, height: 360 };
+      const url = await player.renderReference(size);
       $('#still').src = url;
-      $('#still').hidden = false;
+      $('#still-figure .still-caption').textContent = `Reference still (CPU renderer), t = ${player.snapshot().time.toFixed(2)} s, ${size.width} × ${size.height}`;
+      $('#still-figure').hidden = false;
     },
-    png: () => download('windfield.png', $('#canvas').toDataURL('image/png')),
+    png: async () => {
+      // The view as it is drawn, without the wind guides.
+      const { width, height } = $('#canvas');
+      download('windfield.png', await player.captureGPU({ mode: state.mode, width, height }));
+    },
     blobs: async () => {
       const list = await player.exportBlobs();
       download('blobs.json', URL.createObjectURL(new Blob([JSON.stringify(list)], { type: 'application/json' })));
@@ -96,67 +159,66 @@ function buildControls() {
   sim.add(actions, 'play');
   sim.add(actions, 'pause');
   sim.add(actions, 'step').name('step once');
-  sim.add(actions, 'reset');
+  sim.add(actions, 'reset').name('restart at t = 0');
   sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
   sim.add(state, 'mode', MODES).name('view').onChange(() => player.resize());
-  sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => draw());
+  sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => player.invalidate());
   const resolution = { scale: 'auto' };
   sim.add(resolution, 'scale', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution')
-    .onChange((v) => { player.resolution.set(v); player.resize(); });
-  sim.add(player.view, 'showGuides').name('wind guides').listen().onChange(() => draw());
-  sim.add(player.view, 'slicePlane', SLICE_PLANES).name('wind slice').listen().onChange(showSlice);
-  sim.add(player.view, 'sliceOffset', -2, 2, 0.01).name('slice offset (m)').onChange(showSlice);
+    .onChange((v) => player.setResolution(v));
+  const view = {
+    get guides() { return player.guides; },
+    set guides(on) { player.setGuides(on); },
+    get slice() { return player.slicePlane; },
+    set slice(plane) { player.slicePlane = plane; showSlice(); },
+    get offset() { return player.sliceOffset; },
+    set offset(d) { player.sliceOffset = d; showSlice(); },
+  };
+  sim.add(view, 'guides').name('wind guides').listen();
+  sim.add(view, 'slice', SLICE_PLANES).name('wind slice').listen();
+  sim.add(view, 'offset', -2, 2, 0.01).name('slice offset (m)');
   const handle = { drag: 'none' };
   const handleChoices = () => ['none', ...state.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),
     ...state.scene.emitters.map((e, i) => `emitters ${i + 1}: ${e.shape}`)];
   const selectHandle = (label) => {
     const m = /^(wind|emitters) (\d+)/.exec(label);
-    player.view.guides.select(m ? { list: m[1], index: Number(m[2]) - 1 } : null);
-    if (m) player.view.showGuides = true;
-    draw();
+    player.selectHandle(m ? { list: m[1], index: Number(m[2]) - 1 } : null);
   };
   let dragControl = sim.add(handle, 'drag', handleChoices()).name('drag handle').onChange(selectHandle);
-  // Loads an edited scene; a refused one leaves a message and the controls on the last good one.
-  const tryLoad = async (next) => {
-    try {
-      if (!sceneName.endsWith(', edited')) sceneName += ', edited';
-      await loadScene(next);
-    } catch (e) {
-      if (e.message.startsWith('cancelled')) return; // a newer edit is loading
-      showMessage(e.message);
-      controls.refresh();
-    }
-  };
   const edit = (fn) => () => {
     const next = structuredClone(state.scene);
     fn(next);
-    return tryLoad(next);
+    return tryEdit(next);
   };
-  player.view.guides.onMoved = (selection, to) => edit((s) => {
+  player.onHandleMoved((selection, to) => edit((s) => {
     const list = s[selection.list];
     list[selection.index] = moved(list[selection.index], to.map((v) => Math.round(v * 1000) / 1000));
-  })();
+  })());
   const proxy = {};
   const getters = {};
-  const field = gui.addFolder('Small-scale field (§3)');
   const scene = () => state.scene;
-  const bind = (folder, label, get, set, ...range) => {
+  // Number fields without slider ranges: a typed value goes to the core as it is, and the core
+  // names the valid range when it refuses one.
+  const bind = (folder, label, get, set, step) => {
     proxy[label] = get(scene());
     getters[label] = get;
-    return folder.add(proxy, label, ...range).onFinishChange(edit((s) => set(s, proxy[label])));
+    const c = folder.add(proxy, label);
+    if (step !== undefined) c.step(step);
+    return c.onFinishChange(edit((s) => set(s, proxy[label])));
   };
-  bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01, 10, 0.01);
-  bind(field, 'k inertial', (s) => s.field.spectrum.k_inertial, (s, v) => { s.field.spectrum.k_inertial = v; }, 0.5, 15, 0.5);
-  bind(field, 'σ', (s) => s.field.spectrum.sigma, (s, v) => { s.field.spectrum.sigma = v; }, 0, 4, 0.05);
-  bind(field, 'amplitude', (s) => s.field.amplitude, (s, v) => { s.field.amplitude = v; }, 0, 5, 0.05);
-  bind(field, 'seed', (s) => s.seed, (s, v) => { s.seed = v; }, 0, 10000, 1);
+  const field = gui.addFolder('Small-scale field (§3)');
+  bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01);
+  bind(field, 'k inertial', (s) => s.field.spectrum.k_inertial, (s, v) => { s.field.spectrum.k_inertial = v; }, 0.5);
+  bind(field, 'σ', (s) => s.field.spectrum.sigma, (s, v) => { s.field.spectrum.sigma = v; }, 0.05);
+  bind(field, 'amplitude', (s) => s.field.amplitude, (s, v) => { s.field.amplitude = v; }, 0.05);
+  bind(field, 'seed', (s) => s.seed, (s, v) => { s.seed = v; }, 1);
   const gas = gui.addFolder('Gas (§4)');
-  bind(gas, 'diffusion κ', (s) => s.gas.diffusion, (s, v) => { s.gas.diffusion = v; }, 0, 0.05, 0.0005);
-  bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; }, 0, 2, 0.01);
-  bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100, 50000, 100);
+  bind(gas, 'diffusion κ', (s) => s.gas.diffusion, (s, v) => { s.gas.diffusion = v; }, 1e-6);
+  bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; }, 0.01);
+  bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100);
   const look = gui.addFolder('Rendering (§5)');
   bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
-  const editor = sceneEditor(gui, { scene, apply: (draft) => tryLoad(structuredClone(draft)) });
+  const editor = sceneEditor(gui, { scene, apply: (draft) => tryEdit(structuredClone(draft)) });
   const share = gui.addFolder('Share and export');
   share.add(actions, 'copyLink').name('copy link');
   share.add(actions, 'exportScene').name('export scene JSON');
@@ -166,7 +228,7 @@ function buildControls() {
   share.add(actions, 'blobs').name('export blob list JSON');
   share.add(actions, 'frames', 2, 1800, 1).name('video frames');
   share.add(actions, 'video').name('record WebM');
-  $('#panel').append($('#status'), $('#still'));
+  $('#panel').append($('#still-figure'));
   return {
     refresh: () => {
       for (const [label, get] of Object.entries(getters)) proxy[label] = get(scene());
@@ -185,10 +247,10 @@ function wireImport() {
     const file = event.target.files?.[0];
     if (!file) return;
     try {
-      sceneName = `the imported scene ${file.name}`;
-      await loadScene(JSON.parse(await file.text()));
+      await loadScene(JSON.parse(await file.text()), `the imported scene ${file.name}`);
+      picker?.select(null);
     } catch (e) {
-      showMessage(`Could not import ${file.name}: ${e.message}`);
+      showMessage(`Could not import ${file.name}: ${e.message}. Still showing ${sceneName}.`);
     }
     event.target.value = '';
   });
@@ -196,55 +258,117 @@ function wireImport() {
 
 function wireKeys() {
   window.addEventListener('keydown', (e) => {
-    if (e.target.closest?.('input, textarea, select')) return;
+    if (e.target.closest?.('input, textarea, select, button, [role="radio"]')) return;
+    if (e.target === $('#canvas') && player.orbitKey(e)) {
+      e.preventDefault();
+      return;
+    }
     if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); }
-    if (e.key === '.') advance(1);
+    if (e.key === '.') player.step(1);
     if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; player.resize(); }
-    if (e.key === 'g') { player.view.showGuides = !player.view.showGuides; draw(); }
+    if (e.key === 'g') player.setGuides(!player.guides);
+    if (e.key === 's') setStirring(!player.stirring.enabled);
     if (e.key === 'w') {
-      const view = player.view;
-      view.slicePlane = SLICE_PLANES[(SLICE_PLANES.indexOf(view.slicePlane) + 1) % SLICE_PLANES.length];
+      player.slicePlane = SLICE_PLANES[(SLICE_PLANES.indexOf(player.slicePlane) + 1) % SLICE_PLANES.length];
       showSlice();
     }
   });
+  $('#stir').addEventListener('click', () => setStirring(!player.stirring.enabled));
+  $('#still-figure .still-close').addEventListener('click', () => { $('#still-figure').hidden = true; });
 }
 
+let picker = null;
+/** Loads preset `name` chosen in the picker and puts it in the URL (the hash's scene goes). */
+async function choosePreset(name) {
+  const url = new URL(location.href);
+  url.hash = '';
+  if (name === DEFAULT) url.searchParams.delete('preset');
+  else url.searchParams.set('preset', name);
+  history.pushState(null, '', url);
+  try {
+    await loadPreset(name);
+    picker.select(name);
+  } catch (e) {
+    showMessage(`The ${titleOf(name).toLowerCase()} scene could not be loaded (${e instanceof NoSuchPreset ? 'it is missing' : e.message}). Still showing ${sceneName}.`);
+  }
+}
+
+/** A preset that is not there: no file of that name, or a file that is not a scene. */
+class NoSuchPreset extends Error {}
+
+/**
+ * Fetches preset `name` and loads it; rejects with a NoSuchPreset when there is none (a name is
+ * lower-case letters, digits and hyphens), with the core's message when it is not a valid scene.
+ */
+async function loadPreset(name) {
+  if (!PRESET_NAME.test(name)) throw new NoSuchPreset(name);
+  const response = await fetch(new URL(`./scenes/${name}.json`, document.baseURI)).catch(() => null);
+  const isJson = /json/.test(response?.headers.get('content-type') ?? '');
+  const scene = response?.ok && isJson ? await response.json().catch(() => null) : null;
+  if (!scene || typeof scene !== 'object' || !('version' in scene)) throw new NoSuchPreset(name);
+  const label = name === DEFAULT ? nameOfDefault() : `the ${titleOf(name).toLowerCase()} scene`;
+  return loadScene(scene, label);
+}
+
+/**
+ * The scene the page opens on: the link's, else `?preset=`, else the default scene. What could
+ * not be opened is said in one notice naming the scene shown instead. Resolves with the preset
+ * shown (null for the link's scene).
+ */
 async function initialScene() {
+  const problems = [];
   const fromHash = await decodeScene(location.hash).catch((e) => {
-    showMessage(`The link's scene could not be read (${e.message}); showing the default scene.`);
+    problems.push(`This link's scene could not be read: ${e.message}.`);
     return null;
   });
   if (fromHash) {
     try {
-      sceneName = 'the scene from the link';
-      return await loadScene(fromHash);
+      await loadScene(fromHash, 'the scene from the link');
+      return null;
     } catch (e) {
-      showMessage(`The link's scene is invalid (${e.message}); showing the default scene.`);
+      problems.push(`This link's scene is not valid (${e.message}).`);
     }
   }
   const preset = query.get('preset');
-  const url = preset ? new URL(`./scenes/${encodeURIComponent(preset)}.json`, document.baseURI).href : DEFAULT_SCENE_URL;
-  let scene = await fetch(url).then((r) => (r.ok ? r.json() : null)).catch(() => null);
-  sceneName = preset ? `the ${preset} scene` : 'the default scene';
-  if (!scene) {
-    showMessage(`No preset named "${preset}"; showing the default scene.`);
-    sceneName = 'the default scene';
-    scene = await fetch(DEFAULT_SCENE_URL).then((r) => r.json());
+  let shown = null;
+  if (preset !== null) {
+    try {
+      await loadPreset(preset);
+      shown = preset;
+    } catch (e) {
+      const names = presets.map((p) => p.name).join(', ');
+      problems.push(e instanceof NoSuchPreset
+        ? `There is no scene named "${preset}". The scenes are: ${names}.`
+        : `The scene "${preset}" could not be loaded (${e.message}).`);
+    }
   }
-  return loadScene(scene);
+  if (shown === null) {
+    await loadPreset(DEFAULT);
+    shown = DEFAULT;
+  }
+  if (problems.length) showMessage(`${problems.join(' ')} Showing ${sceneName} instead.`);
+  return shown;
 }
 
 // The view follows its box (window resizes, and the panel's folders opening and closing).
 new ResizeObserver(() => player.resize()).observe($('#view'));
-const ready = initialScene().then(() => {
+const ready = (async () => {
+  presets = await presetCatalog().catch(() => []);
+  picker = scenePicker($('#picker'), presets, choosePreset);
+  const shown = await initialScene();
+  picker.select(shown);
   controls = buildControls();
   wireImport();
   wireKeys();
-});
+  window.addEventListener('popstate', () => {
+    const name = new URLSearchParams(location.search).get('preset') ?? DEFAULT;
+    if (!location.hash) loadPreset(name).then(() => picker.select(name), (e) => showMessage(e.message));
+  });
+})();
 
 window.windfield = {
   ...player.api(ready),
-  fieldStats: (spectrum) => player.engine.request('fieldStats', { spectrum }),
-  health: () => player.engine.request('health'),
-  sample: (x, y, z, t) => player.engine.request('sample', { x, y, z, t }),
+  fieldStats: (spectrum) => player.fieldStats(spectrum),
+  health: () => player.health(),
+  sample: (x, y, z, t) => player.sample(x, y, z, t),
 };

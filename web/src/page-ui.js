@@ -1,21 +1,36 @@
-// The pages' shared status widgets: a transient message (#message) and a progress bar
-// (#progress with .bar and .label).
+// The pages' shared status widgets: a notice (#message) and a progress bar (#progress with .bar
+// and .label).
 
 const $ = (selector) => document.querySelector(selector);
-let messageTimer = 0;
+let noticeTimer = 0;
 
-/** Shows `text` in #message for eight seconds. */
-export function showMessage(text) {
+/**
+ * Shows `text` in the notice (#message), which stays until its Dismiss button is pressed or
+ * another notice replaces it; a `transient` one (a confirmation, such as "Link copied") goes
+ * by itself after four seconds.
+ */
+export function showMessage(text, { transient = false } = {}) {
   const box = $('#message');
-  box.textContent = text;
+  if (!box) return;
+  const words = document.createElement('span');
+  words.className = 'message-text';
+  words.textContent = text;
+  const dismiss = document.createElement('button');
+  dismiss.type = 'button';
+  dismiss.className = 'message-dismiss';
+  dismiss.textContent = '×';
+  dismiss.setAttribute('aria-label', 'Dismiss this notice');
+  dismiss.addEventListener('click', () => { box.hidden = true; });
+  box.replaceChildren(words, dismiss);
   box.hidden = false;
-  clearTimeout(messageTimer);
-  messageTimer = setTimeout(() => { box.hidden = true; }, 8000);
+  clearTimeout(noticeTimer);
+  if (transient) noticeTimer = setTimeout(() => { box.hidden = true; }, 4000);
 }
 
 /** Shows `progress` (0..1) with `label` in #progress; hides it at 1. */
 export function showProgress(progress, label) {
   const box = $('#progress');
+  if (!box) return;
   box.hidden = progress >= 1;
   box.querySelector('.bar').style.width = `${Math.round(progress * 100)}%`;
   box.querySelector('.label').textContent = `${label} (${Math.round(progress * 100)} %)`;

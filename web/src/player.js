@@ -5,6 +5,7 @@ import { Engine } from './engine/client.js';
 import { recordWebM } from './recorder.js';
 import { ResolutionGovernor, startScale } from './resolution.js';
 import { waitForGpu } from './views/gpu-sync.js';
+import { PointerStir } from './views/pointer-stir.js';
 import { SceneView } from './views/scene-view.js';
 import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
@@ -21,10 +22,25 @@ export const QUALITY = {
 };
 /** The views (DESIGN §5's capture modes). */
 export const MODES = ['points', 'raymarch', 'exact'];
+/** A scene that has run this many steps without the engine failing is one to go back to. */
+const GOOD_AFTER_STEPS = 120;
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
 /** A frame that waited longer than this (ms) for the worker's step was paced by the worker. */
 const WORKER_WAIT_MS = 2;
+
+/** How long (ms) a lost GPU context may stay lost before the player reports it. */
+const CONTEXT_GRACE_MS = 3000;
+
+/** A scene as the JSON text the worker takes; a clear Error for what cannot be a scene. */
+function sceneText(scene) {
+  if (!scene || typeof scene !== 'object' || Array.isArray(scene)) throw new Error('a scene must be an object (a parsed scene JSON)');
+  try {
+    return JSON.stringify(scene);
+  } catch (err) {
+    throw new Error(`the scene cannot be read as JSON (${err instanceof RangeError ? 'it is nested too deeply' : err.message})`);
+  }
+}
 
 function bytesToDataUrl(bytes) {
   let binary = '';
@@ -37,13 +53,21 @@ export class Player {
    * @param {HTMLCanvasElement} canvas
    * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
    *          onFrame?: (frame: object) => void, onScene?: (scene: object) => void,
-   *          playing?: boolean, profile?: boolean}} hooks (`profile`: time the volume view's
-   *   passes on the GPU, reported by `stats().passes`; slower, for benchmarks)
+   *          onFault?: (message: string) => void, requestTimeoutMs?: number,
+   *          playing?: boolean, profile?: boolean}} hooks (`onFault`: the player cannot go on
+   *   as it is, e.g. its GPU context was lost for good or its scene stops the engine; `profile`:
+   *   time the volume view's passes on the GPU, reported by `stats().passes`; slower, for
+   *   benchmarks)
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
     this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
-    this.stats = { blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1 };
+    this.stats = {
+      blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1,
+      frames: 0, limitedBy: 'paused',
+    };
+    /** When the last frames were drawn (ms), the newest last: `stats().fps` counts them. */
+    this.drawTimes = [];
     /**
      * Holds the frame rate by scaling the canvas's internal resolution and the real-time
      * view's voxels (`stats().scale`), starting lower on phone-sized screens.
@@ -59,44 +83,143 @@ export class Player {
     this.idleAt = -Infinity;
     /** Frames per second the view keeps up, from frames drawn back to back (the governor's input). */
     this.pace = 0;
-    /** How long the last frame waited for the worker (ms). */
+    /** How long the last frame waited for the worker (ms), and the share of recent frames spent so. */
     this.waited = 0;
+    this.waitShare = 0;
     this.accumulated = 0;
     this.view = new SceneView(canvas);
     this.view.volume.profile = Boolean(hooks.profile);
+    /** Failures of the engine per scene (its JSON text), and the last scene that ran well. */
+    this.failures = new Map();
+    this.lastGood = null;
+    /** Steps taken since the current scene was loaded (it is good after `GOOD_AFTER_STEPS`). */
+    this.stepsSinceLoad = 0;
+    /** Why the player stopped (the engine keeps failing on its scene), or null. */
+    this.halted = null;
+    /** Whether a recording is under way (scenes may not change meanwhile). */
+    this.recording = false;
     this.engine = new Engine({
       onError: (m) => hooks.onMessage?.(m),
-      onRestart: () => {
-        // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
-        if (this.state.scene) this.exclusive(() => this.load(this.state.scene)).catch((e) => hooks.onMessage?.(e.message));
-      },
-    });
+      onRestart: (reason) => this.#recover(reason),
+    }, { timeoutMs: hooks.requestTimeoutMs });
+    /** Whether the view's GPU context is lost (drawing waits for it to come back). */
+    this.contextLost = false;
+    this.contextTimer = 0;
+    this.view.onContextLost = () => {
+      this.contextLost = true;
+      clearTimeout(this.contextTimer);
+      this.contextTimer = setTimeout(() => this.#fault('the view lost its GPU context and the browser did not give it back (too many 3-D views open at once, or the GPU was reset)'), CONTEXT_GRACE_MS);
+    };
+    this.view.onContextRestored = () => {
+      clearTimeout(this.contextTimer);
+      this.contextLost = false;
+      if (this.lastFrame) this.view.setFrame(this.lastFrame);
+      this.invalidate();
+    };
     this.lastTime = performance.now();
     this.lastDrawn = 0;
     /** Whether something changed the picture since the last frame (the camera moved, …). */
     this.dirty = true;
     this.view.controls.addEventListener('change', () => { this.dirty = true; });
+    /** Dragging stirs the gas instead of orbiting while `stirring.enabled` (off at first). */
+    this.stirring = new PointerStir(this.view, (position, velocity, radius) => {
+      if (this.state.scene) this.stir(position, velocity, radius).catch(() => {});
+    });
     this.running = true;
     this.resize();
     requestAnimationFrame((t) => this.loop(t));
   }
 
+  /**
+   * After the engine failed (and was restarted): reloads the scene that ran, unless it has made
+   * the engine fail before, in which case it goes back to the last scene that ran well, or stops
+   * with a message; a scene never sends the engine into a loop of restarts.
+   */
+  #recover(reason) {
+    const scene = this.state.scene;
+    if (!scene) return;
+    const key = JSON.stringify(scene);
+    const failures = (this.failures.get(key) ?? 0) + 1;
+    this.failures.set(key, failures);
+    // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
+    const reload = (next) => this.exclusive(() => this.load(next)).catch((e) => this.hooks.onMessage?.(e.message));
+    if (failures === 1) {
+      reload(scene);
+    } else if (this.lastGood && this.lastGood !== key) {
+      this.hooks.onMessage?.(`This scene stopped the engine twice (${reason}); back to the last scene that ran.`);
+      reload(JSON.parse(this.lastGood));
+    } else {
+      this.#fault(`this scene stopped the engine twice (${reason}); load another scene`);
+      this.halted = reason;
+    }
+  }
+
+  /** Reports that the player cannot go on as it is. */
+  #fault(message) {
+    this.hooks.onFault?.(message);
+    if (!this.hooks.onFault) this.hooks.onMessage?.(message);
+  }
+
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
+    if (this.recording) throw new Error('a recording is under way: load the scene once it has ended');
+    const text = sceneText(scene);
     await this.#settle();
-    const info = await this.engine.request('load', { scene }, {
+    const info = await this.engine.request('load', { scene: text }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
     this.hooks.onProgress?.(1, 'done');
+    this.halted = null;
+    this.stepsSinceLoad = 0;
     this.state.scene = info.scene;
     this.stats.fieldMs = info.fieldMs;
-    this.view.setCamera(info.scene.render.camera);
+    this.view.setCamera(info.scene.render.camera, info.scene.render.objects);
     this.view.setRenderSettings(info.scene.render);
     this.resize();
     this.accumulated = 0;
     await this.advance(0);
     await this.hooks.onScene?.(info.scene);
     return info.scene;
+  }
+
+  /**
+   * Applies an edited scene to the running simulation: it keeps its blobs and its time
+   * (a change of the field's settings is synthesised while the gas goes on); rejects with a
+   * clear Error and keeps the scene as it was. Resolves with the scene as the core normalised it.
+   */
+  async edit(scene) {
+    if (this.recording) throw new Error('a recording is under way: change the scene once it has ended');
+    const text = sceneText(scene);
+    await this.#settle();
+    const info = await this.engine.request('edit', { scene: text }, {
+      onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
+    });
+    const camera = JSON.stringify(this.state.scene?.render.camera);
+    this.state.scene = info.scene;
+    if (info.restarted || camera !== JSON.stringify(info.scene.render.camera)) this.view.setCamera(info.scene.render.camera, info.scene.render.objects);
+    else this.view.limits.set(info.scene.render.camera, info.scene.render.objects);
+    this.view.setRenderSettings(info.scene.render);
+    if (info.restarted) this.accumulated = 0;
+    await this.advance(0);
+    await this.hooks.onScene?.(info.scene);
+    return info.scene;
+  }
+
+  /** Restarts the scene at t = 0. */
+  reset() {
+    return this.exclusive(async () => {
+      const t0 = performance.now();
+      this.accumulated = 0;
+      await this.#show(await this.engine.request('reset'), 0, t0);
+    });
+  }
+
+  /**
+   * Stirs the gas from the next step on: a wind of `velocity` (m/s) at `position` (m) that falls
+   * off as exp(−distance/`radius`), until the next call; `radius` 0 stops it.
+   */
+  stir(position, velocity, radius) {
+    return this.engine.request('stir', { position, velocity, radius });
   }
 
   /** Loads the scene JSON at `url`. */
@@ -158,6 +281,8 @@ export class Player {
     this.stats.blobs = frame.count;
     this.stats.time = frame.time;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
+    this.stepsSinceLoad += steps;
+    if (this.stepsSinceLoad >= GOOD_AFTER_STEPS && this.state.scene) this.lastGood = JSON.stringify(this.state.scene);
     this.stats.packMs = frame.packMs;
     this.stats.frameBytes = frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
     await this.draw();
@@ -171,7 +296,7 @@ export class Player {
   }
 
   async draw(size = this.view.size()) {
-    if (!this.lastFrame || !this.state.scene) return;
+    if (!this.lastFrame || !this.state.scene || this.contextLost) return;
     this.dirty = false;
     this.view.setRenderSettings(this.state.scene.render);
     this.view.guides.update(this.state.scene);
@@ -211,31 +336,48 @@ export class Player {
   }
 
   /**
-   * Counts a frame drawn from `start` to `end` (ms) into the frame rate and lets the resolution
-   * follow it: a frame begun right after the last one counts from that one's end (the loop's
-   * pace); the first after an idle spell counts its own duration.
+   * Counts a frame drawn from `start` to `end` (ms). `stats().fps` is the number of frames drawn
+   * in the last second (the last two while the rate is low), so it says what the screen shows;
+   * `stats().limitedBy` what holds the rate down: `worker` (frames spend most of their time
+   * waiting for the step), `view` (drawing takes the time), `display` (the frames keep up with the display) or `paused`.
+   * The resolution follows the pace of frames the view itself paced: drawn back to back, not
+   * after an idle animation frame (a scene stepping slower than the display) nor after waiting
+   * for the worker.
    */
   #drawn(start, end) {
+    const times = this.drawTimes;
+    times.push(end);
+    while (times.length > 2 && times[0] < end - 2000) times.shift();
+    this.stats.frames += 1;
+    this.#countRate(end);
     const busy = start - this.lastDrawn < 100;
     const seconds = (busy ? end - this.lastDrawn : end - start) / 1000;
-    // A frame after an animation frame with nothing to do (a scene stepping slower than the
-    // display), or one that waited for the worker's step, is paced by the scene or the worker,
-    // not by the view: it does not move the resolution.
+    // The share of the frame spent waiting for the worker's step (smoothed).
+    if (seconds > 0) this.waitShare = 0.8 * this.waitShare + 0.2 * Math.min(this.waited / (1000 * seconds), 1);
     const paced = this.idleAt > this.lastDrawn || this.waited > WORKER_WAIT_MS;
     this.waited = 0;
     this.lastDrawn = end;
-    if (!(seconds > 0)) return;
-    this.stats.fps = this.stats.fps > 0 && busy ? 0.8 * this.stats.fps + 0.2 / seconds : 1 / seconds;
-    if (paced) return;
+    this.stats.limitedBy = !this.state.playing ? 'paused'
+      : this.waitShare > 0.5 ? 'worker'
+        : this.stats.fps < 0.9 * this.resolution.target ? 'view' : 'display';
+    if (!(seconds > 0) || paced) return;
     this.pace = this.pace > 0 && busy ? 0.8 * this.pace + 0.2 / seconds : 1 / seconds;
     if (this.state.mode !== 'points' && this.resolution.observe(end, this.pace)) this.resize();
+  }
+
+  /** Frames drawn per second at `now` (ms): those of the last second, or of two when few. */
+  #countRate(now) {
+    const times = this.drawTimes;
+    const inLast = (ms) => times.filter((t) => t > now - ms).length;
+    const recent = inLast(1000);
+    this.stats.fps = recent >= 10 ? recent : inLast(2000) / 2;
   }
 
   loop(now) {
     if (!this.running) return;
     const dt = Math.min((now - this.lastTime) / 1000, 0.1);
     this.lastTime = now;
-    if (this.state.scene && !this.busy && this.state.visible) {
+    if (this.state.scene && !this.busy && this.state.visible && !this.halted) {
       let steps = 0;
       if (this.state.playing) {
         this.accumulated += dt * this.state.speed;
@@ -247,6 +389,8 @@ export class Player {
       const work = steps > 0 ? () => this.#play(steps)
         : this.ahead && !this.state.playing ? () => this.#settle()
           : this.dirty ? () => this.draw() : null;
+      // Frames stop counting while nothing is drawn.
+      if (now - (this.drawTimes.at(-1) ?? -Infinity) > 2000 && this.stats.fps > 0) this.#countRate(now);
       if (work) {
         this.busy = true;
         const start = performance.now();
@@ -360,13 +504,121 @@ export class Player {
   async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
     // One step a frame: the budget of DESIGN §7 holds before anything is recorded.
     await this.engine.request('checkSteps', { steps: frames });
-    return this.offscreen({ mode, width, height }, () => recordWebM({
-      canvas: this.view.canvas,
-      frames,
-      fps,
-      renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
-      onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
-    }));
+    if (this.recording) throw new Error('a recording is under way already');
+    // One scene, one size: the scene may not change while the video is made.
+    this.recording = true;
+    try {
+      return await this.offscreen({ mode, width, height }, () => recordWebM({
+        canvas: this.view.canvas,
+        frames,
+        fps,
+        renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
+        onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
+      }));
+    } finally {
+      this.recording = false;
+    }
+  }
+
+  /** Whether the wind guides (and the drag handle, and the wind slice) are drawn. */
+  get guides() {
+    return this.view.showGuides;
+  }
+
+  setGuides(on) {
+    this.view.showGuides = on;
+    this.invalidate();
+  }
+
+  /** The wind slice's plane ('off', 'xy', 'xz', 'yz') and its offset along the normal (m). */
+  get slicePlane() {
+    return this.view.slicePlane;
+  }
+
+  set slicePlane(plane) {
+    this.view.slicePlane = plane;
+    this.invalidate();
+  }
+
+  get sliceOffset() {
+    return this.view.sliceOffset;
+  }
+
+  set sliceOffset(d) {
+    this.view.sliceOffset = d;
+    this.invalidate();
+  }
+
+  /** The wind slice's colour scale while it is drawn: `{plane, maxSpeed}` (m/s), else null. */
+  sliceLegend() {
+    const slice = this.view.windSlice;
+    return slice.group.visible ? { plane: this.view.slicePlane, maxSpeed: slice.maxSpeed } : null;
+  }
+
+  /** The real-time view's density volume in voxels `[nx, ny, nz]`, when that view is shown. */
+  volumeDims() {
+    return this.state.mode === 'raymarch' ? this.view.volume.grid?.dims ?? null : null;
+  }
+
+  /** Fixes the view's resolution (a scale in (0, 1]) or lets it hold the frame rate ('auto'). */
+  setResolution(scale) {
+    this.resolution.set(scale);
+    this.resize();
+  }
+
+  /** Picks the wind primitive or emitter (`{list, index}`) the drag handle moves, or none. */
+  selectHandle(selection) {
+    this.view.guides.select(selection);
+    if (selection) this.view.showGuides = true;
+    this.invalidate();
+  }
+
+  /** Calls `fn(selection, to)` when the drag handle has moved its item to `to` (m). */
+  onHandleMoved(fn) {
+    this.view.guides.onMoved = fn;
+  }
+
+  /** Orbits or zooms for a key pressed on the view (arrows, + and −); true when it did. */
+  orbitKey(event) {
+    const handled = this.view.limits.key(event);
+    if (handled) this.invalidate();
+    return handled;
+  }
+
+  /** `n` fixed steps when no frame is in flight. */
+  step(n = 1) {
+    return this.exclusive(() => this.advance(n));
+  }
+
+  /** The statistics of `stats()`: the engine's, the view's and how the frames go. */
+  snapshot() {
+    return { ...this.stats, stepper: 'cpu', ...(this.view.volume.timings && { passes: { ...this.view.volume.timings } }) };
+  }
+
+  /** The field's statistics against `spectrum` (its own when absent), measured in the worker. */
+  fieldStats(spectrum) {
+    return this.engine.request('fieldStats', { spectrum });
+  }
+
+  /** The engine's health: its memory, the blob count and blobs whose centre is not finite. */
+  health() {
+    return this.engine.request('health');
+  }
+
+  /** The small-scale field at lattice coordinates (x, y, z, t). */
+  sample(x, y, z, t) {
+    return this.engine.request('sample', { x, y, z, t });
+  }
+
+  /**
+   * Chooses what steps the gas: 'cpu' (the worker's core), 'gpu' or 'auto' (the GPU where it
+   * can). Stepping on the GPU is not available in this build: 'gpu' rejects, 'auto' takes the
+   * worker.
+   */
+  async setStepper(kind) {
+    if (!['cpu', 'gpu', 'auto'].includes(kind)) throw new Error(`setStepper: the stepper must be 'cpu', 'gpu' or 'auto' (got ${kind})`);
+    if (kind === 'gpu') throw new Error('setStepper: stepping on the GPU is not available here; the worker steps the gas');
+    return this.snapshot().stepper;
   }
 
   /** DESIGN §5's methods, bound to this player. */
@@ -382,8 +634,10 @@ export class Player {
         this.resize();
       },
       play: () => { this.state.playing = true; },
-      step: (n = 1) => this.exclusive(() => this.advance(n)),
-      stats: () => ({ ...this.stats, ...(this.view.volume.timings && { passes: { ...this.view.volume.timings } }) }),
+      step: (n = 1) => this.step(n),
+      stats: () => this.snapshot(),
+      editScene: (scene) => this.edit(scene),
+      setStepper: (kind) => this.setStepper(kind),
       exportBlobs: (size) => this.exportBlobs(size),
       captureGPU: (options) => this.captureGPU(options),
       renderReference: (options) => this.renderReference(options),

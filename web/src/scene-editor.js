@@ -41,8 +41,17 @@ const COLOUR = new Set(['color', 'albedo', 'emission']);
 const CHOICES = { shape: ['point', 'disk', 'sphere', 'box'], model: ['mug', 'teapot'] };
 /** Lattice extents offered (any even number from 4 to 256 is valid; powers of two are the fastest). */
 const LATTICE = [8, 12, 16, 24, 32, 48, 64];
-/** The offered extents plus `n`, in order (a scene may use any even extent). */
-const latticeChoices = (n) => [...new Set([...LATTICE, n])].sort((a, b) => a - b);
+/**
+ * The offered extents that hold wave numbers up to `kInertial` (a spatial extent n has modes up
+ * to n/2 − 1, so the core refuses a smaller one), plus the scene's own `n`, in order.
+ */
+export const latticeChoices = (n, kInertial = 0) => [...new Set([...LATTICE.filter((m) => m / 2 - 1 >= kInertial), n])].sort((a, b) => a - b);
+
+/**
+ * Items of one list shown with their own folder; a longer list (a link may hold hundreds)
+ * shows the first ones and says how many more there are, to edit in the scene's JSON.
+ */
+export const MAX_ITEM_FOLDERS = 24;
 
 const isTriple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number');
 
@@ -106,7 +115,7 @@ function world(root, draft, changed) {
   const f = root.addFolder('World mapping (§3)');
   const field = draft.field;
   const lattice = { space: field.size[0], time: field.size[3] };
-  f.add(lattice, 'space', latticeChoices(lattice.space)).name('lattice N (x, y, z)').onChange((n) => { field.size = [n, n, n, field.size[3]]; changed(); });
+  f.add(lattice, 'space', latticeChoices(lattice.space, field.spectrum.k_inertial)).name('lattice N (x, y, z)').onChange((n) => { field.size = [n, n, n, field.size[3]]; changed(); });
   f.add(lattice, 'time', latticeChoices(lattice.time)).name('lattice N (t)').onChange((n) => { field.size[3] = n; changed(); });
   field.period.forEach((_, a) => f.add(field.period, a).name(`period ${'xyz'[a]} (m)`).onFinishChange(changed));
   f.add(field, 'time_period').name('time period (s)').onFinishChange(changed);
@@ -125,12 +134,16 @@ function listFolder(root, key, list, draft, changed) {
   };
   f.add(adder, 'kind', kinds).name('new');
   f.add(adder, 'add').name(`add ${key === 'wind' ? 'primitive' : key.replace(/s$/, '')}`);
-  items.forEach((item, i) => {
+  items.slice(0, MAX_ITEM_FOLDERS).forEach((item, i) => {
     const sub = f.addFolder(`${key} ${i + 1}: ${list.kind(item)}`);
     if ('enabled' in item) sub.add(item, 'enabled').name('on').onChange(changed);
     addFields(sub, item, changed, list.optional);
     sub.add({ remove: () => { items.splice(i, 1); changed(); } }, 'remove');
   });
+  if (items.length > MAX_ITEM_FOLDERS) {
+    const more = { note: 'not shown' };
+    f.add(more, 'note').name(`${items.length - MAX_ITEM_FOLDERS} more: edit them in the scene JSON`).disable();
+  }
 }
 
 function medium(root, draft, changed) {

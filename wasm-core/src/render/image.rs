@@ -1,7 +1,7 @@
 //! Linear RGB images, their 8-bit encodings (DESIGN §4: `linear` or the sRGB curve), PNG
 //! files, and the PSNR the tests compare with.
 
-use crate::blob_list::Encoding;
+use crate::gas::blob_list::Encoding;
 
 /// Linear radiance, RGB interleaved, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]

@@ -4,10 +4,17 @@
 //
 // Each handler takes the request ({ id, type, ...args }) and returns { result, transfer }:
 // typed arrays in results are listed in `transfer`, never copied through JSON. A frame is whole
-// buffers only: the packed blobs (`render::frame` in the core), their description and the
-// moving spheres; nothing per blob is an object or a string.
+// buffers only, made by the core in one call (`packFrame`, `marchFrame`): the packed blobs
+// (`frame::packed` in the core), their description and the moving spheres or the shadow grid;
+// nothing per blob is an object or a string.
 
-import { binBlobs, padRows, TEX_WIDTH, TILE } from './tiles.js';
+import { BLOBS_PER_ROW, SHADOW_GRID_HEADER, WORDS_PER_BLOB } from '../generated/contract.js';
+import { binBlobs, padRows, TILE } from './tiles.js';
+
+/** Steps taken between two looks at the clock in a long `advance`. */
+const STEP_CHUNK = 16;
+/** A long `advance` reports its progress this often (ms). */
+const PROGRESS_EVERY_MS = 1000;
 
 /** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
 const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
@@ -25,53 +32,111 @@ export function createHandlers(core, progress, memory = () => 0) {
   let sim = null;
   let sceneJson = '';
 
-  /** The newest valid `load` request: a synthesis in flight gives way to it. */
+  /**
+   * The field parameters (JSON) the newest valid `load` or `edit` wants ('' for none): a
+   * synthesis in flight for other parameters gives way to it.
+   */
+  let wantedKey = '';
+  /** The newest valid `load` or `edit` request: an older `load` still waiting gives way to it. */
   let latestLoad = 0;
+  /** The synthesis in flight: its parameters and its promise, or null. */
+  let synthesis = null;
 
-  function supersededUnlessLatest(id) {
-    if (id !== latestLoad) throw new Error('cancelled: a newer scene was loaded before this one was ready');
+  const cancelled = () => new Error('cancelled: a newer scene was loaded before this one was ready');
+  function cancelledUnlessWanted(key) {
+    if (key !== wantedKey) throw cancelled();
   }
 
   /**
-   * Synthesises the field for `paramsJson` unless the current one already matches. Yields to
-   * the event loop between stages, so a newer `load` supersedes it: this one then rejects.
+   * Synthesises the field for `key` (its parameters' JSON) unless the current one already
+   * matches, reporting progress under request `id`; one synthesis for the same parameters is
+   * shared. Yields to the event loop between stages, so requests keep being answered and a
+   * newer scene wanting other parameters supersedes it: this one then rejects.
    */
-  async function ensureField(id, paramsJson) {
-    if (field && fieldKey === paramsJson) return;
+  function ensureField(id, key) {
+    if (field && fieldKey === key) return Promise.resolve();
+    if (synthesis?.key === key) return synthesis.promise;
+    const promise = synthesise(id, key).finally(() => {
+      if (synthesis?.promise === promise) synthesis = null;
+    });
+    synthesis = { key, promise };
+    return promise;
+  }
+
+  async function synthesise(id, key) {
     // A superseded synthesis frees its memory at its next stage: let it, before allocating.
     await yieldToEvents();
-    supersededUnlessLatest(id);
+    cancelledUnlessWanted(key);
     const t0 = performance.now();
-    const synthesis = new core.FieldSynthesis(paramsJson);
+    const run = new core.FieldSynthesis(key);
     try {
-      progress(id, 0, synthesis.stage());
-      while (synthesis.step()) {
-        progress(id, synthesis.progress() * 0.95, synthesis.stage());
+      progress(id, 0, run.stage());
+      while (run.step()) {
+        progress(id, run.progress() * 0.95, run.stage());
         await yieldToEvents();
-        supersededUnlessLatest(id);
+        cancelledUnlessWanted(key);
       }
-      const next = synthesis.finish();
+      const next = run.finish();
       field?.free();
       field = next;
-      fieldKey = paramsJson;
+      fieldKey = key;
       fieldMs = performance.now() - t0;
     } finally {
-      synthesis.free();
+      run.free();
     }
   }
 
+  /** The field parameters (JSON) of a normalised scene, '' when it has no small-scale field. */
+  const fieldKeyOf = (normal, parsed) => (parsed.field.amplitude > 0 ? core.sceneFieldParams(normal) : '');
+
+  /** A new simulation of the normalised scene, on the current field when it has one. */
+  const simulationOf = (normal, key) => (key ? core.SceneSimulation.withField(normal, field) : new core.SceneSimulation(normal));
+
+  /** The JSON text of a scene sent as text (the page's way) or as an object. */
+  const sceneText = (scene) => (typeof scene === 'string' ? scene : JSON.stringify(scene));
+
   async function load(id, scene) {
-    const normal = core.validateScene(JSON.stringify(scene));
-    latestLoad = id;
+    const normal = core.validateScene(sceneText(scene));
     const parsed = JSON.parse(normal);
-    if (parsed.field.amplitude > 0) await ensureField(id, core.sceneFieldParams(normal));
-    supersededUnlessLatest(id);
-    const next = parsed.field.amplitude > 0 ? core.SceneSimulation.withField(normal, field) : new core.SceneSimulation(normal);
+    const key = fieldKeyOf(normal, parsed);
+    wantedKey = key;
+    latestLoad = id;
+    if (key) await ensureField(id, key);
+    if (id !== latestLoad) throw cancelled();
+    const next = simulationOf(normal, key);
     sim?.free();
     sim = next;
     sceneJson = normal;
     progress(id, 1, 'done');
     return { scene: parsed, fieldMs, size: field ? Array.from(field.size()) : null };
+  }
+
+  /**
+   * Applies an edited scene to the running simulation, keeping its blobs and time. A change of
+   * the field's settings synthesises the new field meanwhile (progress under `id`) and swaps it
+   * in when ready; the gas keeps moving on the field in use. A change to `shapes` restarts the
+   * scene (on its own field, so it waits for it).
+   */
+  async function edit(id, scene) {
+    if (!sim) return { ...(await load(id, scene)), restarted: true, fieldPending: false };
+    const normal = core.validateScene(sceneText(scene));
+    const parsed = JSON.parse(normal);
+    const key = fieldKeyOf(normal, parsed);
+    const ready = !key || (field && fieldKey === key);
+    if (!ready && JSON.stringify(parsed.shapes) !== JSON.stringify(JSON.parse(sceneJson).shapes)) {
+      return { ...(await load(id, scene)), restarted: true, fieldPending: false };
+    }
+    wantedKey = key;
+    latestLoad = id;
+    const restarted = ready && key ? sim.editWithField(normal, field) : sim.edit(normal);
+    sceneJson = normal;
+    if (!ready) {
+      ensureField(id, key).then(() => {
+        if (sim && fieldKeyOf(sceneJson, JSON.parse(sceneJson)) === key) sim.setField(field);
+        progress(id, 1, 'done');
+      }, () => {});
+    }
+    return { scene: parsed, restarted, fieldPending: !ready, fieldMs };
   }
 
   function requireSim() {
@@ -80,15 +145,14 @@ export function createHandlers(core, progress, memory = () => 0) {
   }
 
   /**
-   * The current state as whole buffers (transferred): `blobs` the packed frame (Uint32Array, eight
-   * words a blob, whole rows), `info` its description (Float32Array, `frameInfo`), `spheres` the
-   * visible repulsor spheres (Float32Array, x y z radius r g b each).
+   * The current state as whole buffers (transferred), from one `packFrame`: `blobs` the packed
+   * frame (Uint32Array, WORDS_PER_BLOB words a blob, whole rows), `info` its description
+   * (Float32Array, `PackedFrame::info`), `spheres` the visible repulsor spheres (Float32Array,
+   * SPHERE_FLOATS each: x y z radius r g b).
    */
   function frame() {
     const s = requireSim();
-    const blobs = s.packFrame();
-    const info = s.frameInfo();
-    const spheres = s.movingSpheres();
+    const { words: blobs, info, spheres } = s.packFrame();
     const result = { count: info[0], time: s.time(), blobs, info, spheres };
     return { result, transfer: [blobs.buffer, info.buffer, spheres.buffer] };
   }
@@ -103,18 +167,37 @@ export function createHandlers(core, progress, memory = () => 0) {
 
   return {
     load: async ({ id, scene }) => ({ result: await load(id, scene) }),
-    reset: () => {
-      const next = field && JSON.parse(sceneJson).field.amplitude > 0
-        ? core.SceneSimulation.withField(sceneJson, field)
-        : new core.SceneSimulation(sceneJson);
-      sim?.free();
+    edit: async ({ id, scene }) => ({ result: await edit(id, scene) }),
+    reset: async ({ id }) => {
+      // The scene from its start, on its own field (waiting for one being synthesised).
+      requireSim();
+      const key = fieldKeyOf(sceneJson, JSON.parse(sceneJson));
+      if (key) await ensureField(id, key);
+      const next = simulationOf(sceneJson, key);
+      sim.free();
       sim = next;
       return frame();
     },
-    advance: ({ steps }) => {
-      requireSim().checkSteps(steps);
+    stir: ({ position, velocity, radius }) => {
+      // The pointer's wind: from the next step until the next stir (radius 0 stops it).
+      requireSim().stir(new Float32Array(position ?? [0, 0, 0]), new Float32Array(velocity ?? [0, 0, 0]), radius);
+      return { result: null };
+    },
+    advance: ({ id, steps }) => {
+      const s = requireSim();
+      s.checkSteps(steps);
       const t0 = performance.now();
-      if (steps > 0) requireSim().step(steps);
+      // A long run reports its progress now and then, so the page knows the engine is alive.
+      let reported = t0;
+      for (let done = 0; done < steps;) {
+        const n = Math.min(steps - done, STEP_CHUNK);
+        s.step(n);
+        done += n;
+        if (done < steps && performance.now() - reported > PROGRESS_EVERY_MS) {
+          reported = performance.now();
+          progress(id, done / steps, 'stepping');
+        }
+      }
       const t1 = performance.now();
       const out = frame();
       // Per step, and the frame's packing (once per frame whatever the steps).
@@ -139,20 +222,18 @@ export function createHandlers(core, progress, memory = () => 0) {
     exactFrame: ({ view, width, height, fraction, res }) => {
       // The exact march's input in one round trip: the merged blobs packed, the shadow grid and
       // the screen tiles, each padded to whole texture rows.
-      const s = requireSim();
-      const blobs = s.marchFrame(fraction, res);
-      const info = s.frameInfo();
-      const grid = s.marchGrid();
+      const { words: blobs, info, grid } = requireSim().marchFrame(fraction, res);
       const count = info[0];
-      const tiles = binBlobs({ floats: new Float32Array(blobs.buffer, 0, 8 * count), count }, view, width, height, TILE);
+      const floats = new Float32Array(blobs.buffer, 0, WORDS_PER_BLOB * count);
+      const tiles = binBlobs({ floats, count }, view, width, height, TILE);
       const result = {
         count,
         blobs,
         info,
-        grid: grid.slice(0, 8),
-        columns: padRows(grid.subarray(8), TEX_WIDTH),
-        heads: padRows(tiles.heads, 4 * TEX_WIDTH),
-        list: padRows(tiles.list, TEX_WIDTH),
+        grid: grid.slice(0, SHADOW_GRID_HEADER),
+        columns: padRows(grid.subarray(SHADOW_GRID_HEADER), BLOBS_PER_ROW),
+        heads: padRows(tiles.heads, 4 * BLOBS_PER_ROW),
+        list: padRows(tiles.list, BLOBS_PER_ROW),
         tilesX: tiles.tilesX,
       };
       const transfer = ['blobs', 'info', 'grid', 'columns', 'heads', 'list'].map((k) => result[k].buffer);

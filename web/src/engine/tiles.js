@@ -3,12 +3,17 @@
 // blobs first. A pixel then visits only the blobs of its tile, so the cost per pixel follows
 // local, not total, blob count.
 
-/** Blobs are truncated at this many σ (as in the reference renderer). */
-export const TRUNCATION = 4.5;
+import { BLOBS_PER_ROW, TRUNCATION, WORDS_PER_BLOB } from '../generated/contract.js';
+
+/** Blobs are truncated at TRUNCATION σ, as in the reference renderer (the core's contract). */
+export { TRUNCATION };
 /** Screen tile side (pixels). */
 export const TILE = 16;
-/** Width (texels) of the exact march's index textures; the worker pads their data to whole rows. */
-export const TEX_WIDTH = 1024;
+/**
+ * Width (texels) of the exact march's index and shadow textures: the blob texture's row
+ * (`BLOBS_PER_ROW` of the core's contract); the worker pads their data to whole rows.
+ */
+export const TEX_WIDTH = BLOBS_PER_ROW;
 
 /** `data` padded with zeros to a multiple of `row` elements (a copy; at least one row). */
 export function padRows(data, row) {
@@ -18,8 +23,8 @@ export function padRows(data, row) {
 }
 
 /**
- * @param {{floats: Float32Array, count: number}} blobs the packed frame seen as floats (eight a
- *   blob: centre x, y, z and σ first; `render::frame` in the core)
+ * @param {{floats: Float32Array, count: number}} blobs the packed frame seen as floats
+ *   (WORDS_PER_BLOB a blob: centre x, y, z and σ first; `frame::packed` in the core)
  * @param {{position: number[], forward: number[], right: number[], up: number[], tanHalf: number}} view
  *   camera basis (unit vectors) and tan(fov_y / 2)
  * @param {number} width @param {number} height pixels; tile rows count from the bottom (GL)
@@ -35,10 +40,11 @@ export function binBlobs(blobs, view, width, height, tile) {
   const rects = [];
   for (let i = 0; i < blobs.count; i++) {
     const f = blobs.floats;
-    const cx = f[8 * i] - ox;
-    const cy = f[8 * i + 1] - oy;
-    const cz = f[8 * i + 2] - oz;
-    const r = TRUNCATION * f[8 * i + 3];
+    const w = WORDS_PER_BLOB * i;
+    const cx = f[w] - ox;
+    const cy = f[w + 1] - oy;
+    const cz = f[w + 2] - oz;
+    const r = TRUNCATION * f[w + 3];
     const z = cx * view.forward[0] + cy * view.forward[1] + cz * view.forward[2];
     if (z + r <= 0) continue; // wholly behind the camera
     let x0 = 0;

@@ -26,14 +26,17 @@ const handlers = createHandlers(core, (id, value, stage) => {
 
 self.onmessage = async (event) => {
   const msg = event.data;
+  // Every request is answered; one that cannot be read at all (no id) cannot be, and the page's
+  // time limit catches it.
+  if (!msg || typeof msg !== 'object' || !Number.isSafeInteger(msg.id)) return;
   try {
     await ready;
   } catch {
     return;
   }
-  const handler = handlers[msg.type];
+  const handler = Object.hasOwn(handlers, msg.type) ? handlers[msg.type] : null;
   try {
-    if (!handler) throw new Error(`unknown request "${msg.type}"`);
+    if (!handler) throw new Error(`unknown request "${String(msg.type)}"`);
     const { result, transfer = [] } = await handler(msg);
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {

@@ -1,9 +1,19 @@
 // The scene in the URL hash: `#scene=1.<base64url of the deflate-raw compressed JSON>`.
 // The leading "1." is the codec version, so links made today keep decoding after the format
 // grows; the scene inside carries its own format version too.
+//
+// Links are opened by strangers: a link longer than `MAX_LINK_CHARS`, or one that inflates past
+// `MAX_SCENE_BYTES`, is refused before more of it is read. Errors say what is wrong with the
+// link in a reader's words.
 
 export const HASH_KEY = 'scene';
 const CODEC_VERSION = '1';
+/** Longest encoded scene a link may carry (characters of base64url): 1 MiB. */
+export const MAX_LINK_CHARS = 1 << 20;
+/** Largest scene a link may inflate to (bytes of JSON): 4 MiB, far more than any scene needs. */
+export const MAX_SCENE_BYTES = 4 << 20;
+
+const DAMAGED = 'the link is damaged or cut short';
 
 function toBase64Url(bytes) {
   let binary = '';
@@ -14,7 +24,7 @@ function toBase64Url(bytes) {
 }
 
 function fromBase64Url(text) {
-  if (!/^[A-Za-z0-9_-]*$/.test(text)) throw new Error('the link is damaged (characters outside base64url)');
+  if (!/^[A-Za-z0-9_-]*$/.test(text) || text.length % 4 === 1) throw new Error(DAMAGED);
   const padded = text.replace(/-/g, '+').replace(/_/g, '/') + '==='.slice((text.length + 3) % 4);
   const binary = atob(padded);
   const bytes = new Uint8Array(binary.length);
@@ -27,6 +37,30 @@ async function pipe(bytes, stream) {
   return new Uint8Array(await new Response(out).arrayBuffer());
 }
 
+/** Inflates `bytes`, reading no more than `limit` bytes of output (then throws). */
+async function inflate(bytes, limit) {
+  const reader = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw')).getReader();
+  const chunks = [];
+  let total = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    total += value.length;
+    if (total > limit) {
+      await reader.cancel();
+      throw new Error(`the link's scene is larger than ${limit / (1 << 20)} MiB, more than any scene needs`);
+    }
+    chunks.push(value);
+  }
+  const out = new Uint8Array(total);
+  let at = 0;
+  for (const c of chunks) {
+    out.set(c, at);
+    at += c.length;
+  }
+  return out;
+}
+
 /** Encodes a scene object as the hash fragment (without '#'). */
 export async function encodeScene(scene) {
   const json = new TextEncoder().encode(JSON.stringify(scene));
@@ -36,29 +70,35 @@ export async function encodeScene(scene) {
 
 /**
  * Decodes a hash fragment (with or without '#') to a scene object; null when the hash holds no
- * scene. Throws an Error with a readable message for damaged links.
+ * scene. Throws an Error with a readable message for a damaged, foreign or oversized link.
  */
 export async function decodeScene(hash) {
+  if (hash.length > MAX_LINK_CHARS + 64) throw new Error(`the link is longer than ${MAX_LINK_CHARS / (1 << 20)} MiB, more than any scene needs`);
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   const value = params.get(HASH_KEY);
   if (value === null) return null;
   const dot = value.indexOf('.');
-  if (dot < 0) throw new Error('the link is damaged (no codec version)');
+  if (dot < 0) throw new Error(DAMAGED);
   const version = value.slice(0, dot);
-  if (version !== CODEC_VERSION) throw new Error(`the link uses codec version ${version}; this page reads version ${CODEC_VERSION}`);
+  if (version !== CODEC_VERSION) throw new Error(`the link was made by another version of this page (codec version ${version}; this page reads version ${CODEC_VERSION})`);
+  let bytes;
+  try {
+    bytes = fromBase64Url(value.slice(dot + 1));
+  } catch {
+    throw new Error(DAMAGED);
+  }
   let text;
   try {
-    const bytes = await pipe(fromBase64Url(value.slice(dot + 1)), new DecompressionStream('deflate-raw'));
-    text = new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+    text = new TextDecoder('utf-8', { fatal: true }).decode(await inflate(bytes, MAX_SCENE_BYTES));
   } catch (err) {
-    throw new Error(`the link is damaged (${err.message})`);
+    throw err.message.startsWith("the link's scene is larger") ? err : new Error(DAMAGED);
   }
   let scene;
   try {
     scene = JSON.parse(text);
   } catch {
-    throw new Error('the link is damaged (not JSON)');
+    throw new Error(DAMAGED);
   }
-  if (typeof scene !== 'object' || scene === null || Array.isArray(scene)) throw new Error('the link does not hold a scene object');
+  if (typeof scene !== 'object' || scene === null || Array.isArray(scene)) throw new Error('the link holds no scene object');
   return scene;
 }

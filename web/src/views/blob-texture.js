@@ -1,7 +1,8 @@
 // The packed frame (`render::frame` in the core: eight 32-bit words a blob, padded to whole
 // rows) on the GPU, as an RGBA32UI texture of two texels a blob, BLOBS_PER_ROW blobs a row.
 // The worker's buffer becomes the texture's data as it arrived: nothing per blob runs here.
-// Every GPU view reads its blobs from it.
+// Every GPU view reads its blobs from it. The texture keeps the last frame's words as its data,
+// so after a lost context is restored the same blobs are uploaded again (`contextRestored`).
 
 import * as THREE from 'three';
 import { BLOBS_PER_ROW } from './volume/glsl.js';
@@ -31,6 +32,16 @@ export class BlobTexture {
     }
     this.texture.needsUpdate = true;
     this.count = count;
+  }
+
+  /** The context is lost: let go of its texture (`context-loss.js`); the data stays. */
+  contextLost() {
+    this.texture.dispose();
+  }
+
+  /** The context is back: upload the last frame's blobs again on the next draw. */
+  contextRestored() {
+    this.texture.needsUpdate = true;
   }
 
   dispose() {

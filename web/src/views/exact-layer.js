@@ -14,6 +14,7 @@ import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
 import { BLOB_GLSL, BLOBS_PER_ROW, ERF_GLSL } from './volume/glsl.js';
 import { BlobTexture } from './blob-texture.js';
 import { MARCH_PREAMBLE, MarchQuad } from './march-quad.js';
+import { releaseGeometries } from './context-loss.js';
 
 
 /**
@@ -271,5 +272,18 @@ export class ExactMarchLayer extends MarchQuad {
     this.textures = [g.shadowTex.value, u.headTex.value, u.listTex.value];
     u.tilesX.value = frame.tilesX;
     return res > 1;
+  }
+
+  /** The context is lost: let go of its textures and quad (`context-loss.js`); the data stays. */
+  contextLost() {
+    this.blobs.contextLost();
+    for (const t of this.textures) t.dispose();
+    releaseGeometries(this.scene);
+  }
+
+  /** The context is back: upload the last `update`'s textures (they keep their data) again. */
+  contextRestored() {
+    this.blobs.contextRestored();
+    for (const t of this.textures) t.needsUpdate = true;
   }
 }

@@ -2,6 +2,15 @@
 // the gas drawn in one of three ways (DESIGN §5): `points` (a sprite a blob), `raymarch` (the
 // real-time volume view) or `exact` (the per-chord march), the marches composited over the
 // objects with correct depth. Every view reads the frame's blobs from one texture.
+//
+// A lost WebGL context (the GPU was reset, or the browser took it for newer contexts): the view
+// lets the browser restore it (the lost event is prevented), draws, builds and reads nothing
+// meanwhile, and lets go of what it made in it: the real-time view's raw WebGL copier, and
+// three.js's objects for its geometries, textures and targets (`context-loss.js`). Once it is
+// restored, three.js makes its own objects again as they are drawn, the data textures upload
+// the data they kept (the last frame's blobs among them), the real-time view rebuilds its
+// volumes from the frame it holds and makes a new copier. The owner hears of both through
+// `onContextLost` and `onContextRestored`, and then draws the frame again.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -11,12 +20,19 @@ import { gasUniforms, setLights } from './gas-uniforms.js';
 import { PointsLayer } from './points-layer.js';
 import { classSigma } from './volume/grid.js';
 import { VolumeLayer } from './volume/volume-layer.js';
+import { CameraLimits } from './camera-limits.js';
 import { GuidesLayer } from './guides-layer.js';
 import { WindSliceLayer, sliceGeometry } from './wind-slice-layer.js';
 import { modelMesh } from './models.js';
 import { shadowedLambert } from './object-material.js';
+import { releaseGeometries } from './context-loss.js';
 
 export class SceneView {
+  /** Set between the context's loss and its restoration. */
+  #lost = false;
+  /** WEBGL_lose_context, got while the context is whole (a lost context gives no extensions). */
+  #loseContext = null;
+
   /** @param {HTMLCanvasElement} canvas */
   constructor(canvas) {
     this.canvas = canvas;
@@ -27,6 +43,8 @@ export class SceneView {
     // Without damping the controls update the camera only on user input, so an untouched
     // camera stays exactly where the scene put it (deterministic exports).
     this.controls.enableDamping = false;
+    /** Keeps the camera near the scene and above its floor; keyboard orbit and zoom. */
+    this.limits = new CameraLimits(this.camera, this.controls);
     this.scene = new THREE.Scene();
     this.objects = new THREE.Group();
     this.scene.add(this.objects);
@@ -57,6 +75,53 @@ export class SceneView {
     this.slicePlane = 'off';
     /** Distance of the slice from the target along the plane's normal (m). */
     this.sliceOffset = 0;
+    /** Called when the context is lost, and once it is restored and the view ready to draw. */
+    this.onContextLost = null;
+    this.onContextRestored = null;
+    // After three.js's own listeners (the renderer's), so that three.js's state is new by the
+    // time this view rebuilds its own on top of it.
+    canvas.addEventListener('webglcontextlost', (event) => this.#contextLost(event));
+    canvas.addEventListener('webglcontextrestored', () => this.#contextRestored());
+    this.#loseContext = this.renderer.getContext().getExtension('WEBGL_lose_context');
+  }
+
+  /** True while the WebGL context is lost (from the loss until its restoration, if ever). */
+  get contextLost() {
+    return this.#lost || this.renderer.getContext().isContextLost();
+  }
+
+  /**
+   * Asks the browser for the lost context back: one it took for newer pages' contexts (past its
+   * limit of live contexts) stays lost until asked. Call it after the lost event, not inside it.
+   * The view rebuilds itself when the context arrives (`onContextRestored`). Returns whether it
+   * could ask.
+   */
+  restoreContext() {
+    if (!this.contextLost || !this.#loseContext) return false;
+    this.#loseContext.restoreContext();
+    return true;
+  }
+
+  #contextLost(event) {
+    event.preventDefault();
+    this.#lost = true;
+    this.volume.contextLost();
+    this.exact.contextLost();
+    this.blobs.contextLost();
+    this.windSlice.contextLost();
+    this.target?.dispose();
+    releaseGeometries(this.scene, this.overlay);
+    this.onContextLost?.();
+  }
+
+  #contextRestored() {
+    this.#lost = false;
+    this.#loseContext = this.renderer.getContext().getExtension('WEBGL_lose_context') ?? this.#loseContext;
+    this.volume.contextRestored();
+    this.exact.contextRestored();
+    this.blobs.contextRestored();
+    this.windSlice.contextRestored();
+    this.onContextRestored?.();
   }
 
   /** The slice's square (`{origin, u, v}`, m) when guides and a slice plane are on, else null. */
@@ -67,8 +132,11 @@ export class SceneView {
     return sliceGeometry(this.slicePlane, this.controls.target.toArray(), side, this.sliceOffset);
   }
 
-  /** Places the camera as the scene's render settings say. */
-  setCamera(camera) {
+  /**
+   * Places the camera as the scene's render settings say, with orbit limits for the scene
+   * (`objects`: its floor).
+   */
+  setCamera(camera, objects = []) {
     this.camera.position.fromArray(camera.position);
     this.camera.up.fromArray(camera.up);
     this.controls.target.fromArray(camera.target);
@@ -77,6 +145,7 @@ export class SceneView {
     // Aim without controls.update(): its spherical round trip would move the camera by rounding.
     this.camera.lookAt(this.controls.target);
     this.camera.updateMatrixWorld();
+    this.limits.set(camera, objects);
   }
 
   /** The current camera in DESIGN §4's form. */
@@ -158,16 +227,19 @@ export class SceneView {
     this.camera.updateProjectionMatrix();
     this.points.setViewport(height, this.camera.fov);
     this.target?.dispose();
-    this.target = new THREE.WebGLRenderTarget(width, height, { type: THREE.HalfFloatType });
-    this.target.depthTexture = new THREE.DepthTexture(width, height);
+    this.target = opaqueTarget(width, height);
   }
 
   size() {
     return { width: this.canvas.width, height: this.canvas.height };
   }
 
-  /** Draws one frame in `mode` ('points', 'raymarch' or 'exact'; `quality` for `raymarch`). */
+  /**
+   * Draws one frame in `mode` ('points', 'raymarch' or 'exact'; `quality` for `raymarch`);
+   * nothing while the context is lost.
+   */
   render(mode, quality) {
+    if (this.contextLost) return;
     const gas = this.gas;
     if (mode === 'points') {
       gas.shadowSource.value = 0;
@@ -199,6 +271,13 @@ export class SceneView {
       this.renderer.autoClear = true;
     }
   }
+}
+
+/** The opaque pass's target: colour (linear, half float) and depth, for the marches. */
+function opaqueTarget(width, height) {
+  const target = new THREE.WebGLRenderTarget(width, height, { type: THREE.HalfFloatType });
+  target.depthTexture = new THREE.DepthTexture(width, height);
+  return target;
 }
 
 /**

@@ -1,15 +1,21 @@
 // Field slice view: one xy plane of the small-scale field at a time t, coloured by speed
-// (viridis) with arrows for the in-plane velocity (u₁, u₂).
+// (viridis) with arrows for the in-plane velocity (u₁, u₂), and optionally its colour bar.
 
 import * as THREE from 'three';
 import { viridis } from '../colormap.js';
+import { ColourBar } from '../colour-bar.js';
+import { releaseGeometries } from './context-loss.js';
 
 /** Arrows drawn per side of the slice. */
 const ARROWS = 16;
 
 export class SliceView {
-  /** @param {HTMLCanvasElement} canvas */
-  constructor(canvas) {
+  /**
+   * @param {HTMLCanvasElement} canvas
+   * @param {{ legend?: HTMLCanvasElement }} options `legend`: a canvas for the speed's colour bar
+   */
+  constructor(canvas, { legend } = {}) {
+    this.legend = legend ? new ColourBar(legend, { title: 'speed |u|', unit: 'lattice units', extend: true }) : null;
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.scene = new THREE.Scene();
@@ -33,6 +39,16 @@ export class SliceView {
     );
     this.arrows.position.z = 0.01;
     this.scene.add(this.arrows);
+    // A lost context: let go of three.js's objects while it is lost (`context-loss.js`); once
+    // it is restored, draw the last slice again (it is drawn only when asked otherwise).
+    canvas.addEventListener('webglcontextlost', () => {
+      this.texture?.dispose();
+      releaseGeometries(this.scene);
+    });
+    canvas.addEventListener('webglcontextrestored', () => {
+      if (this.texture) this.texture.needsUpdate = true;
+      this.render();
+    });
   }
 
   /** Fits the square slice into a `width × height` CSS-pixel canvas. */
@@ -48,9 +64,10 @@ export class SliceView {
 
   /**
    * Shows a slice: `data` holds `width*height` velocities (u₁, u₂, u₃), row-major from y = 0;
-   * `speedScale` is the speed drawn at the top of the colour map.
+   * `speedScale` is the speed drawn at the top of the colour map (faster is clipped to it).
    */
   update(data, width, height, speedScale) {
+    this.legend?.set(0, speedScale);
     if (!this.texture || this.texture.image.width !== width || this.texture.image.height !== height) {
       this.texture?.dispose();
       this.texture = new THREE.DataTexture(new Uint8Array(width * height * 4), width, height);

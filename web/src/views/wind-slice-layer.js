@@ -52,7 +52,18 @@ export class WindSliceLayer {
     this.group = new THREE.Group();
     this.group.add(this.plane, this.arrows);
     this.group.visible = false;
+    this.maxSpeed = 0;
     overlay.add(this.group);
+  }
+
+  /** The context is lost: let go of its texture (`context-loss.js`); the colours stay. */
+  contextLost() {
+    this.texture.dispose();
+  }
+
+  /** The context is back: upload the last slice's colours again. */
+  contextRestored() {
+    this.texture.needsUpdate = true;
   }
 
   hide() {
@@ -68,6 +79,8 @@ export class WindSliceLayer {
     const speed = new Float32Array(n * n);
     for (let k = 0; k < n * n; k++) speed[k] = Math.hypot(data[3 * k], data[3 * k + 1], data[3 * k + 2]);
     const max = speed.reduce((a, b) => Math.max(a, b), 0);
+    /** The speed (m/s) the top of the colour scale stands for. */
+    this.maxSpeed = max;
     const scale = max > 0 ? 1 / max : 0;
     for (let k = 0; k < n * n; k++) {
       viridis(speed[k] * scale, this.pixels, 4 * k);

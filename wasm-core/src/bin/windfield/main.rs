@@ -4,20 +4,35 @@
 //! windfield generate --size 32 --epsilon 1 --k-inertial 4 --sigma 1 --seed 1 --out field.npy
 //! windfield stats field.npy --json
 //! windfield render scene.json --frames 0..240 --fps 24 --out frames/f%04d.png --shard 0/4
+//! windfield schema > ../public/scene.schema.json
+//! windfield contract > ../web/src/generated/contract.js
 //! ```
+//!
+//! Every command checks its flags and its input before it starts work; a refusal names the
+//! flag or the JSON path and what is allowed (exit status 2; a failed read or write, 1). On
+//! success `simulate` and `render` end with one line on stderr: what was written, the blobs,
+//! the simulated time and the wall time (`wrote still.png (640×480): 41,203 blobs at t =
+//! 3.00 s, 2.4 s`). Numeric flags take negative numbers as values (`--seconds -1`), so that
+//! the range check, not the argument parser, answers them.
 
 mod sequence;
 
 use clap::{Args, Parser, Subcommand};
+use serde::de::IgnoredAny;
+use serde::{Deserialize, Deserializer};
 use std::fs;
+use std::hash::{BuildHasher, Hasher};
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use windfield::blob_list::BlobList;
-use windfield::field::{FieldParams, TurbulentField};
+use std::time::Instant;
+use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
+use windfield::field::{npy, statistics};
+use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
+use windfield::gas::blob_list::BlobList;
+use windfield::gas::limits::{MAX_IMAGE_SIDE, MAX_SECONDS};
 use windfield::render::{encode_png, RenderOptions, Renderer};
-use windfield::spectrum::{SpectrumLaw, SpectrumParams};
-use windfield::{npy, stats, ParamError, Scene, Simulation};
+use windfield::{ParamError, Scene, Simulation};
 
 #[derive(Parser)]
 #[command(
@@ -43,6 +58,9 @@ enum Command {
     Render(RenderArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Print the JavaScript module of the constants the core shares with the page's code
+    /// (web/src/generated/contract.js).
+    Contract,
 }
 
 #[derive(Args)]
@@ -53,25 +71,27 @@ struct RenderArgs {
     /// %0Nd for the frame number (frames/f%04d.png).
     #[arg(long)]
     out: PathBuf,
-    /// Image width in pixels (overrides the input's).
-    #[arg(long)]
-    width: Option<u32>,
-    /// Image height in pixels (overrides the input's).
-    #[arg(long)]
-    height: Option<u32>,
-    /// For a scene: seconds to simulate before rendering (default 0).
-    #[arg(long, conflicts_with = "frames")]
+    /// Image width in pixels, 1 to 8192 (overrides the input's).
+    #[arg(long, allow_hyphen_values = true)]
+    width: Option<i64>,
+    /// Image height in pixels, 1 to 8192 (overrides the input's).
+    #[arg(long, allow_hyphen_values = true)]
+    height: Option<i64>,
+    /// For a scene: seconds to simulate before rendering, 0 to 100000 (default: the scene's
+    /// render.time, 3 when it has none).
+    #[arg(long, conflicts_with = "frames", allow_hyphen_values = true)]
     seconds: Option<f64>,
     /// For a scene: a sequence, frames k in the half-open range A..B, frame k at t = k/fps.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     frames: Option<String>,
     /// With --frames: frames per second of the sequence.
-    #[arg(long, requires = "frames")]
+    #[arg(long, requires = "frames", allow_hyphen_values = true)]
     fps: Option<f64>,
     /// With --frames: render only the frames with k mod N = I (I/N, 0 ≤ I < N).
-    #[arg(long, requires = "frames")]
+    #[arg(long, requires = "frames", allow_hyphen_values = true)]
     shard: Option<String>,
-    /// With --frames: render frames that are already complete again.
+    /// With --frames: render frames that are already complete again, and over frames that
+    /// another run (another scene, frame rate or size) left under the pattern.
     #[arg(long, requires = "frames")]
     force: bool,
 }
@@ -80,8 +100,8 @@ struct RenderArgs {
 struct SimulateArgs {
     /// Scene file (JSON, format version 1).
     scene: PathBuf,
-    /// Simulated time in seconds (rounded to whole steps of simulation.dt).
-    #[arg(long)]
+    /// Simulated time in seconds, 0 to 100000 (rounded to whole steps of simulation.dt).
+    #[arg(long, allow_hyphen_values = true)]
     seconds: f64,
     /// Output blob list (JSON).
     #[arg(long)]
@@ -91,13 +111,14 @@ struct SimulateArgs {
 #[derive(Args, Clone)]
 struct SpectrumArgs {
     /// Energy-cascade rate ε (> 0). Default 1, or the value stored beside the file.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     epsilon: Option<f64>,
     /// Inertial wave number: no energy below it. Default 4, or the value stored beside the file.
-    #[arg(long = "k-inertial")]
+    #[arg(long = "k-inertial", allow_hyphen_values = true)]
     k_inertial: Option<f64>,
-    /// Temporal spread σ: G_k(ω) has standard deviation kσ (0 freezes time). Default 1.
-    #[arg(long)]
+    /// Temporal spread σ, 0 to 100: G_k(ω) has standard deviation kσ (0 freezes time; any
+    /// positive σ too small for kσ to be told from 0 gives the same frozen field). Default 1.
+    #[arg(long, allow_hyphen_values = true)]
     sigma: Option<f64>,
     /// Energy spectrum law: kolmogorov (k^-5/3) or paper-literal (Eq. 9 as printed, k^-5/2).
     #[arg(long)]
@@ -108,13 +129,13 @@ struct SpectrumArgs {
 struct GenerateArgs {
     /// Lattice size: N (for N,N,N,N) or NX,NY,NZ,NT; each an even number from 4 to 256 (powers
     /// of two are the fastest), at most 2^24 points in all.
-    #[arg(long, default_value = "32")]
+    #[arg(long, default_value = "32", allow_hyphen_values = true)]
     size: String,
     #[command(flatten)]
     spectrum: SpectrumArgs,
     /// Random seed (0 to 2^53).
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    seed: i64,
     /// Output file (.npy).
     #[arg(long)]
     out: PathBuf,
@@ -194,12 +215,29 @@ fn resolve_spectrum(
     })
 }
 
-/// Writes through a temporary file and renames it, so a failure leaves no partial output.
+/// A temporary name for `path` in its directory (so renaming it is atomic), unique to this
+/// write: the file's own name, the process id and a random number (`f0007.png.4242-
+/// 9c0f….partial`). Shards in containers often share a process id (1), and frames without
+/// an extension share a stem, so neither alone would do.
+fn temporary_path(path: &Path) -> PathBuf {
+    let mut name = path
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_else(|| "windfield".into());
+    let random = std::collections::hash_map::RandomState::new()
+        .build_hasher()
+        .finish();
+    name.push(format!(".{}-{random:016x}.partial", std::process::id()));
+    path.with_file_name(name)
+}
+
+/// Writes through a temporary file and renames it, so a failure leaves no partial output and
+/// concurrent writers (shards) never see each other's half-written files.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<fs::File>) -> std::io::Result<()>,
 ) -> Result<(), Failure> {
-    let tmp = path.with_extension("partial");
+    let tmp = temporary_path(path);
     let io = |e: std::io::Error| Failure::Io(format!("{}: {e}", path.display()));
     let result = (|| {
         let mut w = BufWriter::new(fs::File::create(&tmp)?);
@@ -214,14 +252,24 @@ pub fn write_atomically(
 }
 
 fn generate(args: GenerateArgs) -> Result<(), Failure> {
+    if !(0..=MAX_SEED as i64).contains(&args.seed) {
+        return Err(Failure::Input(format!(
+            "--seed: must be an integer between 0 and {MAX_SEED} (got {})",
+            args.seed
+        )));
+    }
     let params = FieldParams {
         size: parse_size(&args.size)?,
         spectrum: resolve_spectrum(&args.spectrum, None)?,
-        seed: args.seed,
+        seed: args.seed as u64,
     };
-    let start = std::time::Instant::now();
+    let start = Instant::now();
     let field = TurbulentField::generate(&params).map_err(input_error)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
+    // No silent NaN: a field that is not finite is never written.
+    field
+        .check_finite()
+        .map_err(|e| Failure::Input(format!("the synthesised {e}")))?;
     let [nx, ny, nz, nt] = params.size;
     write_atomically(&args.out, |w| {
         npy::write_f32(w, &[nt, nz, ny, nx, 3], &field.data)
@@ -263,8 +311,9 @@ fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
         seed: stored.map_or(0, |p| p.seed),
     };
     params.validate().map_err(input_error)?;
-    let field = TurbulentField::from_data(params, data).map_err(input_error)?;
-    let report = stats::analyse(&field, &spectrum);
+    let field = TurbulentField::from_data(params, data)
+        .map_err(|e| Failure::Input(format!("{}: {e}", args.file.display())))?;
+    let report = statistics::analyse(&field, &spectrum);
     if args.json {
         println!(
             "{}",
@@ -276,80 +325,160 @@ fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Reads and validates a scene file.
-fn read_scene(path: &Path) -> Result<Scene, Failure> {
-    let text =
-        fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
-    Scene::from_json(&text).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+/// Reads a file as text.
+fn read_text(path: &Path) -> Result<String, Failure> {
+    fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))
 }
 
+/// Reads and validates a scene file.
+fn read_scene(path: &Path) -> Result<Scene, Failure> {
+    Scene::from_json(&read_text(path)?)
+        .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+}
+
+/// What `render` reads: a scene, or a blob list.
+enum Input {
+    Scene(Box<Scene>),
+    List(BlobList),
+}
+
+/// Whether a JSON object has a key, whatever its value (null included), read without keeping it.
+#[derive(Default)]
+struct Present(bool);
+
+impl<'de> Deserialize<'de> for Present {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        IgnoredAny::deserialize(d).map(|_| Present(true))
+    }
+}
+
+/// An object's `version`, the mark of a scene; every other key is skipped unread.
+#[derive(Deserialize)]
+struct Probe {
+    #[serde(default)]
+    version: Present,
+}
+
+/// Reads a scene (JSON with "version") or a blob list. A blob list is read straight into its
+/// blobs, at most `blob_list::MAX_LIST_BLOBS` of them, with no intermediate JSON tree.
+fn read_input(path: &Path) -> Result<Input, Failure> {
+    let text = read_text(path)?;
+    let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
+    match serde_json::from_str::<Probe>(&text) {
+        Err(e) if e.is_syntax() || e.is_eof() => Err(Failure::Input(format!(
+            "{}: not valid JSON: {e}",
+            path.display()
+        ))),
+        Ok(Probe {
+            version: Present(true),
+        }) => Ok(Input::Scene(Box::new(
+            Scene::from_json(&text).map_err(bad)?,
+        ))),
+        _ => Ok(Input::List(BlobList::from_json(&text).map_err(bad)?)),
+    }
+}
+
+/// Seconds of simulated time asked for with `--seconds`: 0 to `gas::limits::MAX_SECONDS`.
 fn check_seconds(seconds: f64) -> Result<(), Failure> {
-    if seconds.is_finite() && (0.0..=1e5).contains(&seconds) {
+    if seconds.is_finite() && (0.0..=MAX_SECONDS).contains(&seconds) {
         Ok(())
     } else {
         Err(Failure::Input(format!(
-            "--seconds: must be between 0 and 100000 (got {seconds})"
+            "--seconds: must be a number between 0 and {MAX_SECONDS} (got {seconds})"
         )))
     }
 }
 
+/// An image side given as `flag`: a whole number of pixels from 1 to `MAX_IMAGE_SIDE`.
+fn pixels(flag: &str, value: Option<i64>) -> Result<Option<u32>, Failure> {
+    match value {
+        Some(v) if !(1..=MAX_IMAGE_SIDE as i64).contains(&v) => Err(Failure::Input(format!(
+            "{flag}: must be an integer between 1 and {MAX_IMAGE_SIDE} (got {v})"
+        ))),
+        v => Ok(v.map(|v| v as u32)),
+    }
+}
+
+/// `n` with its thousands grouped: 41,203.
+pub fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Wall time since `start`, for the summary lines: "2.4 s".
+pub fn wall(start: Instant) -> String {
+    format!("{:.1} s", start.elapsed().as_secs_f64())
+}
+
+/// A scene simulated to `seconds` (refused over the step budget before it starts).
+fn simulated(
+    scene: Scene,
+    seconds: f64,
+    bad: impl Fn(ParamError) -> Failure,
+) -> Result<Simulation, Failure> {
+    let mut sim = Simulation::new(scene).map_err(&bad)?;
+    let steps = sim.budgeted_steps(seconds).map_err(&bad)?;
+    sim.run(steps);
+    Ok(sim)
+}
+
 fn simulate(args: SimulateArgs) -> Result<(), Failure> {
+    let start = Instant::now();
     check_seconds(args.seconds)?;
     let scene = read_scene(&args.scene)?;
-    let mut sim = Simulation::new(scene).map_err(|e| Failure::Input(e.to_string()))?;
-    let steps = sim
-        .budgeted_steps(args.seconds)
-        .map_err(|e| Failure::Input(e.to_string()))?;
-    let start = std::time::Instant::now();
-    sim.run(steps);
+    let sim = simulated(scene, args.seconds, |e| Failure::Input(e.to_string()))?;
     let list = sim.blob_list();
     let text = serde_json::to_string(&list).expect("blob lists serialise");
     write_atomically(&args.out, |w| std::io::Write::write_all(w, text.as_bytes()))?;
     let c = sim.gas.counts;
     eprintln!(
-        "simulated {:.3} s in {} steps ({:.0} ms): {} blobs (emitted {}, split {}, dissipated {}, capped {}) -> {}",
+        "wrote {}: {} blobs at t = {:.2} s ({} steps; {} emitted, {} split, {} dissipated, {} capped), {}",
+        args.out.display(),
+        grouped(list.blobs.len()),
         sim.time(),
         sim.steps(),
-        start.elapsed().as_secs_f64() * 1e3,
-        list.blobs.len(),
-        c.emitted,
-        c.split,
-        c.dissipated,
-        c.capped,
-        args.out.display()
+        grouped(c.emitted as usize),
+        grouped(c.split as usize),
+        grouped(c.dissipated as usize),
+        grouped(c.capped as usize),
+        wall(start)
     );
     Ok(())
 }
 
-/// The blob list to render: read directly, or simulated from a scene.
-fn blob_list_for(args: &RenderArgs) -> Result<BlobList, Failure> {
-    let path = &args.input;
-    let text =
-        fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
-    let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
-    let value: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| Failure::Input(format!("{}: not valid JSON: {e}", path.display())))?;
-    if value.get("version").is_some() {
-        let seconds = args.seconds.unwrap_or(0.0);
+/// The blob list to render and, for a scene, the time it was simulated to.
+fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> {
+    if let Some(seconds) = args.seconds {
         check_seconds(seconds)?;
-        let scene = Scene::from_value(value).map_err(bad)?;
-        let mut sim = Simulation::new(scene).map_err(bad)?;
-        let steps = sim.budgeted_steps(seconds).map_err(bad)?;
-        sim.run(steps);
-        Ok(sim.blob_list())
-    } else {
-        if args.seconds.is_some() {
-            return Err(Failure::Input(
-                "--seconds: applies to scenes only; this input is a blob list".into(),
-            ));
+    }
+    let path = &args.input;
+    match read_input(path)? {
+        Input::Scene(scene) => {
+            let seconds = args.seconds.unwrap_or(scene.render.still_time());
+            let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
+            let sim = simulated(*scene, seconds, bad)?;
+            Ok((sim.blob_list(), Some(sim.time())))
         }
-        BlobList::from_value(value).map_err(bad)
+        Input::List(_) if args.seconds.is_some() => Err(Failure::Input(
+            "--seconds: applies to scenes only; this input is a blob list".into(),
+        )),
+        Input::List(list) => Ok((list, None)),
     }
 }
 
 /// `render --frames`: a scene's sequence (the `sequence` module).
-fn render_sequence(args: &RenderArgs, frames: &str) -> Result<(), Failure> {
-    let size = match (args.width, args.height) {
+fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<(), Failure> {
+    let size = match (
+        pixels("--width", args.width)?,
+        pixels("--height", args.height)?,
+    ) {
         (None, None) => None,
         (Some(w), Some(h)) => Some((w, h)),
         _ => {
@@ -366,43 +495,34 @@ fn render_sequence(args: &RenderArgs, frames: &str) -> Result<(), Failure> {
         args.force,
         size,
     )?;
-    let path = &args.input;
-    let text =
-        fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
-    let value: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| Failure::Input(format!("{}: not valid JSON: {e}", path.display())))?;
-    if value.get("version").is_none() {
-        return Err(Failure::Input(format!(
+    match read_input(&args.input)? {
+        Input::Scene(scene) => job.run(*scene, start),
+        Input::List(_) => Err(Failure::Input(format!(
             "--frames: needs a scene to simulate; {} is a blob list",
-            path.display()
-        )));
+            args.input.display()
+        ))),
     }
-    let scene =
-        Scene::from_value(value).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?;
-    job.run(scene)
 }
 
 fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
+    let start = Instant::now();
     if let Some(frames) = &args.frames {
-        return render_sequence(&args, frames);
+        return render_sequence(&args, frames, start);
     }
-    let list = blob_list_for(&args)?;
-    let size = match (args.width, args.height) {
+    let (width, height) = (
+        pixels("--width", args.width)?,
+        pixels("--height", args.height)?,
+    );
+    let (list, time) = blob_list_for(&args)?;
+    let size = match (width, height) {
         (None, None) => None,
         (w, h) => Some((
             w.unwrap_or(list.image.width),
             h.unwrap_or(list.image.height),
         )),
     };
-    let start = std::time::Instant::now();
-    let renderer = Renderer::new(&list, size, RenderOptions::default()).map_err(|e| {
-        let flag = match e.path.as_str() {
-            "image.width" => "--width: ".to_string(),
-            "image.height" => "--height: ".to_string(),
-            _ => format!("{}: ", args.input.display()),
-        };
-        Failure::Input(format!("{flag}{e}"))
-    })?;
+    let renderer = Renderer::new(&list, size, RenderOptions::default())
+        .map_err(|e| Failure::Input(format!("{}: {e}", args.input.display())))?;
     let image = renderer.render();
     let png = encode_png(
         image.width,
@@ -411,13 +531,17 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
     )
     .map_err(|e| Failure::Io(e.to_string()))?;
     write_atomically(&args.out, |w| std::io::Write::write_all(w, &png))?;
+    let when = match time {
+        Some(t) => format!("at t = {t:.2} s"),
+        None => format!("from {}", args.input.display()),
+    };
     eprintln!(
-        "rendered {}x{} from {} blobs in {:.0} ms -> {}",
+        "wrote {} ({}×{}): {} blobs {when}, {}",
+        args.out.display(),
         image.width,
         image.height,
-        list.blobs.len(),
-        start.elapsed().as_secs_f64() * 1e3,
-        args.out.display()
+        grouped(list.blobs.len()),
+        wall(start)
     );
     Ok(())
 }
@@ -430,7 +554,11 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate(a),
         Command::Render(a) => render_cmd(a),
         Command::Schema => {
-            print!("{}", windfield::scene::json_schema());
+            print!("{}", windfield::gas::scene::json_schema());
+            Ok(())
+        }
+        Command::Contract => {
+            print!("{}", windfield::contract::javascript());
             Ok(())
         }
     };

@@ -6,17 +6,30 @@
 //! its last frame that is not yet complete, rendering its frames as it passes them. The
 //! simulation and the renderer are deterministic, so every shard writes exactly the bytes the
 //! unsharded run would. A frame is written under a temporary name and renamed, so a killed run
-//! leaves no half frame; frames already complete (a PNG of the right size under the final
-//! name) are skipped unless `--force`. Every argument is checked before anything is written.
+//! leaves no half frame; the temporary name is the frame's own name with the process id and
+//! a random number, so shards in parallel never share one. Frames already complete (a PNG of
+//! the right size under the final name) are skipped unless `--force`.
+//!
+//! Beside the frames a manifest, the pattern's name with `.windfield.json` added
+//! (`frames/f%04d.png.windfield.json`), records what makes their bytes: a fingerprint of the
+//! normalised scene, the frame rate, the image size and the windfield version. A run into a
+//! pattern whose manifest says otherwise is refused unless `--force`, so frames of two runs
+//! never mix; shards of one run write the same manifest, each atomically. Every argument is
+//! checked before anything is written.
 
-use super::{write_atomically, Failure};
+use super::{grouped, wall, write_atomically, Failure};
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::{Deserialize, Serialize};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 use windfield::render::{encode_png, RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
-/// The frames A..B (half-open, A < B).
+/// Most frames one range may hold (at 24 fps, eleven and a half hours).
+pub const MAX_FRAMES: u64 = 1_000_000;
+
+/// The frames A..B (half-open, A < B, at most [`MAX_FRAMES`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameRange {
     pub start: u64,
@@ -38,6 +51,9 @@ impl FrameRange {
         let (start, end) = (number(a)?, number(b)?);
         if start >= end {
             return Err(bad("the range is empty"));
+        }
+        if end - start > MAX_FRAMES {
+            return Err(bad(&format!("at most {MAX_FRAMES} frames in one range")));
         }
         Ok(Self { start, end })
     }
@@ -108,13 +124,28 @@ impl Pattern {
             w = self.width
         ))
     }
+
+    /// The pattern as a name, its frame number written `%0Nd` (`%d`), a `%%` as `%`.
+    pub fn name(&self) -> String {
+        let number = match self.width {
+            1 => "%d".to_string(),
+            w => format!("%0{w}d"),
+        };
+        format!("{}{number}{}", self.prefix, self.suffix)
+    }
+
+    /// Where the manifest of the frames lies: the pattern's name with `.windfield.json` added.
+    pub fn manifest_path(&self) -> PathBuf {
+        PathBuf::from(format!("{}.windfield.json", self.name()))
+    }
 }
 
-/// Shard I of N: the frames with k mod N = I.
+/// Shard I of N: the frames with k mod N = I. Any N a 128-bit integer holds (N above 2^63,
+/// or above every frame number, included); k mod N is taken without overflow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shard {
-    pub index: u64,
-    pub count: u64,
+    pub index: u128,
+    pub count: u128,
 }
 
 impl Shard {
@@ -124,8 +155,8 @@ impl Shard {
         let (i, n) = text.split_once('/').ok_or_else(|| bad("no '/'"))?;
         let number = |s: &str| {
             s.trim()
-                .parse::<u64>()
-                .map_err(|_| bad("not a whole number"))
+                .parse::<u128>()
+                .map_err(|_| bad("not a whole number below 2^128"))
         };
         let (index, count) = (number(i)?, number(n)?);
         if count == 0 || index >= count {
@@ -137,11 +168,102 @@ impl Shard {
     /// The whole run as one shard.
     pub const ALL: Shard = Shard { index: 0, count: 1 };
 
-    /// This shard's frames of `range`, in order.
+    /// This shard's frames of `range`, in order: the first k ≥ A with k mod N = I, then every
+    /// N-th, while below B.
     pub fn frames(self, range: FrameRange) -> impl Iterator<Item = u64> {
-        let first = range.start + (self.index + self.count - range.start % self.count) % self.count;
-        (first..range.end).step_by(self.count as usize)
+        let (start, end, n) = (range.start as u128, range.end as u128, self.count);
+        let r = start % n;
+        // The distance from A to the next k with k mod N = I, in [0, N).
+        let ahead = if self.index >= r {
+            self.index - r
+        } else {
+            n - (r - self.index)
+        };
+        let below_end = move |k: &u128| *k < end;
+        let first = start.checked_add(ahead).filter(below_end);
+        std::iter::successors(first, move |&k| k.checked_add(n).filter(below_end)).map(|k| k as u64)
     }
+
+    /// " of shard I/N", or nothing for the whole run.
+    fn label(self) -> String {
+        if self == Self::ALL {
+            String::new()
+        } else {
+            format!(" of shard {}/{}", self.index, self.count)
+        }
+    }
+}
+
+/// What makes a sequence's bytes, written beside its frames (see the module's comment).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// The manifest's own format, `windfield-sequence/1`.
+    pub format: String,
+    /// The version of windfield that rendered the frames.
+    pub windfield: String,
+    /// FNV-1a (128 bits) of the normalised scene's JSON, its image size set to the frames'
+    /// and its `render.time` (which a sequence does not use) left out.
+    pub scene: String,
+    /// Frames per second: frame k is the scene at t = k / fps.
+    pub fps: f64,
+    /// Image size in pixels.
+    pub width: u32,
+    pub height: u32,
+}
+
+const MANIFEST_FORMAT: &str = "windfield-sequence/1";
+
+impl Manifest {
+    pub fn new(scene: &Scene, fps: f64, width: u32, height: u32) -> Self {
+        let mut scene = scene.clone();
+        scene.render.time = None;
+        scene.render.image.width = width;
+        scene.render.image.height = height;
+        Self {
+            format: MANIFEST_FORMAT.into(),
+            windfield: env!("CARGO_PKG_VERSION").into(),
+            scene: fingerprint(scene.to_json().as_bytes()),
+            fps,
+            width,
+            height,
+        }
+    }
+
+    /// How `self` differs from `other` (what this run would write), in words.
+    fn differences(&self, other: &Self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.scene != other.scene {
+            out.push("another scene".to_string());
+        }
+        if self.fps != other.fps {
+            out.push(format!("{} fps, not {}", self.fps, other.fps));
+        }
+        if (self.width, self.height) != (other.width, other.height) {
+            out.push(format!(
+                "{}×{}, not {}×{}",
+                self.width, self.height, other.width, other.height
+            ));
+        }
+        if self.windfield != other.windfield || self.format != other.format {
+            out.push(format!(
+                "windfield {}, not {}",
+                self.windfield, other.windfield
+            ));
+        }
+        out
+    }
+}
+
+/// FNV-1a with 128 bits, in hex: a fingerprint that tells scenes apart (not a defence
+/// against forgery).
+fn fingerprint(bytes: &[u8]) -> String {
+    const OFFSET: u128 = 0x6c62_272e_07bb_0142_62b8_2175_6295_c58d;
+    const PRIME: u128 = 0x0000_0000_0100_0000_0000_0000_0000_013b;
+    let hash = bytes
+        .iter()
+        .fold(OFFSET, |h, &b| (h ^ b as u128).wrapping_mul(PRIME));
+    format!("{hash:032x}")
 }
 
 /// What `render --frames` was asked for, checked.
@@ -193,8 +315,10 @@ impl Sequence {
         })
     }
 
-    /// Renders the shard's frames of `scene` (see the module's comment).
-    pub fn run(&self, scene: Scene) -> Result<(), Failure> {
+    /// Renders the shard's frames of `scene` (see the module's comment) and says what it
+    /// wrote; `start` is when the command began (for the wall time).
+    pub fn run(&self, scene: Scene, start: Instant) -> Result<(), Failure> {
+        let manifest_scene = scene.clone();
         let mut sim = Simulation::new(scene).map_err(|e| Failure::Input(e.to_string()))?;
         let seconds = |k: u64| k as f64 / self.fps;
         // The budget holds for the whole range, so that every shard of it runs or none does.
@@ -205,19 +329,21 @@ impl Sequence {
         let (width, height) = self
             .size
             .unwrap_or((settings.image.width, settings.image.height));
-        // Checks the image size before anything is written.
-        let mut probe = sim.blob_list();
-        probe.image.width = width;
-        probe.image.height = height;
-        probe.blobs.clear();
-        Renderer::new(&probe, None, RenderOptions::default()).map_err(|e| {
-            Failure::Input(match e.path.as_str() {
-                "image.width" => format!("--width: {e}"),
-                "image.height" => format!("--height: {e}"),
-                _ => e.to_string(),
-            })
-        })?;
         let frames: Vec<u64> = self.shard.frames(self.range).collect();
+        let what = format!(
+            "{} ({width}×{height}; frames {}..{} at {} fps{})",
+            self.pattern.name(),
+            self.range.start,
+            self.range.end,
+            self.fps,
+            self.shard.label()
+        );
+        if frames.is_empty() {
+            eprintln!("nothing to write: no frame k of {what} has k mod N = I");
+            return Ok(());
+        }
+        let manifest = Manifest::new(&manifest_scene, self.fps, width, height);
+        self.claim(&manifest)?;
         let todo: Vec<u64> = frames
             .iter()
             .copied()
@@ -226,21 +352,14 @@ impl Sequence {
         let done = frames.len() - todo.len();
         if todo.is_empty() {
             eprintln!(
-                "all {} frames of this shard are complete (--force renders them again)",
-                frames.len()
+                "nothing to write: all {} frames of {what} are complete (--force renders them again), {}",
+                frames.len(),
+                wall(start)
             );
             return Ok(());
         }
         for k in &todo {
-            if let Some(dir) = self
-                .pattern
-                .path(*k)
-                .parent()
-                .filter(|d| !d.as_os_str().is_empty())
-            {
-                std::fs::create_dir_all(dir)
-                    .map_err(|e| Failure::Io(format!("{}: {e}", dir.display())))?;
-            }
+            create_parent(&self.pattern.path(*k))?;
         }
         let bar = progress(todo.len() as u64);
         if done > 0 {
@@ -253,11 +372,13 @@ impl Sequence {
                 None => eprintln!("{line}"),
             }
         }
+        let mut blobs = 0;
         for &k in &todo {
             sim.run(sim.steps_for(seconds(k)) - sim.steps());
             let mut list = sim.blob_list();
             list.image.width = width;
             list.image.height = height;
+            blobs = list.blobs.len();
             let renderer = Renderer::new(&list, None, RenderOptions::default())
                 .map_err(|e| Failure::Input(e.to_string()))?;
             let image = renderer.render();
@@ -280,9 +401,63 @@ impl Sequence {
             }
         }
         if let Some(b) = bar {
-            b.finish_with_message(format!("{} frames rendered", todo.len()));
+            b.finish_and_clear();
         }
+        let skipped = match done {
+            0 => String::new(),
+            n => format!(", {n} complete ones skipped"),
+        };
+        let plural = if todo.len() == 1 { "" } else { "s" };
+        eprintln!(
+            "wrote {} frame{plural} {what}{skipped}: {} blobs at t = {:.2} s in the last, {}",
+            todo.len(),
+            grouped(blobs),
+            sim.time(),
+            wall(start)
+        );
         Ok(())
+    }
+
+    /// Makes the pattern's manifest say `manifest`: writes it where there is none, checks it
+    /// where there is one (another run's is refused unless `--force`, which replaces it).
+    /// Shards of one run write the same bytes, each through its own temporary name.
+    fn claim(&self, manifest: &Manifest) -> Result<(), Failure> {
+        let path = self.pattern.manifest_path();
+        match std::fs::read_to_string(&path) {
+            Ok(text) => {
+                let theirs = serde_json::from_str::<Manifest>(&text);
+                if theirs.as_ref().is_ok_and(|m| m == manifest) {
+                    return Ok(());
+                }
+                if !self.force {
+                    let why = match &theirs {
+                        Ok(m) => format!("they are of {}", m.differences(manifest).join(", ")),
+                        Err(e) => format!("its manifest cannot be read ({e})"),
+                    };
+                    return Err(Failure::Input(format!(
+                        "--out: the frames of {} were written by another run: {why} (see {}); \
+                         use another --out, or --force to render over them",
+                        self.pattern.name(),
+                        path.display()
+                    )));
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(Failure::Io(format!("{}: {e}", path.display()))),
+        }
+        create_parent(&path)?;
+        let text = serde_json::to_string_pretty(manifest).expect("manifests serialise") + "\n";
+        write_atomically(&path, |w| std::io::Write::write_all(w, text.as_bytes()))
+    }
+}
+
+/// Creates the directory `path` lies in, if it has one.
+fn create_parent(path: &Path) -> Result<(), Failure> {
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => {
+            std::fs::create_dir_all(dir).map_err(|e| Failure::Io(format!("{}: {e}", dir.display())))
+        }
+        None => Ok(()),
     }
 }
 
@@ -377,10 +552,64 @@ mod tests {
         for i in 0..4 {
             assert!(Shard { index: i, count: 4 }
                 .frames(range)
-                .all(|k| k % 4 == i));
+                .all(|k| k as u128 % 4 == i));
         }
         all.sort_unstable();
         assert_eq!(all, (5..23).collect::<Vec<_>>());
         assert_eq!(Shard::ALL.frames(range).count(), 18);
+    }
+
+    #[test]
+    fn shard_counts_beyond_2_to_the_63_neither_wrap_nor_skip() {
+        let max = u64::MAX as u128;
+        for (text, range, want) in [
+            // I + N overflowed 64 bits: shard 5 of 2^64 − 1 took frame 4.
+            (format!("5/{max}"), (0, 12), vec![5]),
+            (format!("{}/{max}", max - 1), (0, 12), vec![]),
+            (format!("3/{}", 1u128 << 64), (0, 12), vec![3]),
+            (format!("0/{}", (1u128 << 63) + 1), (1, 12), vec![]),
+            (
+                format!("{}/{}", u64::MAX - 1, max),
+                (u64::MAX - 3, u64::MAX),
+                vec![u64::MAX - 1],
+            ),
+            (format!("1/{}", u128::MAX), (0, 3), vec![1]),
+            (
+                "2/3".to_string(),
+                (u64::MAX - 5, u64::MAX),
+                vec![u64::MAX - 4, u64::MAX - 1],
+            ),
+        ] {
+            let shard = Shard::parse(&text).unwrap();
+            let range = FrameRange {
+                start: range.0,
+                end: range.1,
+            };
+            assert_eq!(shard.frames(range).collect::<Vec<_>>(), want, "{text}");
+        }
+        assert!(Shard::parse(&format!("0/{}", u128::MAX as f64 * 2.0)).is_err());
+    }
+
+    #[test]
+    fn a_range_holds_at_most_a_million_frames() {
+        assert!(FrameRange::parse("0..1000000").is_ok());
+        let e = FrameRange::parse("5..1000006").unwrap_err();
+        assert!(e.contains("at most 1000000 frames"), "{e}");
+        assert!(FrameRange::parse(&format!("0..{}", u64::MAX)).is_err());
+    }
+
+    #[test]
+    fn the_manifest_lies_beside_the_frames_and_fingerprints_differ() {
+        let p = Pattern::parse("seq/frame.%03d").unwrap();
+        assert_eq!(
+            p.manifest_path(),
+            PathBuf::from("seq/frame.%03d.windfield.json")
+        );
+        assert_eq!(
+            Pattern::parse("100%%/f%d.png").unwrap().manifest_path(),
+            PathBuf::from("100%/f%d.png.windfield.json")
+        );
+        assert_ne!(fingerprint(b"{\"seed\": 1}"), fingerprint(b"{\"seed\": 2}"));
+        assert_eq!(fingerprint(b""), "6c62272e07bb014262b821756295c58d");
     }
 }

@@ -5,6 +5,9 @@
 // copying itself. Raw WebGL2 beside three.js: three.js cannot attach several layers of one 3-D
 // texture, so this draws with its own program and framebuffer and then hands the context's
 // state back to three.js (`resetState`). Values are copied exactly (texelFetch, same format).
+// Its program, framebuffer and vertex array belong to the context they were made in and three.js
+// does not know them: when the context is lost the owner drops the SliceCopy and makes a new one
+// once it is restored (`VolumeLayer.contextLost`).
 
 const MAX_LAYERS = 8;
 
@@ -48,6 +51,7 @@ export class SliceCopy {
   /** @param {import('three').WebGLRenderer} renderer */
   constructor(renderer) {
     const gl = renderer.getContext();
+    if (gl.isContextLost()) throw new Error('slice copy: the WebGL context is lost');
     this.renderer = renderer;
     this.layers = Math.min(MAX_LAYERS, gl.getParameter(gl.MAX_DRAW_BUFFERS), gl.getParameter(gl.MAX_COLOR_ATTACHMENTS));
     const program = gl.createProgram();

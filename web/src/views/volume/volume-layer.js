@@ -7,11 +7,15 @@
 // trilinear sampling. A view larger than the quality's march budget is marched at a lower
 // resolution and upsampled by depth. The volumes are rebuilt only when the frame, the quality
 // or the lights change: orbiting a paused scene re-runs the march alone.
+// A lost WebGL context: while it is lost nothing is built or read, and the layer lets go of its
+// raw WebGL copier and of three.js's objects for its targets and passes; once it is restored
+// the next `prepare` makes them again and rebuilds the volumes from the frame it holds.
 
 import * as THREE from 'three';
 import { LIGHTS_GLSL } from '../gas-uniforms.js';
 import { waitForGpu } from '../gpu-sync.js';
 import { MARCH_PREAMBLE, MarchQuad } from '../march-quad.js';
+import { releaseGeometries } from '../context-loss.js';
 import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
@@ -106,6 +110,9 @@ function volumeTarget(target, dims, type, max) {
 const sizeOf = (t) => [t.width, t.height, t.depth];
 
 export class VolumeLayer extends MarchQuad {
+  /** Set between the context's loss and its restoration. */
+  #lost = false;
+
   /**
    * @param {object} gas the shared gas uniforms (`gasUniforms()`); this layer fills its
    *   volume entries (lightTex, grid, lightGrid) for the objects' material too
@@ -170,6 +177,34 @@ export class VolumeLayer extends MarchQuad {
     this.timings = null;
   }
 
+  /** True while the renderer's context is lost: nothing can be built or read. */
+  #isLost(renderer) {
+    return this.#lost || renderer.getContext().isContextLost();
+  }
+
+  /**
+   * The context is lost: build and read nothing until it is restored. The slice copier's raw
+   * WebGL objects die with the context (a new copier is made on the next build); the targets
+   * and the passes' geometries are disposed now, while that deletes nothing (`context-loss.js`).
+   */
+  contextLost() {
+    this.#lost = true;
+    this.copier?.dispose();
+    this.copier = null;
+    for (const t of [this.atlas, ...this.scratch, this.lightAtlas, this.bricks, this.density, this.source, this.columns]) t?.dispose();
+    this.upsample.target?.dispose();
+    releaseGeometries(this.scene, this.splat.scene, this.mesh.depositScene, this.mesh.blur.scene, this.light.scene, this.occupancyPass.scene, this.upsample.scene);
+  }
+
+  /**
+   * The context is back (three.js has made its own state anew): the volumes are rebuilt, their
+   * targets set up again and a new slice copier made, on the next `prepare`.
+   */
+  contextRestored() {
+    this.#lost = false;
+    this.invalidate();
+  }
+
   /** A new frame: `info` is `frameInfo` parsed ({count, lo, hi, emissive, classes}). */
   setFrame(info) {
     this.info = info;
@@ -217,8 +252,10 @@ export class VolumeLayer extends MarchQuad {
    * already built. Returns false when there is no gas. `scale` (0–1], the view's resolution
    * scale, scales the voxels' count by scale³ (their side by 1/scale), as it scales the pixels'
    * side: the voxels keep their size in pixels and the whole view's cost follows the scale.
+   * Returns false, building nothing, while the context is lost.
    */
   prepare(renderer, quality, scale = 1) {
+    if (this.#isLost(renderer)) return false;
     const info = this.info;
     const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
     const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}`;
@@ -292,9 +329,11 @@ export class VolumeLayer extends MarchQuad {
   /**
    * The volumes of the last build as the GPU holds them (for tests; slow): `density` [ρ, ρΩ]
    * per voxel, `source` [ρ(1 − Ω)Q, 0] per voxel if emissive, `light` the four columns per
-   * voxel of the light grid (x fastest, then y, then z, as the core's twin).
+   * voxel of the light grid (x fastest, then y, then z, as the core's twin). Null while the
+   * context is lost or before a build with gas.
    */
   read(renderer) {
+    if (this.#isLost(renderer) || !this.grid || !this.density) return null;
     const layers = (target, dims) => {
       const [nx, ny, nz] = dims;
       const out = new Float32Array(4 * nx * ny * nz);

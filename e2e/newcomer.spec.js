@@ -1,0 +1,326 @@
+// What a newcomer meets: the playground opens on smoke, the picker loads every preset, edits keep
+// the gas, the pointer stirs it, the camera stays above the floor, the status line tells the
+// truth, notices stay, and no page overflows on a phone.
+import { test, expect } from '@playwright/test';
+import { readFileSync } from 'node:fs';
+import { canvasLuminance, collectErrors, openFolder, setNumber } from './helpers.js';
+
+const root = new URL('../', import.meta.url);
+const presetFile = (name) => JSON.parse(readFileSync(new URL(`public/scenes/${name}.json`, root), 'utf8'));
+const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
+
+async function open(page, url = './?view=points') {
+  await page.goto(url);
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+}
+
+/** Whether every value `want` gives is in `have` (a scene normalised by the core adds defaults). */
+function holds(have, want, path = 'scene') {
+  if (Array.isArray(want) || (want && typeof want === 'object')) {
+    return Object.entries(want).every(([k, v]) => have && holds(have[k], v, `${path}.${k}`));
+  }
+  return have === want;
+}
+
+test('the playground opens on smoke: at least 20,000 blobs by t = 4 s, from the default scene', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    const scene = w.getScene();
+    const { time } = w.stats();
+    await w.step(Math.round((4 - time) / scene.simulation.dt));
+    return { scene, stats: w.stats() };
+  });
+  expect(holds(out.scene, presetFile('default'))).toBe(true);
+  expect(out.stats.time).toBeCloseTo(4, 1);
+  expect(out.stats.blobs).toBeGreaterThanOrEqual(20_000);
+  // Many small blobs, slow diffusion, a floor and a light: the presets' lessons.
+  expect(out.scene.emitters[0].sigma0).toBeLessThan(0.01);
+  expect(out.scene.gas.diffusion).toBeLessThan(1e-4);
+  expect(out.scene.render.objects.some((o) => o.type === 'plane')).toBe(true);
+  expect(out.scene.render.lights.length).toBeGreaterThan(0);
+  expect(errors).toEqual([]);
+});
+
+test('the picker loads each preset by click or keyboard and puts it in the URL', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const cards = page.locator('#picker [role="radio"]');
+  await expect(cards).toHaveCount(catalog.length);
+  for (const [i, { name, title }] of catalog.entries()) {
+    const card = cards.nth(i);
+    await expect(card).toContainText(title);
+    if (i % 2) {
+      await card.click();
+    } else {
+      await card.focus();
+      await page.keyboard.press('Enter');
+    }
+    await expect(card).toHaveAttribute('aria-checked', 'true');
+    await expect.poll(() => page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(name).seed);
+    const scene = await page.evaluate(() => window.windfield.getScene());
+    expect(holds(scene, presetFile(name)), name).toBe(true);
+    const url = new URL(page.url());
+    expect(url.searchParams.get('preset')).toBe(name === 'default' ? null : name);
+  }
+  // Arrow keys move between the cards.
+  await cards.nth(0).focus();
+  await page.keyboard.press('ArrowRight');
+  await expect(cards.nth(1)).toBeFocused();
+  expect(errors).toEqual([]);
+});
+
+test('an edit of a wind primitive and of an emitter keeps the blob count and the time', async ({ page }) => {
+  await open(page);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.pause();
+    await w.step(90);
+    const before = w.stats();
+    const scene = w.getScene();
+    scene.wind[0].velocity = [0.3, 0.1, 0];
+    await w.editScene(scene);
+    const afterWind = w.stats();
+    scene.emitters[0].center = [0.2, 0.62, 0];
+    await w.editScene(scene);
+    const afterEmitter = w.stats();
+    return { before, afterWind, afterEmitter, scene: w.getScene() };
+  });
+  for (const after of [out.afterWind, out.afterEmitter]) {
+    expect(after.blobs).toBe(out.before.blobs);
+    expect(after.time).toBe(out.before.time);
+  }
+  expect(out.scene.wind[0].velocity).toEqual([0.3, 0.1, 0]);
+  expect(out.scene.emitters[0].center).toEqual([0.2, 0.62, 0]);
+  // The same from the panel: an emitter's rate typed in the scene editor.
+  await openFolder(page, 'Emitters');
+  await setNumber(await openFolder(page, 'emitters 1: sphere'), 'rate', 5000);
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene().emitters[0].rate)).toBe(5000);
+  const afterPanel = await page.evaluate(() => window.windfield.stats());
+  expect(afterPanel.blobs).toBe(out.before.blobs);
+  expect(afterPanel.time).toBe(out.before.time);
+});
+
+/**
+ * The world point (m) under the view's pixel (px, py) (CSS pixels from the canvas's top left)
+ * on the plane through the camera's target facing it, for a canvas of `width × height`.
+ */
+function worldAt(camera, width, height, px, py) {
+  const sub = (a, b) => a.map((v, i) => v - b[i]);
+  const norm = (a) => a.map((v) => v / Math.hypot(...a));
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const forward = norm(sub(camera.target, camera.position));
+  const right = norm(cross(forward, camera.up));
+  const up = cross(right, forward);
+  const d = Math.hypot(...sub(camera.target, camera.position));
+  const half = d * Math.tan((camera.fov_y_deg * Math.PI) / 360);
+  const u = ((px - width / 2) / (height / 2)) * half;
+  const v = -((py - height / 2) / (height / 2)) * half;
+  return camera.target.map((t, i) => t + u * right[i] + v * up[i]);
+}
+
+/** Distance (m) from `p` to the segment from `a` to `b`. */
+function toSegment(p, a, b) {
+  const ab = b.map((v, i) => v - a[i]);
+  const s = Math.min(Math.max(p.reduce((sum, v, i) => sum + (v - a[i]) * ab[i], 0) / ab.reduce((sum, v) => sum + v * v, 0), 0), 1);
+  return Math.hypot(...p.map((v, i) => v - (a[i] + s * ab[i])));
+}
+
+test('a pointer stir moves blobs near it more than blobs far from it', async ({ page }) => {
+  await open(page);
+  const box = await page.locator('#canvas').boundingBox();
+  const y = box.height / 2;
+  const x0 = box.width / 2 - 30;
+  let x1 = x0;
+  /** Blob centres after 240 steps and 12 more, stirring meanwhile (a drag to the right) or not. */
+  const run = async (stir) => {
+    await page.evaluate(async () => {
+      const w = window.windfield;
+      w.pause();
+      await w.setScene(w.getScene());
+      await w.step(240);
+    });
+    if (!stir) return page.evaluate(async () => { await window.windfield.step(12); return window.windfield.exportBlobs({ width: 32, height: 24 }); });
+    await page.mouse.move(box.x + x0, box.y + y);
+    await page.mouse.down();
+    for (let k = 0; k < 3; k++) {
+      x1 += 2;
+      await page.mouse.move(box.x + x1, box.y + y);
+      await page.waitForTimeout(15);
+    }
+    // The steps are taken while the pointer moves on.
+    const steps = page.evaluate(() => window.windfield.step(12));
+    {
+      let done = false;
+      steps.then(() => { done = true; });
+      while (!done && x1 < x0 + 120) {
+        x1 += 2;
+        await page.mouse.move(box.x + x1, box.y + y);
+        await page.waitForTimeout(15);
+      }
+      await steps;
+      await page.mouse.up();
+    }
+    return page.evaluate(async () => window.windfield.exportBlobs({ width: 32, height: 24 }));
+  };
+  const calm = await run(false);
+  await page.keyboard.press('s');
+  await expect(page.locator('#stir')).toHaveAttribute('aria-pressed', 'true');
+  const stirred = await run(true);
+  expect(stirred.blobs.length).toBe(calm.blobs.length);
+  const a = worldAt(calm.camera, box.width, box.height, x0, y);
+  const b = worldAt(calm.camera, box.width, box.height, x1, y);
+  const near = [];
+  const far = [];
+  calm.blobs.forEach(({ center }, i) => {
+    const d = toSegment(center, a, b);
+    const moved = Math.hypot(...center.map((v, k) => v - stirred.blobs[i].center[k]));
+    if (d < 0.1) near.push(moved);
+    else if (d > 0.6) far.push(moved);
+  });
+  const mean = (list) => list.reduce((s, v) => s + v, 0) / list.length;
+  expect(near.length).toBeGreaterThan(100);
+  expect(far.length).toBeGreaterThan(100);
+  expect(mean(near)).toBeGreaterThan(0.005);
+  expect(mean(near)).toBeGreaterThan(10 * mean(far));
+});
+
+test('an upward orbit drag of 300 px leaves a view that is not black; the camera stays above the floor', async ({ page }) => {
+  await open(page, './');
+  await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(120); });
+  const box = await page.locator('#canvas').boundingBox();
+  const x = box.x + box.width / 2;
+  const y = box.y + box.height - 40;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; k++) await page.mouse.move(x, y - 30 * k);
+  await page.mouse.up();
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  await page.waitForTimeout(300);
+  const camera = (await page.evaluate(() => window.windfield.exportBlobs({ width: 32, height: 24 }))).camera;
+  expect(camera.position[1]).toBeGreaterThan(0);
+  const lum = await canvasLuminance(page, '#canvas');
+  expect(lum.mean).toBeGreaterThan(10);
+  expect(lum.std).toBeGreaterThan(3);
+  // The keyboard orbits and zooms too, within the same limits.
+  await page.locator('#canvas').focus();
+  for (let k = 0; k < 40; k++) await page.keyboard.press('ArrowDown');
+  for (let k = 0; k < 30; k++) await page.keyboard.press('-');
+  const after = (await page.evaluate(() => window.windfield.exportBlobs({ width: 32, height: 24 }))).camera;
+  expect(after.position[1]).toBeGreaterThan(0);
+  const distance = Math.hypot(...after.position.map((v, a) => v - after.target[a]));
+  // Zoom stays within four times the scene's camera distance of the target.
+  const { position, target } = (await page.evaluate(() => window.windfield.getScene())).render.camera;
+  expect(distance).toBeLessThanOrEqual(4 * Math.hypot(...position.map((v, a) => v - target[a])) + 1e-6);
+});
+
+test('the status line\'s frames per second agree with frames counted over two seconds', async ({ page }) => {
+  await open(page);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    w.play();
+    await new Promise((r) => setTimeout(r, 1500));
+    const a = w.stats();
+    const t0 = performance.now();
+    await new Promise((r) => setTimeout(r, 2000));
+    const b = w.stats();
+    return { counted: (b.frames - a.frames) / ((performance.now() - t0) / 1000), reported: b.fps, text: document.querySelector('#status').textContent };
+  });
+  expect(out.counted).toBeGreaterThan(0);
+  expect(Math.abs(out.reported - out.counted)).toBeLessThanOrEqual(Math.max(1, 0.35 * out.counted));
+  expect(out.text).toMatch(/\d+ fps \((limited by the worker’s step|limited by drawing the view|as fast as the display)\)/);
+  expect(out.text).toMatch(/step \d+\.\d+ ms/);
+  await expect(page.locator('#status')).toBeInViewport();
+});
+
+test('a damaged link\'s notice names the scene shown and stays until dismissed', async ({ page }) => {
+  await open(page, './?preset=steam-mug#scene=1.garbage!!');
+  const notice = page.locator('#message');
+  await expect(notice).toContainText('could not be read');
+  await expect(notice).not.toContainText('atob');
+  await expect(notice).toContainText('the link is damaged or cut short');
+  await page.waitForTimeout(10_500);
+  await expect(notice).toBeVisible();
+  const shown = await page.evaluate(() => window.windfield.getScene().seed);
+  const named = (await notice.textContent()).match(/Showing (.*) instead/)[1];
+  // The notice names the scene the view shows.
+  expect(named).toContain('steam from a mug');
+  expect(shown).toBe(presetFile('steam-mug').seed);
+  await notice.getByRole('button', { name: /dismiss/i }).click();
+  await expect(notice).toBeHidden();
+});
+
+test('an unknown preset\'s notice lists the scenes there are', async ({ page }) => {
+  await open(page, './?preset=../scene.schema');
+  const notice = page.locator('#message');
+  await expect(notice).toContainText('There is no scene named "../scene.schema"');
+  for (const { name } of catalog) await expect(notice).toContainText(name);
+  expect((await page.evaluate(() => window.windfield.getScene())).seed).toBe(presetFile('default').seed);
+});
+
+test('the exported PNG of the view leaves the wind guides out', async ({ page }) => {
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const shot = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => r(document.querySelector('#canvas').toDataURL('image/png'))))));
+  const withGuides = await shot();
+  const [download] = await Promise.all([
+    page.waitForEvent('download'),
+    (async () => {
+      await openFolder(page, 'Share and export');
+      await page.locator('.lil-controller', { hasText: 'export PNG of view' }).click();
+    })(),
+  ]);
+  const exported = `data:image/png;base64,${(await (await download.createReadStream()).toArray()).map((b) => Buffer.from(b)).reduce((a, b) => Buffer.concat([a, b])).toString('base64')}`;
+  await page.keyboard.press('g');
+  const withoutGuides = await shot();
+  /** Pixels that differ between two PNG data URLs of one size. */
+  const differing = (a, b) => page.evaluate(async (urls) => {
+    const [p, q] = await Promise.all(urls.map(async (u) => {
+      const img = new Image();
+      img.src = u;
+      await img.decode();
+      const g = new OffscreenCanvas(img.width, img.height).getContext('2d');
+      g.drawImage(img, 0, 0);
+      return g.getImageData(0, 0, img.width, img.height).data;
+    }));
+    let n = 0;
+    for (let i = 0; i < p.length; i += 4) if (p[i] !== q[i] || p[i + 1] !== q[i + 1] || p[i + 2] !== q[i + 2]) n += 1;
+    return n;
+  }, [a, b]);
+  expect(await differing(exported, withGuides)).toBeGreaterThan(100);
+  expect(await differing(exported, withoutGuides)).toBe(0);
+});
+
+test('the reference still is labelled with what it is', async ({ page }) => {
+  await open(page);
+  const time = await page.evaluate(async () => {
+    window.windfield.pause();
+    await window.windfield.setScene(window.windfield.getScene());
+    await window.windfield.step(6);
+    return window.windfield.stats().time;
+  });
+  await openFolder(page, 'Share and export');
+  await page.locator('.lil-controller', { hasText: 'render still (CPU)' }).click();
+  const figure = page.locator('#still-figure');
+  await expect(figure).toBeVisible({ timeout: 60_000 });
+  await expect(figure.locator('figcaption')).toContainText(`Reference still (CPU renderer), t = ${time.toFixed(2)} s, 480 × 360`);
+  await figure.getByRole('button', { name: 'Close' }).click();
+  await expect(figure).toBeHidden();
+});
+
+test.describe('on a phone', () => {
+  test.use({ viewport: { width: 390, height: 844 }, isMobile: true, hasTouch: true });
+  for (const path of ['./', './classroom.html', './field.html', './embed.html']) {
+    test(`${path} does not overflow at 390×844`, async ({ page }) => {
+      await page.goto(path);
+      await page.waitForLoadState('load');
+      await page.waitForTimeout(500);
+      const { scroll, width } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, width: innerWidth }));
+      expect(scroll).toBeLessThanOrEqual(width);
+    });
+  }
+});

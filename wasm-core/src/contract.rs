@@ -1,0 +1,160 @@
+//! One home for the contract between the core and the page: every number that the core and the
+//! browser's code (the GPU views' shaders, the engine worker, the page's forms) must agree on.
+//! Each is defined once, in the core module whose physics or format it belongs to; this module
+//! lists them and writes them as a JavaScript module, `web/src/generated/contract.js`
+//! (`windfield contract`), which the page imports instead of writing its own copies.
+//! `tests/contract.rs` fails while the shipped file differs from what the core writes now.
+
+use crate::field::lattice::{MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
+use crate::frame::light_volume::VIEW_LIGHTS;
+use crate::frame::packed::{
+    BLOBS_PER_ROW, CLASS_BIAS, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB,
+};
+use crate::frame::shadow_grid::SHADOW_GRID_HEADER;
+use crate::frame::views::SPHERE_FLOATS;
+use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
+use crate::gas::blob_list::DEFAULT_RENDER_TIME;
+use crate::render::{STEP_FRACTION, TRUNCATION};
+
+/// Where the generated module lives, from the repository's root.
+pub const JS_PATH: &str = "web/src/generated/contract.js";
+
+/// One shared number: its name (the Rust constant's), its value as JavaScript writes it, where
+/// the core defines it, and what it means.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Constant {
+    pub name: &'static str,
+    pub value: String,
+    pub defined_in: &'static str,
+    pub doc: &'static str,
+}
+
+/// A group of constants under a heading.
+pub struct Section {
+    pub heading: &'static str,
+    pub constants: Vec<Constant>,
+}
+
+/// `shared!(NAME in "module": "doc")`: the constant `NAME` (in scope here) as a [`Constant`],
+/// its value as JavaScript writes it: integers plainly, single-precision floats as their
+/// shortest decimal (`0.8`, not `0.800000011920929`), `3.0` as `3`.
+macro_rules! shared {
+    ($name:ident in $module:literal: $doc:literal) => {
+        Constant {
+            name: stringify!($name),
+            value: $name.to_string(),
+            defined_in: $module,
+            doc: $doc,
+        }
+    };
+}
+
+/// Every shared constant, by what it belongs to.
+pub fn sections() -> Vec<Section> {
+    let packed_frame = vec![
+        shared!(WORDS_PER_BLOB in "frame::packed":
+            "32-bit words per packed blob: centre xyz, σ, mass (f32), albedo and emitted source (halves); two RGBA32UI texels."),
+        shared!(BLOBS_PER_ROW in "frame::packed":
+            "Blobs per row of the blob texture; the exact march's index and shadow textures are as many texels wide."),
+        shared!(CLASS_BIAS in "frame::packed":
+            "σ class k starts at σ = √2^(k − CLASS_BIAS) m."),
+        shared!(FOOTPRINT in "frame::packed":
+            "A blob's footprint in the real-time view and the frame's bounds reach this many σ from its centre."),
+        shared!(INFO_HEADER in "frame::packed":
+            "Floats of the frame's info before its classes: count, lo xyz, hi xyz, emissive, σ_min, classes."),
+        shared!(INFO_PER_CLASS in "frame::packed":
+            "Floats of the frame's info per σ class: index, offset, count, σ_max."),
+        shared!(SPHERE_FLOATS in "frame::views":
+            "Floats per moving sphere of a frame: x, y, z, radius, r, g, b."),
+    ];
+    let volume_view = vec![
+        shared!(DIRECT_LIMIT in "frame::volume":
+            "Blobs narrower than this many voxels (σ < DIRECT_LIMIT · h) are splatted directly; wider ones go through the particle mesh."),
+        shared!(MAX_BLUR_RADIUS in "frame::volume":
+            "Longest blur kernel of the particle mesh, in voxels either side of the centre."),
+        shared!(BLUR_NARROW in "frame::volume":
+            "A mesh blur narrower than this many voxels (its standard deviation) is three taps."),
+        shared!(BLUR_REACH in "frame::volume":
+            "A wider mesh blur samples its Gaussian out to this many of its standard deviations."),
+        shared!(VIEW_LIGHTS in "frame::light_volume":
+            "Most lights the GPU views draw (the light volume holds one per channel)."),
+    ];
+    let exact_march = vec![
+        shared!(TRUNCATION in "render::gaussian": "Blobs are truncated at this many σ."),
+        shared!(STEP_FRACTION in "render::renderer":
+            "Longest step along a ray, as a fraction of the smallest σ active on it."),
+        shared!(SHADOW_GRID_HEADER in "frame::shadow_grid":
+            "Floats of the shadow grid before its columns: lo xyz, hi xyz, res, lights."),
+    ];
+    let scene_format = vec![
+        shared!(MIN_EXTENT in "field::lattice":
+            "Smallest lattice extent along any axis (field.size[i])."),
+        shared!(MAX_EXTENT in "field::lattice":
+            "Largest lattice extent along any axis (field.size[i])."),
+        shared!(MAX_POINTS in "field::lattice": "Most lattice points in all (nx · ny · nz · nt)."),
+        shared!(DEFAULT_RENDER_TIME in "gas::blob_list":
+            "The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one."),
+    ];
+    vec![
+        Section {
+            heading: "The packed frame (every GPU view's blobs)",
+            constants: packed_frame,
+        },
+        Section {
+            heading: "The real-time volume view",
+            constants: volume_view,
+        },
+        Section {
+            heading: "The exact march (the reference renderer's rules)",
+            constants: exact_march,
+        },
+        Section {
+            heading: "The scene format",
+            constants: scene_format,
+        },
+    ]
+}
+
+/// The generated JavaScript module: a header naming its generator, then one documented
+/// `export const` per constant.
+pub fn javascript() -> String {
+    let mut out = String::from(
+        "// GENERATED by the windfield core (wasm-core/src/contract.rs) with `windfield contract`:\n\
+         // do not edit. The numbers the core and the page's code share, each defined once in the\n\
+         // core. Regenerate after changing one:\n\
+         //   (cd wasm-core && cargo run --release --bin windfield -- contract) > web/src/generated/contract.js\n\
+         // wasm-core/tests/contract.rs fails while this file differs from what the core writes.\n",
+    );
+    for section in sections() {
+        out.push_str(&format!("\n// {}\n", section.heading));
+        for c in section.constants {
+            out.push_str(&format!(
+                "\n/** {} (`{}::{}`) */\nexport const {} = {};\n",
+                c.doc, c.defined_in, c.name, c.name, c.value
+            ));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_constant_has_one_name_and_a_javascript_number() {
+        let all: Vec<Constant> = sections().into_iter().flat_map(|s| s.constants).collect();
+        let mut names: Vec<&str> = all.iter().map(|c| c.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), all.len(), "a name is listed twice");
+        for c in &all {
+            let v: f64 = c.value.parse().expect("a number");
+            assert!(v.is_finite() && v > 0.0, "{}: {}", c.name, c.value);
+        }
+        assert_eq!(
+            all.iter().find(|c| c.name == "BLUR_NARROW").unwrap().value,
+            "0.8"
+        );
+    }
+}

@@ -1,0 +1,158 @@
+//! The real-time view's light volume (DESIGN §1), computed here exactly as the browser's
+//! light pass computes it (`web/src/views/volume/light-pass.js`), from the density volume of
+//! [`super::volume`].
+//!
+//! **Light.** For each light, the optical column ∫ρ ds from a point towards the light (S_k of
+//! Eq. 25 is exp(−κ_t ∫ρ ds)) is stored on a grid of half the resolution (voxels of side 2h
+//! from the same corner). From each of its voxel centres the column is a midpoint sum along
+//! the direction to the light, over the part of the path inside the density grid's box (no gas
+//! lies outside) and short of a point light, in n = ⌈length / (step·h)⌉ equal steps.
+
+use crate::error::ParamError;
+use crate::frame::packed::PackedFrame;
+use crate::frame::volume::{splat, DensityVolume, VoxelGrid};
+use crate::gas::blob_list::Light;
+use glam::Vec3;
+
+/// Most lights the GPU views draw: a light volume holds one per channel. (A scene may have more,
+/// [`crate::gas::limits::MAX_LIGHTS`]; the CPU reference still draws them all.)
+pub const VIEW_LIGHTS: usize = 4;
+
+/// Where a light is, seen from the gas.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Towards {
+    /// A point light at this position (m).
+    Point(Vec3),
+    /// A directional light: the unit vector towards it.
+    Direction(Vec3),
+}
+
+impl Towards {
+    /// Where a blob list's light is (a directional light travels along `direction`).
+    pub fn of(light: &Light) -> Self {
+        match light {
+            Light::Point { position, .. } => Towards::Point(Vec3::from_array(*position)),
+            Light::Directional { direction, .. } => {
+                Towards::Direction(-Vec3::from_array(*direction).normalize())
+            }
+        }
+    }
+
+    /// Unit direction from `x` towards the light and the distance to it (∞ if directional).
+    pub fn from(self, x: Vec3) -> (Vec3, f32) {
+        match self {
+            Towards::Point(p) => {
+                let d = p - x;
+                let len = d.length();
+                (d.normalize_or_zero(), len)
+            }
+            Towards::Direction(d) => (d, f32::INFINITY),
+        }
+    }
+}
+
+/// Distance from `x` (inside the box [lo, hi]) along unit `d` to the box's boundary.
+pub fn exit_distance(x: Vec3, d: Vec3, lo: Vec3, hi: Vec3) -> f32 {
+    (0..3)
+        .map(|a| {
+            if d[a] > 0.0 {
+                (hi[a] - x[a]) / d[a]
+            } else if d[a] < 0.0 {
+                (lo[a] - x[a]) / d[a]
+            } else {
+                f32::INFINITY
+            }
+        })
+        .fold(f32::INFINITY, f32::min)
+        .max(0.0)
+}
+
+/// The column ∫ρ ds from `x` towards `light` through `volume`, in midpoint steps of at most
+/// `step × h` (see the module's comment).
+pub fn column(volume: &DensityVolume, light: Towards, x: Vec3, step: f32) -> f32 {
+    let (d, to_light) = light.from(x);
+    if d == Vec3::ZERO {
+        return 0.0;
+    }
+    let grid = &volume.grid;
+    let length = exit_distance(x, d, grid.lo, grid.hi()).min(to_light);
+    if length <= 0.0 {
+        return 0.0;
+    }
+    let n = (length / (step * grid.h)).ceil().max(1.0);
+    let ds = length / n;
+    (0..n as usize)
+        .map(|k| volume.rho(x + d * ((k as f32 + 0.5) * ds)))
+        .sum::<f32>()
+        * ds
+}
+
+/// The light volume: [`column()`] towards each of up to [`VIEW_LIGHTS`] lights (one per channel,
+/// unused channels 0) at the centres of [`VoxelGrid::halved`].
+pub fn light_columns(
+    volume: &DensityVolume,
+    lights: &[Towards],
+    step: f32,
+) -> (VoxelGrid, Vec<f32>) {
+    let grid = volume.grid.halved();
+    let mut out = vec![0.0f32; VIEW_LIGHTS * grid.len()];
+    for k in 0..grid.dims[2] {
+        for j in 0..grid.dims[1] {
+            for i in 0..grid.dims[0] {
+                let x = grid.centre(i, j, k);
+                let idx = grid.index(i, j, k);
+                for (l, light) in lights.iter().take(VIEW_LIGHTS).enumerate() {
+                    out[VIEW_LIGHTS * idx + l] = column(volume, *light, x, step);
+                }
+            }
+        }
+    }
+    (grid, out)
+}
+
+/// The light volume of `frame` on `grid`: [`light_columns`] towards the first [`VIEW_LIGHTS`]
+/// of `lights` in steps of `step × h` (`step` must be positive), [`VIEW_LIGHTS`] floats a voxel
+/// of [`VoxelGrid::halved`].
+pub fn light_twin(
+    frame: &PackedFrame,
+    grid: &VoxelGrid,
+    lights: &[Light],
+    step: f32,
+) -> Result<Vec<f32>, ParamError> {
+    if !(step.is_finite() && step > 0.0) {
+        return Err(ParamError::new("light volume", "step must be positive"));
+    }
+    let towards: Vec<Towards> = lights.iter().map(Towards::of).collect();
+    Ok(light_columns(&splat(frame, grid), &towards, step).1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_column_of_a_uniform_slab_is_its_density_times_the_path() {
+        // One wide layer of density ρ0 fills the box; a directional light straight up.
+        let g = VoxelGrid {
+            lo: Vec3::ZERO,
+            h: 0.1,
+            dims: [4, 10, 4],
+        };
+        let v = DensityVolume {
+            grid: g,
+            density: [1.5, 0.0, 0.0, 0.0].repeat(g.len()),
+            source: vec![0.0; 4 * g.len()],
+        };
+        let x = Vec3::new(0.2, 0.25, 0.2);
+        let up = column(&v, Towards::Direction(Vec3::Y), x, 1.0);
+        assert!((up - 1.5 * 0.75).abs() < 1e-5, "{up}");
+        // A point light inside the box: only the path up to it.
+        let near = column(&v, Towards::Point(Vec3::new(0.2, 0.65, 0.2)), x, 1.0);
+        assert!((near - 1.5 * 0.4).abs() < 1e-5, "{near}");
+        let (lg, cols) = light_columns(&v, &[Towards::Direction(Vec3::Y)], 1.0);
+        assert_eq!(lg.dims, [2, 5, 2]);
+        // The lowest light voxel's centre is 0.1 m up: 0.9 m of gas above it.
+        assert!((cols[0] - 1.5 * 0.9).abs() < 1e-5, "{}", cols[0]);
+        assert_eq!(cols[1], 0.0);
+    }
+}

@@ -1,0 +1,51 @@
+//! The bounds of the two formats (the scene, DESIGN §3, and the blob list, DESIGN §4): largest
+//! coordinates, list lengths and the memory guards, checked before anything is built
+//! ([`super::validate`]) and stated in the JSON Schema ([`super::scene::json_schema`]).
+//!
+//! Costs behind the memory guards: a live blob costs the core 80 bytes (76 of state, 4 of decay
+//! factor); a blob handed to a renderer 88 more (its record), and the renderer's own copy of it
+//! 88 + 44 + its share of the hierarchy.
+
+/// Largest accepted coordinate magnitude (m).
+pub const MAX_COORD: f64 = 1.0e6;
+
+/// Most live blobs (`gas.max_blobs`): 80 MB of blob state, twice that while a step splits.
+pub const MAX_BLOBS_LIMIT: usize = 1_000_000;
+/// Most births in one step: Σ over the enabled emitters of rate × `simulation.dt` (a step
+/// holds its births until it caps the gas, so they come on top of `max_blobs`).
+pub const MAX_BIRTHS_PER_STEP: f64 = 100_000.0;
+/// Most blobs one initial set (`shapes[i]`) may hold.
+pub const MAX_SHAPE_BLOBS: usize = 200_000;
+/// Most blobs all `shapes` together make at time 0 (before any cap applies).
+pub const MAX_SHAPES_BLOBS: usize = 1_000_000;
+/// Memory guard on reversed shapes, which store their whole run: Σ over them of the blobs a
+/// step may hold × (steps + 1).
+pub const MAX_REVERSED_BLOB_STEPS: f64 = 2e6;
+/// Most steps the reversed shapes keep together (each kept step costs about 600 bytes of
+/// its own, whatever its blobs).
+pub const MAX_REVERSED_STEPS: f64 = 1e5;
+/// Most wind primitives (each is evaluated for every blob at every step).
+pub const MAX_PRIMITIVES: usize = 256;
+/// Most emitters.
+pub const MAX_EMITTERS: usize = 256;
+/// Most initial blob sets.
+pub const MAX_SHAPES: usize = 256;
+/// Most keys on a repulsor's path.
+pub const MAX_PATH_KEYS: usize = 10_000;
+
+/// Longest simulated time (s) a run may ask for: `render.time`, the CLI's `--seconds`.
+pub const MAX_SECONDS: f64 = 1e5;
+/// Most fixed steps one run may take (DESIGN §7): more is refused before it starts.
+pub const MAX_STEPS: u64 = 1_000_000;
+
+/// Largest image side in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 8192;
+/// Most lights in a scene or a blob list (each adds a shadow ray to every step of every ray).
+pub const MAX_LIGHTS: usize = 64;
+/// Most opaque objects in a scene.
+pub const MAX_OBJECTS: usize = 256;
+/// Most opaque objects in a blob list: a scene's objects plus the spheres of its repulsors.
+pub const MAX_LIST_OBJECTS: usize = MAX_OBJECTS + MAX_PRIMITIVES;
+/// Most blobs in a blob list: what the largest scene can show, `gas.max_blobs` of gas plus the
+/// reversed shapes' blobs (at most 2,000,000 over all their steps).
+pub const MAX_LIST_BLOBS: usize = MAX_BLOBS_LIMIT + 2 * MAX_SHAPES_BLOBS;

@@ -1,0 +1,47 @@
+//! The animation system (paper §4 and §6): a scene, its wind, and the gas of Gaussian blobs the
+//! wind carries, stepped in fixed steps; out of it comes the blob list a renderer takes.
+//!
+//! The formats, read strictly and checked in one walk:
+//!
+//! - [`scene`]: the scene format (DESIGN §3), its types, defaults and JSON Schema.
+//! - [`blob_list`]: the blob list (DESIGN §4), the one moment a renderer draws. It lives here,
+//!   beside the scene, because it is the scene's `render` section plus the blobs the gas made:
+//!   the two formats share their view settings, their bounds and their validation, and the
+//!   renderers downstream read it without knowing of scenes.
+//! - [`limits`]: the bounds and memory guards of both formats.
+//! - [`read`]: parsing from JSON (errors at their JSON path, version migration).
+//! - [`validate`]: the one validation walk of each format.
+//!
+//! The physics, in the order a step uses it:
+//!
+//! - [`wind`]: the wind u = u_l + u_s (Eq. 3), the large-scale primitives over the
+//!   small-scale field ([`crate::field`]); [`spline`] moves the repulsors; [`wind_slice`]
+//!   samples it on a plane.
+//! - [`emitter`], [`shapes`]: where blobs are born (§6), drawing from [`random`].
+//! - [`blobs`]: the blobs' state (Eq. 13); [`blob_gas`]: advection (Eq. 14), diffusion
+//!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
+//! - [`simulation`]: the scene's field, wind and gas advanced together, live edits, and the
+//!   blob list of the current state.
+//! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model.
+
+pub mod blob_gas;
+pub mod blob_list;
+pub mod blobs;
+pub mod emitter;
+pub mod figure1;
+pub mod limits;
+pub mod random;
+pub mod read;
+pub mod scene;
+pub mod shapes;
+pub mod simulation;
+pub mod spline;
+pub mod validate;
+pub mod wind;
+pub mod wind_slice;
+
+pub use blob_gas::{Gas, GasCounts};
+pub use blob_list::BlobList;
+pub use blobs::{Blob, Blobs};
+pub use scene::Scene;
+pub use simulation::{Edit, Simulation};

@@ -1,0 +1,425 @@
+//! The scene format, version 1 (DESIGN §3): seed, field settings with the world mapping, wind
+//! primitives, emitters, gas constants, simulation and render settings.
+//!
+//! This module holds the format's types, their defaults and its JSON Schema. Reading is
+//! strict ([`super::validate`]: `Scene::from_json` and the one validation walk): unknown keys,
+//! wrong types, non-finite or out-of-range numbers, and sizes over the memory guards
+//! ([`super::limits`]) are errors that name the JSON path (`field.size[1]: must be an even
+//! number between 4 and 256`). Every section and most keys have defaults; `version` is required.
+
+use crate::error::ParamError;
+use crate::field::lattice::{MAX_EXTENT, MIN_EXTENT};
+use crate::field::spectrum::SpectrumParams;
+use crate::field::{FieldParams, MAX_SEED};
+use crate::gas::blob_list::RenderSettings;
+use crate::gas::limits::{
+    MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_SHAPES, MAX_STEPS,
+};
+use crate::gas::shapes::Shape;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The scene format version this build writes. Older versions are migrated on load.
+pub const SCENE_VERSION: u32 = 1;
+
+fn one() -> u64 {
+    1
+}
+fn yes() -> bool {
+    true
+}
+
+/// A complete scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Scene format version (currently 1).
+    #[schemars(extend("const" = SCENE_VERSION))]
+    pub version: u32,
+    /// Seeds the field's white noise, the emitters and the splitting.
+    #[serde(default = "one")]
+    #[schemars(range(max = MAX_SEED))]
+    pub seed: u64,
+    #[serde(default)]
+    pub field: FieldSettings,
+    /// Large-scale wind primitives, superposed on the small-scale field (paper Eq. 3).
+    #[serde(default)]
+    #[schemars(length(max = MAX_PRIMITIVES))]
+    pub wind: Vec<Primitive>,
+    #[serde(default)]
+    #[schemars(length(max = MAX_EMITTERS))]
+    pub emitters: Vec<Emitter>,
+    /// Initial blob sets born at time 0, optionally played in reverse (the morph of §6).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[schemars(length(max = MAX_SHAPES))]
+    pub shapes: Vec<Shape>,
+    #[serde(default)]
+    pub gas: GasSettings,
+    #[serde(default)]
+    pub simulation: SimulationSettings,
+    #[serde(default)]
+    pub render: RenderSettings,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self {
+            version: SCENE_VERSION,
+            seed: 1,
+            field: FieldSettings::default(),
+            wind: Vec::new(),
+            emitters: Vec::new(),
+            shapes: Vec::new(),
+            gas: GasSettings::default(),
+            simulation: SimulationSettings::default(),
+            render: RenderSettings::default(),
+        }
+    }
+}
+
+/// The JSON Schema of `field.size`: four even integers from 4 to 256 (the product's bound, 2^24
+/// points, is beyond JSON Schema and stated in the description).
+fn lattice_size_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "array",
+        "items": {
+            "type": "integer",
+            "minimum": MIN_EXTENT,
+            "maximum": MAX_EXTENT,
+            "multipleOf": 2
+        },
+        "minItems": 4,
+        "maxItems": 4
+    })
+}
+
+/// The small-scale field and its world mapping.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct FieldSettings {
+    /// Lattice `[nx, ny, nz, nt]`, each an even number in 4..=256, at most 2^24 points in all.
+    #[schemars(schema_with = "lattice_size_schema")]
+    pub size: [usize; 4],
+    pub spectrum: SpectrumParams,
+    /// World metres per spatial period along x, y, z (the paper's grid spacing control).
+    #[schemars(inner(range(min = 1e-3, max = 1e4)))]
+    pub period: [f64; 3],
+    /// Seconds per temporal period.
+    #[schemars(range(min = 1e-3, max = 1e6))]
+    pub time_period: f64,
+    /// Scale of the small-scale velocity; 0 turns the turbulence off.
+    #[schemars(range(min = 0, max = 1e3))]
+    pub amplitude: f64,
+    /// Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
+    /// mean wind (the paper's suggested remedy for its independence assumption, §7).
+    pub carried_by_wind: bool,
+}
+
+impl Default for FieldSettings {
+    fn default() -> Self {
+        Self {
+            size: [32; 4],
+            spectrum: SpectrumParams::default(),
+            period: [4.0; 3],
+            time_period: 8.0,
+            amplitude: 1.0,
+            carried_by_wind: false,
+        }
+    }
+}
+
+/// A large-scale wind primitive. Any primitive may carry `decay` L (m): its velocity is
+/// multiplied by exp(−distance/L), distance from its `position` (for a repulsor, from the
+/// sphere's centre). `enabled: false` keeps it in the scene without effect.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Primitive {
+    /// Directional wind of constant `velocity` (m/s).
+    Uniform {
+        #[schemars(inner(range(min = -1e4, max = 1e4)))]
+        velocity: [f32; 3],
+        /// Where the decay is measured from (m); only used with `decay`.
+        #[serde(default)]
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
+        position: [f32; 3],
+        #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// Spherical source (strength > 0) or sink (< 0): volume flux `strength` (m³/s),
+    /// u = s/(4π) · r / (|r|² + a²)^{3/2}, regularised within the core radius a = `radius`.
+    Source {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
+        position: [f32; 3],
+        #[schemars(range(min = -1e6, max = 1e6))]
+        strength: f32,
+        #[serde(default = "default_core")]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        radius: f32,
+        #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// Vortex line through `position` along `axis` with circulation `strength` Γ (m²/s) and
+    /// core radius a: azimuthal speed Γ ρ / (2π (ρ² + a²)) at distance ρ from the axis.
+    Vortex {
+        #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
+        position: [f32; 3],
+        #[schemars(inner(range(min = -1e6, max = 1e6)))]
+        axis: [f32; 3],
+        #[schemars(range(min = -1e6, max = 1e6))]
+        strength: f32,
+        #[serde(default = "default_core")]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        radius: f32,
+        #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+    /// A sphere of `radius` whose centre follows a smooth spline through the keys
+    /// `[t, x, y, z]` of `path`; it pushes gas aside with the potential flow of a moving sphere
+    /// plus a radial repulsion of speed `strength` (m/s) at its surface, falling off as 1/r².
+    Repulsor {
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        radius: f32,
+        #[schemars(range(min = 0, max = 1e4))]
+        strength: f32,
+        #[schemars(
+            length(min = 1, max = MAX_PATH_KEYS),
+            inner(inner(range(min = -MAX_COORD, max = MAX_COORD)))
+        )]
+        path: Vec<[f64; 4]>,
+        /// Colour of the sphere in renders; none keeps it invisible.
+        #[serde(default)]
+        #[schemars(inner(range(min = 0, max = 1)))]
+        color: Option<[f32; 3]>,
+        #[serde(default)]
+        #[schemars(range(max = MAX_COORD), extend("exclusiveMinimum" = 0))]
+        decay: Option<f32>,
+        #[serde(default = "yes")]
+        enabled: bool,
+    },
+}
+
+impl Primitive {
+    /// Whether the primitive acts on the wind.
+    pub fn enabled(&self) -> bool {
+        match self {
+            Self::Uniform { enabled, .. }
+            | Self::Source { enabled, .. }
+            | Self::Vortex { enabled, .. }
+            | Self::Repulsor { enabled, .. } => *enabled,
+        }
+    }
+}
+
+fn default_core() -> f32 {
+    0.1
+}
+
+/// Where blobs are born.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum EmitterShape {
+    #[default]
+    Point,
+    /// Uniform on a disk of `radius` about `center`, perpendicular to `normal`.
+    Disk,
+    /// Uniform in a ball of `radius`.
+    Sphere,
+    /// Uniform in an axis-aligned box of full extents `size`.
+    Box,
+}
+
+/// A blob emitter (paper §6: region of birth, birth rate, σ0 and m0 of each blob).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Emitter {
+    pub shape: EmitterShape,
+    #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
+    pub center: [f32; 3],
+    #[schemars(inner(range(min = -1e6, max = 1e6)))]
+    pub normal: [f32; 3],
+    #[schemars(range(min = 0, max = MAX_COORD))]
+    pub radius: f32,
+    #[schemars(inner(range(min = 0, max = MAX_COORD)))]
+    pub size: [f32; 3],
+    /// Birth rate in blobs per second; births are evenly spaced in time.
+    #[schemars(range(min = 0, max = 1e6))]
+    pub rate: f64,
+    /// Initial standard deviation σ0 (m).
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
+    pub sigma0: f32,
+    /// Initial mass m0.
+    #[schemars(range(max = 1e12), extend("exclusiveMinimum" = 0))]
+    pub mass0: f32,
+    /// Albedo colour; none uses the medium's.
+    #[schemars(inner(range(min = 0, max = 1)))]
+    pub albedo: Option<[f32; 3]>,
+    /// Self-emission colour Q; none is no emission.
+    #[schemars(inner(range(min = 0, max = 1e6)))]
+    pub emission: Option<[f32; 3]>,
+    /// Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
+    /// exp(−age/`velocity_time`).
+    #[schemars(inner(range(min = -1e4, max = 1e4)))]
+    pub velocity: [f32; 3],
+    /// Relaxation time of the initial velocity (s).
+    #[schemars(range(max = 1e6), extend("exclusiveMinimum" = 0))]
+    pub velocity_time: f32,
+    pub enabled: bool,
+}
+
+impl Default for Emitter {
+    fn default() -> Self {
+        Self {
+            shape: EmitterShape::Point,
+            center: [0.0; 3],
+            normal: [0.0, 1.0, 0.0],
+            radius: 0.1,
+            size: [0.2; 3],
+            rate: 30.0,
+            sigma0: 0.05,
+            mass0: 1.0,
+            albedo: None,
+            emission: None,
+            velocity: [0.0; 3],
+            velocity_time: 1.0,
+            enabled: true,
+        }
+    }
+}
+
+/// Gas constants (paper Eqs. 12, 15, 16).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct GasSettings {
+    /// κ (m²/s): σ² = σ0² + κ·age.
+    #[schemars(range(min = 0, max = 1e3))]
+    pub diffusion: f64,
+    /// α (1/s): m = m0·exp(−α·age).
+    #[schemars(range(min = 0, max = 1e3))]
+    pub dissipation: f64,
+    /// Blobs whose σ would exceed this (m) are split into smaller ones; none never splits.
+    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
+    pub split_sigma: Option<f64>,
+    /// Most live blobs; the oldest are removed first beyond it (at most 1,000,000).
+    #[schemars(range(min = 1, max = MAX_BLOBS_LIMIT))]
+    pub max_blobs: usize,
+    /// Blobs lighter than this are removed.
+    #[schemars(range(min = 0, max = 1e12))]
+    pub min_mass: f64,
+}
+
+impl Default for GasSettings {
+    fn default() -> Self {
+        Self {
+            diffusion: 0.01,
+            dissipation: 0.1,
+            split_sigma: None,
+            max_blobs: 20_000,
+            min_mass: 1e-4,
+        }
+    }
+}
+
+/// Time integration of blob centres (Eq. 14).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Integrator {
+    /// Second-order midpoint rule.
+    #[default]
+    Rk2,
+    /// First-order forward Euler.
+    Euler,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct SimulationSettings {
+    /// Fixed time step (s).
+    #[schemars(range(max = 1), extend("exclusiveMinimum" = 0))]
+    pub dt: f64,
+    pub integrator: Integrator,
+}
+
+impl SimulationSettings {
+    /// Fixed steps that make up `seconds` (rounded to the nearest whole step).
+    pub fn steps_for(&self, seconds: f64) -> u64 {
+        (seconds / self.dt).round().max(0.0) as u64
+    }
+
+    /// The steps of a run of `seconds` (round(T/dt)), or an error naming `simulation.dt` and the
+    /// time when they would exceed [`MAX_STEPS`].
+    pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
+        let steps = (seconds / self.dt).round();
+        if seconds.is_finite() && steps <= MAX_STEPS as f64 {
+            return Ok(steps.max(0.0) as u64);
+        }
+        Err(ParamError::new(
+            "simulation.dt",
+            format!(
+                "{seconds} s of simulated time at dt = {:?} s is {steps:.0} steps, over the limit of {MAX_STEPS}: raise simulation.dt or simulate less time",
+                self.dt
+            ),
+        ))
+    }
+}
+
+impl Default for SimulationSettings {
+    fn default() -> Self {
+        Self {
+            dt: 1.0 / 60.0,
+            integrator: Integrator::Rk2,
+        }
+    }
+}
+
+impl Scene {
+    /// The field parameters for synthesis (lattice, spectrum, the scene's seed).
+    pub fn field_params(&self) -> FieldParams {
+        FieldParams {
+            size: self.field.size,
+            spectrum: self.field.spectrum,
+            seed: self.seed,
+        }
+    }
+
+    /// Serialises to pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("scenes serialise")
+    }
+}
+
+/// The JSON Schema of the scene format (draft 2020-12), as shipped in `public/scene.schema.json`.
+pub fn json_schema() -> String {
+    let mut schema = serde_json::to_value(schemars::schema_for!(Scene)).expect("schema serialises");
+    if let Some(obj) = schema.as_object_mut() {
+        obj.insert(
+            "$id".into(),
+            "https://windfield.dev/scene.schema.json".into(),
+        );
+        obj.insert("title".into(), "windfield scene, version 1".into());
+        obj.insert(
+            "description".into(),
+            "Every per-value range the parser enforces is stated here. Rules over several \
+             values are not: a direction (axis, normal, up) must have non-zero length; the \
+             camera's target must differ from its position and its up must not be parallel to \
+             the view; a repulsor's key times must increase; field.spectrum.k_inertial is at \
+             most half the smallest spatial extent minus one; field.size holds at most 2^24 \
+             points; the enabled emitters make at most 100,000 births a step (the sum of \
+             rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a \
+             reversed shape's run (reverse_from / simulation.dt) and render.time / \
+             simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most \
+             100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits \
+             counting max(count, gas.max_blobs) a step)."
+                .into(),
+        );
+    }
+    serde_json::to_string_pretty(&schema).expect("schema serialises") + "\n"
+}

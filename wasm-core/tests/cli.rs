@@ -1,0 +1,559 @@
+//! The `windfield` command line as a user meets it (DESIGN §7): a still at the scene's
+//! `render.time`, the summary line of every command that writes, the project's own message for
+//! negative numbers, budgets that refuse a hostile scene before it allocates (under a 3 GB
+//! address-space limit, where an allocation failure would abort), no silent NaN, and
+//! sequences whose shards never share a temporary name, whose manifest keeps two runs' frames
+//! apart, and whose shard arithmetic does not wrap.
+//!
+//! The binary is the one Cargo builds for these tests; `WINDFIELD_TEST_BIN` names another
+//! (to run the same checks against an older build).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> PathBuf {
+    std::env::var_os("WINDFIELD_TEST_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_windfield")))
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// A fresh directory for one test, removed with everything in it when the test ends.
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn scratch(name: &str) -> Scratch {
+    let dir = std::env::temp_dir().join(format!("windfield-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    Scratch(dir)
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(bin()).args(args).output().unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Runs the CLI expecting success; its stderr.
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
+    stderr(&out)
+}
+
+/// Runs the CLI expecting a refusal of its input (exit status 2); its stderr.
+fn refused(args: &[&str]) -> String {
+    let out = run(args);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
+    stderr(&out)
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn scene(name: &str) -> String {
+    s(&root().join("public/scenes").join(name)).to_string()
+}
+
+/// Writes `json` to `dir/name` and returns its path.
+fn write(dir: &Path, name: &str, json: &serde_json::Value) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, json.to_string()).unwrap();
+    s(&path).to_string()
+}
+
+#[test]
+fn a_still_without_seconds_is_the_scene_at_its_render_time() {
+    let dir = scratch("render-time");
+    let png = |name: &str| s(&dir.join(name)).to_string();
+    let small = ["--width", "64", "--height", "48"];
+    // No render.time: 3 s.
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(scene("default.json")).unwrap()).unwrap();
+    v["render"].as_object_mut().unwrap().remove("time");
+    let default = write(&dir, "untimed.json", &v);
+    let a = png("a.png");
+    ok(&[&["render", &default, "--out", &a][..], &small].concat());
+    ok(&[
+        &["render", &default, "--seconds", "3", "--out", &png("b.png")][..],
+        &small,
+    ]
+    .concat());
+    ok(&[
+        &["render", &default, "--seconds", "0", "--out", &png("c.png")][..],
+        &small,
+    ]
+    .concat());
+    let bytes = |p: &str| std::fs::read(p).unwrap();
+    assert!(
+        bytes(&a) == bytes(&png("b.png")),
+        "no --seconds is render.time's 3 s"
+    );
+    assert!(bytes(&a) != bytes(&png("c.png")), "t = 0 shows no gas yet");
+    // A scene's own render.time.
+    v["render"]["time"] = serde_json::json!(1.25);
+    let timed = write(&dir, "timed.json", &v);
+    let line = ok(&[&["render", &timed, "--out", &png("d.png")][..], &small].concat());
+    ok(&[
+        &[
+            "render",
+            &timed,
+            "--seconds",
+            "1.25",
+            "--out",
+            &png("e.png"),
+        ][..],
+        &small,
+    ]
+    .concat());
+    assert!(
+        bytes(&png("d.png")) == bytes(&png("e.png")),
+        "render.time 1.25"
+    );
+    assert!(line.contains("at t = 1.25 s"), "{line}");
+    // render.time is checked: a range, and the step budget of every run.
+    v["render"]["time"] = serde_json::json!(-1);
+    let bad = write(&dir, "bad.json", &v);
+    assert!(refused(&["render", &bad, "--out", &png("f.png")]).contains("render.time: must be"));
+    v["render"]["time"] = serde_json::json!(100);
+    v["simulation"]["dt"] = serde_json::json!(1e-5);
+    let long = write(&dir, "long.json", &v);
+    let e = refused(&["simulate", &long, "--seconds", "1", "--out", &png("g.json")]);
+    assert!(
+        e.contains("simulation.dt") && e.contains("100 s of simulated time"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_command_that_writes_says_what_it_wrote() {
+    let dir = scratch("summary");
+    let plume = s(&root().join("tests/fixtures/plume.json")).to_string();
+    let blobs = s(&dir.join("blobs.json")).to_string();
+    let line = ok(&["simulate", &plume, "--seconds", "2", "--out", &blobs]);
+    let list: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&blobs).unwrap()).unwrap();
+    let n = list["blobs"].as_array().unwrap().len();
+    assert!(n > 0);
+    let count = |n: usize| {
+        let d = n.to_string();
+        let mut out = String::new();
+        for (i, c) in d.chars().enumerate() {
+            if i > 0 && (d.len() - i) % 3 == 0 {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    };
+    let last = line.lines().last().unwrap();
+    assert!(
+        last.starts_with(&format!("wrote {blobs}: {} blobs at t = 2.00 s", count(n))),
+        "{last}"
+    );
+    assert!(last.ends_with(" s"), "{last}");
+    let still = s(&dir.join("still.png")).to_string();
+    let last = ok(&[
+        "render", &blobs, "--width", "40", "--height", "30", "--out", &still,
+    ]);
+    assert!(
+        last.trim_end().starts_with(&format!(
+            "wrote {still} (40×30): {} blobs from {blobs}, ",
+            count(n)
+        )),
+        "{last}"
+    );
+    let frames = format!("{}/f%02d.png", s(&dir));
+    let last = ok(&[
+        "render", &plume, "--frames", "0..3", "--fps", "2", "--width", "40", "--height", "30",
+        "--out", &frames,
+    ]);
+    let last = last.lines().last().unwrap();
+    assert!(
+        last.starts_with(&format!(
+            "wrote 3 frames {frames} (40×30; frames 0..3 at 2 fps)"
+        )),
+        "{last}"
+    );
+    assert!(last.contains("at t = 1.00 s in the last"), "{last}");
+}
+
+#[test]
+fn negative_numbers_get_the_projects_message_naming_flag_and_range() {
+    let dir = scratch("negative");
+    let out = |name: &str| s(&dir.join(name)).to_string();
+    let default = scene("default.json");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["simulate", &default, "--seconds", "-1"],
+            "--seconds: must be a number between 0 and 100000 (got -1)",
+        ),
+        (
+            vec!["render", &default, "--seconds", "-1"],
+            "--seconds: must be a number between 0 and 100000 (got -1)",
+        ),
+        (
+            vec!["render", &default, "--width", "-5"],
+            "--width: must be an integer between 1 and 8192 (got -5)",
+        ),
+        (
+            vec!["render", &default, "--height", "-5"],
+            "--height: must be an integer between 1 and 8192 (got -5)",
+        ),
+        (
+            vec!["render", &default, "--frames", "0..4", "--fps", "-24"],
+            "--fps: must be a number greater than 0",
+        ),
+        (
+            vec!["render", &default, "--frames", "-1..4", "--fps", "24"],
+            "--frames: expected A..B",
+        ),
+        (
+            vec![
+                "render", &default, "--frames", "0..4", "--fps", "24", "--shard", "-1/3",
+            ],
+            "--shard: expected I/N",
+        ),
+        (
+            vec!["generate", "--seed", "-1"],
+            "--seed: must be an integer between 0 and 9007199254740992 (got -1)",
+        ),
+        (
+            vec!["generate", "--sigma", "-1"],
+            "--sigma: must be a finite number between 0 and 100 (got -1)",
+        ),
+        (
+            vec!["generate", "--epsilon", "-2"],
+            "--epsilon: must be a finite number greater than 0",
+        ),
+        (
+            vec!["generate", "--size", "-8"],
+            "--size: expected N or NX,NY,NZ,NT",
+        ),
+    ];
+    for (args, message) in cases {
+        let o = out("never.out");
+        let f = out("f%02d.png");
+        let target = if args.contains(&"--frames") { &f } else { &o };
+        let e = refused(&[&args[..], &["--out", target]].concat());
+        assert!(e.contains(message), "{args:?}: {e}");
+        assert!(!e.contains("'--"), "{args:?}: clap's hint in {e}");
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing written"
+    );
+}
+
+/// Runs the CLI under an address-space limit of 3 GB (`ulimit -v 3000000`, in KiB).
+fn run_limited(args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(r#"ulimit -v 3000000 && exec "$0" "$@""#)
+        .arg(bin())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn hostile_scenes_are_refused_under_3_gb_not_aborted() {
+    let dir = scratch("hostile");
+    let hostile = |name: &str| s(&root().join("wasm-core/tests/hostile").join(name)).to_string();
+    for (file, path) in [
+        ("emitter-flood.json", "emitters: "),
+        ("shape-flood.json", "shapes: "),
+        ("reversed-steps-flood.json", "shapes: "),
+        ("reversed-split-flood.json", "shapes: "),
+    ] {
+        for command in ["simulate", "render"] {
+            let out = s(&dir.join("out")).to_string();
+            let o = run_limited(&[command, &hostile(file), "--seconds", "2", "--out", &out]);
+            let e = stderr(&o);
+            assert_eq!(
+                o.status.code(),
+                Some(2),
+                "{command} {file}: {:?} {e}",
+                o.status
+            );
+            assert!(e.contains(path), "{command} {file}: {e}");
+        }
+    }
+    // Blob lists too: one blob past the limit is refused as it is read.
+    let blob = r#"{"center":[0,0,0],"sigma":1,"mass":1}"#;
+    let n = windfield::gas::limits::MAX_LIST_BLOBS + 1;
+    let list = dir.join("flood.json");
+    std::fs::write(
+        &list,
+        format!("{{\"blobs\":[{}]}}", vec![blob; n].join(",")),
+    )
+    .unwrap();
+    let o = run_limited(&["render", s(&list), "--out", s(&dir.join("flood.png"))]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{:?} {e}", o.status);
+    assert!(e.contains("blobs") && e.contains("at most"), "{e}");
+}
+
+#[test]
+fn a_vanishing_sigma_gives_the_frozen_field_and_a_nan_field_is_refused_with_its_place() {
+    let dir = scratch("sigma");
+    let npy = |name: &str| s(&dir.join(name)).to_string();
+    let field = [
+        "generate",
+        "--size",
+        "8",
+        "--k-inertial",
+        "1",
+        "--seed",
+        "5",
+    ];
+    ok(&[
+        &field[..],
+        &["--sigma", "1e-200", "--out", &npy("tiny.npy")],
+    ]
+    .concat());
+    ok(&[&field[..], &["--sigma", "0", "--out", &npy("frozen.npy")]].concat());
+    let tiny = std::fs::read(npy("tiny.npy")).unwrap();
+    assert!(
+        tiny == std::fs::read(npy("frozen.npy")).unwrap(),
+        "σ = 1e-200 is σ = 0"
+    );
+    let (shape, data) = windfield::field::npy::read_f32(&tiny[..]).unwrap();
+    assert_eq!(shape, vec![8, 8, 8, 8, 3]);
+    assert!(data.iter().all(|v| v.is_finite()) && data.iter().any(|&v| v != 0.0));
+    // Its statistics are sane: divergence-free, the expected energy, no temporal spread.
+    let out = run(&["stats", &npy("tiny.npy"), "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(
+        report["divergence_ratio"].as_f64().unwrap() < 1e-10,
+        "{report}"
+    );
+    let ratio = report["energy_ratio"].as_f64().unwrap();
+    assert!((0.5..2.0).contains(&ratio), "{report}");
+    for shell in report["shells"].as_array().unwrap() {
+        assert!(shell["temporal_spread"].as_f64().unwrap() < 1e-3, "{shell}");
+    }
+    // A NaN at (t, z, y, x, component) = (1, 2, 3, 4, 1): flat index ((((1·8+2)·8+3)·8+4)·3+1.
+    let mut bad = data.clone();
+    let flat = (((8 + 2) * 8 + 3) * 8 + 4) * 3 + 1;
+    bad[flat] = f32::NAN;
+    let mut bytes = Vec::new();
+    windfield::field::npy::write_f32(&mut bytes, &shape, &bad).unwrap();
+    std::fs::write(npy("nan.npy"), bytes).unwrap();
+    let nan = npy("nan.npy");
+    for args in [
+        vec!["stats", &nan, "--k-inertial", "1"],
+        vec!["stats", &nan, "--k-inertial", "1", "--json"],
+    ] {
+        let out = run(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        let e = stderr(&out);
+        assert!(
+            e.contains(&format!("value {flat} ")) && e.contains("(1, 2, 3, 4, 1) is NaN"),
+            "{e}"
+        );
+        assert!(out.stdout.is_empty());
+    }
+}
+
+/// A sequence of the default scene into `pattern`, with `extra` flags.
+fn sequence(pattern: &str, fps: &str, extra: &[&str]) -> Command {
+    let mut c = Command::new(bin());
+    c.args([
+        "render",
+        &scene("default.json"),
+        "--frames",
+        "0..16",
+        "--fps",
+        fps,
+        "--width",
+        "48",
+        "--height",
+        "36",
+        "--out",
+        pattern,
+    ])
+    .args(extra);
+    c
+}
+
+/// Name → bytes of the frames (not the manifest) in `dir`.
+fn frames(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| !p.to_str().unwrap().ends_with(".windfield.json"))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_str().unwrap().to_string(),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn parallel_shards_into_a_pattern_without_extension_write_the_unsharded_bytes() {
+    let dir = scratch("shards");
+    let whole = format!("{}/whole/frame.%03d", s(&dir));
+    assert!(sequence(&whole, "24", &[])
+        .output()
+        .unwrap()
+        .status
+        .success());
+    let want = frames(&dir.join("whole"));
+    assert_eq!(want.len(), 16);
+    for attempt in 0..3 {
+        let pattern = format!("{}/sharded{attempt}/frame.%03d", s(&dir));
+        let children: Vec<_> = (0..2)
+            .map(|i| {
+                sequence(&pattern, "24", &["--shard", &format!("{i}/2")])
+                    .stderr(std::process::Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        for child in children {
+            let out = child.wait_with_output().unwrap();
+            assert!(out.status.success(), "attempt {attempt}: {}", stderr(&out));
+        }
+        let got = frames(&dir.join(format!("sharded{attempt}")));
+        assert!(
+            got.keys().eq(want.keys()),
+            "attempt {attempt}: {:?}",
+            got.keys()
+        );
+        for (name, bytes) in &got {
+            assert!(bytes == &want[name], "attempt {attempt}: {name} differs");
+        }
+    }
+}
+
+#[test]
+fn a_resume_into_another_runs_frames_is_refused_unless_forced() {
+    let dir = scratch("manifest");
+    let pattern = format!("{}/f%02d.png", s(&dir));
+    let first = sequence(&pattern, "24", &[]).output().unwrap();
+    assert!(first.status.success(), "{}", stderr(&first));
+    let manifest = dir.join("f%02d.png.windfield.json");
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    assert_eq!(
+        (m["fps"].as_f64(), m["width"].as_u64(), m["height"].as_u64()),
+        (Some(24.0), Some(48), Some(36))
+    );
+    let before = frames(&dir);
+    // The same run again: every frame is complete, nothing is written.
+    let again = sequence(&pattern, "24", &[]).output().unwrap();
+    assert!(
+        again.status.success() && stderr(&again).contains("nothing to write"),
+        "{}",
+        stderr(&again)
+    );
+    // Another frame rate into the same frames: refused, nothing touched.
+    let other = sequence(&pattern, "30", &[]).output().unwrap();
+    assert_eq!(other.status.code(), Some(2), "{}", stderr(&other));
+    let e = stderr(&other);
+    assert!(
+        e.contains("another run") && e.contains("24 fps, not 30") && e.contains("--force"),
+        "{e}"
+    );
+    assert!(frames(&dir) == before, "a refused run touched the frames");
+    // Another scene (another seed), the same fps and size: refused too.
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(scene("default.json")).unwrap()).unwrap();
+    v["seed"] = serde_json::json!(99);
+    let elsewhere = scratch("manifest-scene");
+    let reseeded = write(&elsewhere, "reseeded.json", &v);
+    let other = Command::new(bin())
+        .args([
+            "render", &reseeded, "--frames", "0..16", "--fps", "24", "--width", "48", "--height",
+            "36", "--out", &pattern,
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(other.status.code(), Some(2), "{}", stderr(&other));
+    assert!(
+        stderr(&other).contains("another scene"),
+        "{}",
+        stderr(&other)
+    );
+    // With --force it renders over them, and the manifest is the new run's.
+    let forced = sequence(&pattern, "30", &["--force"]).output().unwrap();
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    assert_eq!(m["fps"].as_f64(), Some(30.0));
+    assert!(frames(&dir) != before, "--force rendered over the frames");
+    let resumed = sequence(&pattern, "30", &[]).output().unwrap();
+    assert!(resumed.status.success(), "{}", stderr(&resumed));
+}
+
+#[test]
+fn shards_of_more_than_2_to_the_63_render_their_own_frames() {
+    let dir = scratch("huge-shards");
+    let whole = format!("{}/whole/f%02d.png", s(&dir));
+    assert!(sequence(&whole, "24", &[])
+        .output()
+        .unwrap()
+        .status
+        .success());
+    let want = frames(&dir.join("whole"));
+    for (i, (shard, expect)) in [
+        (format!("5/{}", u64::MAX), vec!["f05.png"]),
+        (format!("9/{}", (1u128 << 63) + 7), vec!["f09.png"]),
+        (format!("3/{}", 1u128 << 64), vec!["f03.png"]),
+        (format!("{}/{}", u64::MAX - 1, u64::MAX), vec![]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let sub = dir.join(format!("shard{i}"));
+        let pattern = format!("{}/f%02d.png", s(&sub));
+        let out = sequence(&pattern, "24", &["--shard", &shard])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{shard}: {}", stderr(&out));
+        let got = if sub.exists() {
+            frames(&sub)
+        } else {
+            Default::default()
+        };
+        assert_eq!(got.keys().collect::<Vec<_>>(), expect, "{shard}");
+        for (name, bytes) in &got {
+            assert!(bytes == &want[name], "{shard}: {name} differs");
+        }
+    }
+}
