@@ -17,17 +17,21 @@ const QUALITY = 'draft';
 const SIZE = { width: 160, height: 120, quality: QUALITY };
 const MODES = ['points', 'raymarch', 'exact'];
 
-/** Opens the playground on `scene`, stepped `steps` times and paused. */
-async function open(page, steps) {
+/**
+ * Opens the playground on `scene` stepped by `stepper` ('cpu': the worker, so that the same
+ * state is drawn again bit for bit; 'gpu': the GPU stepper), stepped `steps` times and paused.
+ */
+async function open(page, steps, stepper = 'cpu') {
   await page.goto('./?view=points');
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
-  await page.evaluate(async ({ sc, n }) => {
+  await page.evaluate(async ({ sc, n, kind }) => {
     const w = window.windfield;
     w.pause();
+    await w.setStepper(kind);
     await w.setScene(sc);
     await w.step(n);
-  }, { sc: scene, n: steps });
+  }, { sc: scene, n: steps, kind: stepper });
 }
 
 /**
@@ -161,6 +165,39 @@ test('a context the browser took for newer ones comes back when asked, whole', a
   expect.soft(r.volume, 'no volumes while the context is lost').toBeNull();
   expect(r.restored, 'restored when asked').toBe(true);
   expectVolumes(await volumeSums(page), sums, 'after the restore');
+  expect.soft(stale, 'WebGL objects of the lost context used after the restore').toEqual([]);
+  expect.soft(errors).toEqual([]);
+});
+
+test('the gas the GPU steps comes back after a lost context: the worker steps it again to where it was', async ({ page }) => {
+  test.setTimeout(60_000);
+  const errors = collectErrors(page);
+  const stale = staleWarnings(page);
+  await open(page, 40, 'gpu');
+  const before = await page.evaluate(() => window.windfield.stats());
+  expect(before.stepper).toBe('gpu');
+  const sums = await volumeSums(page);
+  await page.evaluate(async () => {
+    const canvas = document.querySelector('#canvas');
+    const ext = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
+    const event = (name) => new Promise((resolve) => canvas.addEventListener(name, resolve, { once: true }));
+    const lost = event('webglcontextlost');
+    ext.loseContext();
+    await lost;
+    await new Promise((r) => setTimeout(r, 50));
+    const restored = event('webglcontextrestored');
+    ext.restoreContext();
+    await restored;
+  });
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().stepper)).toBe('gpu');
+  // No gas lost: the same blobs at the same time, and volumes that hold the same mass.
+  await page.evaluate(() => window.windfield.step(0));
+  const after = await page.evaluate(() => window.windfield.stats());
+  expect(after.blobs).toBe(before.blobs);
+  expect(after.time).toBe(before.time);
+  const again = await volumeSums(page);
+  expect(within(again.density.gpu, again.density.twin, 0.01)).toBe(true);
+  expect(within(again.density.gpu, sums.density.gpu, 0.01)).toBe(true);
   expect.soft(stale, 'WebGL objects of the lost context used after the restore').toEqual([]);
   expect.soft(errors).toEqual([]);
 });

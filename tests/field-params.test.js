@@ -1,7 +1,7 @@
 // The page's field-parameter checks follow the core's rules and paths.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { DEFAULT_FIELD, maxInertial, validateField, withSize } from '../web/src/field-params.js';
+import { DEFAULT_FIELD, maxInertial, validateField, withSize } from '../web/src/pages/field-params.js';
 
 test('the default field is the paper statistics on 32^4 and valid', () => {
   assert.deepEqual(validateField(DEFAULT_FIELD), []);

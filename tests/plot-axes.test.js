@@ -2,7 +2,7 @@
 // written as people write them.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { formatTick, linearAxis, logAxis } from '../web/src/plot-axes.js';
+import { formatTick, linearAxis, logAxis } from '../web/src/charts/plot-axes.js';
 
 test('a log axis has major ticks at the decades and labels 1, 2 and 5 times them', () => {
   const axis = logAxis(0.0012, 3.4);

@@ -2,7 +2,7 @@
 // rises slowly and settles short of where it last fell from; a fixed scale stays fixed.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ResolutionGovernor, SMALL_SCREEN_SCALE, startScale } from '../web/src/resolution.js';
+import { ResolutionGovernor, SMALL_SCREEN_SCALE, startScale } from '../web/src/player/resolution.js';
 
 /** Feeds `fps(scale)` every 100 ms for `seconds`; returns the scales taken. */
 function run(governor, fps, seconds, start = 0) {

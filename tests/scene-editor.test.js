@@ -4,7 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadCore, root } from './support/core.js';
-import { latticeChoices, LISTS, TEMPLATES } from '../web/src/scene-editor.js';
+import { latticeChoices, LISTS, TEMPLATES } from '../web/src/pages/scene-editor.js';
 import { anchorOf, moved } from '../web/src/views/guides-layer.js';
 
 const core = await loadCore();

@@ -2,7 +2,8 @@
 // tile's list (checked by brute force), lists run front to back, blobs behind are dropped.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { binBlobs, TRUNCATION } from '../web/src/engine/tiles.js';
+import { TRUNCATION } from '../web/src/generated/contract.js';
+import { binBlobs } from '../web/src/engine/tiles.js';
 
 const view = {
   position: [0.2, 1, 4],

@@ -32,7 +32,7 @@ function request(id, type, args = {}) {
   });
 }
 
-const scene = (size, seed) => ({ version: 1, seed, field: { size, spectrum: { k_inertial: 2 } } });
+const scene = (size, seed) => JSON.stringify({ version: 1, seed, field: { size, spectrum: { k_inertial: 2 } } });
 
 test('a newer load cancels a synthesis in flight, and the newer scene is loaded', async () => {
   const first = scene([16, 16, 16, 16], 1);
@@ -54,7 +54,7 @@ test('a newer load cancels a synthesis in flight, and the newer scene is loaded'
   const reply = await secondReply;
   assert.equal(reply.ok, true, reply.error);
   assert.deepEqual(reply.result.size, [12, 12, 12, 8]);
-  assert.equal(reply.result.scene.seed, 2);
+  assert.equal(JSON.parse(reply.result.sceneJson).seed, 2);
   const stats = await request(3, 'fieldStats');
   assert.deepEqual(stats.result.size, [12, 12, 12, 8]);
 });

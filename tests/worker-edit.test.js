@@ -23,15 +23,15 @@ function engine() {
 
 test('an edit of a wind primitive and of an emitter keeps the blobs and the time', async () => {
   const { handlers } = engine();
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   const before = handlers.advance({ steps: 60 }).result;
   const edited = structuredClone(scene);
   edited.wind[0].velocity = [0.3, 0, 0];
   edited.emitters[0].center = [0.5, 0, 0];
-  const out = await handlers.edit({ id: 2, scene: edited });
+  const out = await handlers.edit({ id: 2, scene: JSON.stringify(edited) });
   assert.equal(out.result.restarted, false);
   assert.equal(out.result.fieldPending, false);
-  assert.deepEqual(out.result.scene.wind[0].velocity, [0.3, 0, 0]);
+  assert.deepEqual(JSON.parse(out.result.sceneJson).wind[0].velocity, [0.3, 0, 0]);
   const after = handlers.advance({ steps: 0 }).result;
   assert.equal(after.count, before.count);
   assert.equal(after.time, before.time);
@@ -41,11 +41,11 @@ test('an edit of a wind primitive and of an emitter keeps the blobs and the time
 
 test('a field edit keeps the gas stepping meanwhile and swaps the new field in', async () => {
   const { handlers, reports } = engine();
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   handlers.advance({ steps: 30 });
   const edited = structuredClone(scene);
   edited.field.size = [12, 12, 12, 8];
-  const out = await handlers.edit({ id: 2, scene: edited });
+  const out = await handlers.edit({ id: 2, scene: JSON.stringify(edited) });
   assert.equal(out.result.fieldPending, true);
   // The gas steps while the new field is synthesised.
   const stepped = handlers.advance({ steps: 10 }).result;
@@ -58,21 +58,21 @@ test('a field edit keeps the gas stepping meanwhile and swaps the new field in',
 
 test('an invalid edit is refused and the scene runs on unchanged', async () => {
   const { handlers } = engine();
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   handlers.advance({ steps: 20 });
   const bad = structuredClone(scene);
   bad.gas = { diffusion: -1 };
-  await assert.rejects(handlers.edit({ id: 2, scene: bad }), /gas\.diffusion/);
+  await assert.rejects(handlers.edit({ id: 2, scene: JSON.stringify(bad) }), /gas\.diffusion/);
   assert.ok(handlers.advance({ steps: 1 }).result.time > 0.3);
 });
 
 test('reset restarts the edited scene at t = 0', async () => {
   const { handlers } = engine();
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   handlers.advance({ steps: 40 });
   const edited = structuredClone(scene);
   edited.emitters[0].rate = 30;
-  await handlers.edit({ id: 2, scene: edited });
+  await handlers.edit({ id: 2, scene: JSON.stringify(edited) });
   const frame = (await handlers.reset({ id: 3 })).result;
   assert.equal(frame.time, 0);
   const one = handlers.advance({ steps: 60 }).result;

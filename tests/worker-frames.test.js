@@ -28,7 +28,7 @@ function assertWholeBuffers(name, { result, transfer }) {
 
 test('frames are whole typed arrays, and the packed blobs are the blob list', async () => {
   const handlers = createHandlers(core, () => {});
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   const { moved: frame, bytes } = assertWholeBuffers('advance', handlers.advance({ steps: 60 }));
   assert.ok(frame.count > 1000, `${frame.count} blobs`);
   assert.ok(frame.blobs instanceof Uint32Array && frame.info instanceof Float32Array && frame.spheres instanceof Float32Array);
@@ -54,9 +54,9 @@ test('frames are whole typed arrays, and the packed blobs are the blob list', as
 
 test('the exact march\'s frame is whole typed arrays too', async () => {
   const handlers = createHandlers(core, () => {});
-  await handlers.load({ id: 1, scene });
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
   handlers.advance({ steps: 30 });
-  const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16 }));
+  const { moved } = assertWholeBuffers('exactFrame', handlers.exactFrame({ view, width: 64, height: 48, fraction: 0.5, res: 16, tile: 16 }));
   assert.ok(moved.count > 0 && moved.heads.length % (4 * BLOBS_PER_ROW) === 0 && moved.list.length % BLOBS_PER_ROW === 0);
   // The shadow grid's header, then `lights × res³` columns padded to whole rows.
   const [res, lights] = [moved.grid[6], moved.grid[7]];
@@ -83,7 +83,7 @@ test('a frame is made whole by one core call: no getter depends on the call befo
 
 test('the worker refuses a run over the step budget, or a step count that is not one, before it starts', async () => {
   const handlers = createHandlers(core, () => {});
-  await handlers.load({ id: 1, scene: { ...scene, simulation: { dt: 0.001, integrator: 'rk2' } } });
+  await handlers.load({ id: 1, scene: JSON.stringify({ ...scene, simulation: { dt: 0.001, integrator: 'rk2' } }) });
   const time = () => handlers.advance({ steps: 0 }).result.time;
   assert.throws(() => handlers.advance({ steps: 1_000_001 }), /simulation\.dt: 1000\.001 s of simulated time .* 1000001 steps, over the limit of 1000000/);
   for (const bad of [-1, 1.5, Number.NaN]) assert.throws(() => handlers.advance({ steps: bad }), /steps: must be a whole number/);

@@ -2,6 +2,14 @@
 // dist/embed.js), its attributes, properties, methods and events, the playground's
 // `window.windfield` (DESIGN §5), and the scene (DESIGN §3) and blob list (DESIGN §4) formats.
 // Importing the package's main entry defines the element; `import type` from it costs nothing.
+//
+// The scene's types are generated from its JSON Schema (public/scene.schema.json) into
+// ./scene.d.ts by scripts/scene-types.mjs (`npm run types:scene`): `Scene` as the core normalised
+// it, `SceneInput` as it may be given. The rest is written here.
+
+import type { RenderSettings, Scene, SceneInput } from './scene.js';
+
+export type * from './scene.js';
 
 /** Three numbers: a point or a vector (m), or a colour (linear RGB). */
 export type Vec3 = [number, number, number];
@@ -10,99 +18,11 @@ export type Vec3 = [number, number, number];
 export type WindFieldView = 'raymarch' | 'points' | 'exact';
 /** Quality of the marched views: the volume's voxels and steps, the exact march's shadow grid. */
 export type WindFieldQuality = 'draft' | 'standard' | 'high';
-
-/** A wind primitive (any may add `decay` in m, and be switched off with `enabled: false`). */
-export type WindPrimitive = { decay?: number | null; enabled?: boolean } & (
-  | { type: 'uniform'; velocity: Vec3; position?: Vec3 }
-  | { type: 'source'; position: Vec3; strength: number; radius?: number }
-  | { type: 'vortex'; position: Vec3; axis: Vec3; strength: number; radius?: number }
-  | { type: 'repulsor'; radius: number; strength: number; path: [number, number, number, number][]; color?: Vec3 | null }
-);
-
-/** An emitter of blobs. */
-export interface Emitter {
-  shape?: 'point' | 'disk' | 'sphere' | 'box';
-  center?: Vec3;
-  normal?: Vec3;
-  radius?: number;
-  /** Full extents of a box (m). */
-  size?: Vec3;
-  /** Blobs per second. */
-  rate?: number;
-  sigma0?: number;
-  mass0?: number;
-  albedo?: Vec3 | null;
-  emission?: Vec3 | null;
-  velocity?: Vec3;
-  velocity_time?: number;
-  enabled?: boolean;
-}
-
-/** An opaque object of the render settings. */
-export type SceneObject =
-  | { type: 'sphere'; center: Vec3; radius: number; color: Vec3 }
-  | { type: 'plane'; point: Vec3; normal: Vec3; color: Vec3 }
-  | { type: 'cylinder'; base: Vec3; axis: Vec3; radius: number; height: number; color: Vec3; model?: 'mug' | 'teapot' | null };
-
-export type Light =
-  | { type: 'point'; position: Vec3; color: Vec3 }
-  | { type: 'directional'; direction: Vec3; color: Vec3 };
-
-export interface Camera {
-  position: Vec3;
-  target: Vec3;
-  up: Vec3;
-  /** The full vertical angle (degrees). */
-  fov_y_deg: number;
-}
-
-export interface Medium {
-  extinction: number | Vec3;
-  albedo: Vec3;
-  phase: { type: 'isotropic' } | { type: 'henyey-greenstein'; g: number };
-}
-
-export interface RenderSettings {
-  camera: Camera;
-  image: { width: number; height: number; encoding: 'srgb' | 'linear' };
-  medium: Medium;
-  lights: Light[];
-  shadows: boolean;
-  background: Vec3;
-  objects: SceneObject[];
-}
-
-/** A scene as the core holds it (DESIGN §3, version 1): every key filled in. */
-export interface Scene {
-  version: 1;
-  seed: number;
-  field: {
-    /** [nx, ny, nz, nt]. */
-    size: [number, number, number, number];
-    spectrum: { law: 'kolmogorov' | 'paper-literal'; epsilon: number; k_inertial: number; sigma: number };
-    /** World metres per spatial period. */
-    period: Vec3;
-    /** Seconds per temporal period. */
-    time_period: number;
-    amplitude: number;
-    carried_by_wind: boolean;
-  };
-  wind: WindPrimitive[];
-  emitters: Emitter[];
-  /** Initial blob sets (the morph's shapes). */
-  shapes?: Record<string, unknown>[];
-  gas: { diffusion: number; dissipation: number; split_sigma: number | null; max_blobs: number; min_mass: number };
-  simulation: { dt: number; integrator: 'rk2' | 'euler' };
-  render: RenderSettings;
-}
-
-type DeepPartial<T> = T extends (infer U)[] ? DeepPartial<U>[] : T extends object ? { [K in keyof T]?: DeepPartial<T[K]> } : T;
-
-/** A scene to load: `version` and any subset of the keys (the core fills in the rest). */
-export type SceneInput = DeepPartial<Omit<Scene, 'version'>> & { version: 1 };
+/** What steps the gas: the engine worker's core, or the GPU. */
+export type WindFieldStepper = 'cpu' | 'gpu';
 
 /** The blob list (DESIGN §4): the render input of the reference renderer and the CLI. */
-export interface BlobList extends Omit<RenderSettings, 'image'> {
+export interface BlobList extends Omit<RenderSettings, 'image' | 'time'> {
   image: { width: number; height: number; encoding: 'srgb' | 'linear' };
   blobs: { center: Vec3; sigma: number; mass: number; albedo?: Vec3; emission?: Vec3; age?: number; sigma0?: number; mass0?: number }[];
 }
@@ -120,6 +40,14 @@ export interface WindFieldStats {
   scale: number;
   packMs: number;
   frameBytes: number;
+  /** Frames drawn since the player started. */
+  frames: number;
+  /** What holds the frame rate down: the worker's step, drawing the view, the display itself, or nothing (paused). */
+  limitedBy: 'worker' | 'view' | 'display' | 'paused';
+  /** What steps the gas now. */
+  stepper: WindFieldStepper;
+  /** With the playground's `?profile`: the real-time view's passes on the GPU (ms). */
+  passes?: Record<string, number>;
 }
 
 export interface CaptureOptions {
@@ -137,6 +65,13 @@ export interface WindFieldMethods {
   getScene(): Scene | null;
   /** Loads `scene` from its start; rejects with an Error naming the bad key, and keeps the old one. */
   setScene(scene: SceneInput): Promise<Scene>;
+  /**
+   * Applies an edited scene to the running one: the gas keeps its blobs and its time (a change
+   * of the field's settings is synthesised meanwhile); rejects like `setScene`.
+   */
+  editScene(scene: SceneInput): Promise<Scene>;
+  /** Chooses what steps the gas (`auto`: the GPU where it can); resolves with the one that steps now. */
+  setStepper(kind: WindFieldStepper | 'auto'): Promise<WindFieldStepper>;
   pause(): void;
   play(): void;
   /** Takes `n` fixed steps (deterministic) and draws. */
@@ -182,12 +117,14 @@ export declare class WindFieldElement extends HTMLElement {
   loading: 'lazy' | 'eager';
   /** `poster`: an image URL shown until the scene is ready. */
   poster: string | null;
-  /** `poster-time`: seconds the scene is simulated to when not playing (default 3). */
+  /** `poster-time`: seconds the scene is simulated to when not playing (by default the scene's `render.time`, else 3). */
   posterTime: number;
   /** `view`: `raymarch` (default), `points` or `exact`. */
   view: WindFieldView;
   /** `alt`: the canvas's text alternative (by default one naming the scene). */
   alt: string | null;
+  /** `stir`: dragging over the view stirs the gas instead of orbiting it (off unless set). */
+  stir: boolean;
   /** Resolves once the current scene is loaded and drawn; rejects when it cannot be. */
   readonly ready: Promise<void>;
   /** Whether the current scene is loaded. */
@@ -211,6 +148,8 @@ export interface WindFieldPageAPI extends WindFieldMethods {
   getScene(): Scene;
   /** Resolves once the page's first scene is loaded. */
   ready: Promise<void>;
+  /** Shows the view `mode`; throws for any other. */
+  setView(mode: WindFieldView): void;
   /** A WebM of `frames` fixed steps, one a frame. */
   recordWebM(options?: { frames?: number; width?: number; height?: number; fps?: number; mode?: WindFieldView }): Promise<Blob>;
   /** Times frames drawn from scratch (ms, the median). */
@@ -221,6 +160,8 @@ export interface WindFieldPageAPI extends WindFieldMethods {
   fieldStats(spectrum?: Partial<Scene['field']['spectrum']>): Promise<unknown>;
   /** The small-scale wind at (x, y, z) m and t s. */
   sample(x: number, y: number, z: number, t: number): Promise<unknown>;
+  /** The engine's health: its memory (bytes), the blob count, blobs whose centre is not finite. */
+  health(): Promise<{ wasmBytes: number; blobs: number; nonFinite: number }>;
 }
 
 declare global {

@@ -14,6 +14,7 @@ if (player) {
   el.posterTime = 1.5;
   el.view = 'points';
   el.alt = 'Steam rising from a mug';
+  el.stir = true;
   el.load();
   el.addEventListener('ready', (e) => {
     const scene: Scene = e.detail.scene;
@@ -33,6 +34,11 @@ if (player) {
     const png: string = await el.captureGPU({ mode: 'raymarch', width: 320, height: 240, quality: 'high' });
     const still: string = await el.renderReference({ width: 160 });
     console.log(loaded, stats.blobs + stats.time, list.blobs[0]?.sigma, png.length, still.length);
+    const edited: Scene = await el.editScene({ version: 1, wind: [{ type: 'uniform', velocity: [0, 1, 0] }] });
+    const time: number | null | undefined = edited.render.time;
+    const stepper: 'cpu' | 'gpu' = await el.setStepper('auto');
+    const limit: 'worker' | 'view' | 'display' | 'paused' = stats.limitedBy;
+    console.log(time, stepper, stats.stepper, stats.frames, limit);
   })();
 
   // @ts-expect-error: not a view
@@ -47,6 +53,12 @@ if (player) {
   void el.setScene({ seed: 1 });
   // @ts-expect-error: not a capture mode
   void el.captureGPU({ mode: 'wireframe' });
+  // @ts-expect-error: not a stepper
+  void el.setStepper('wasm');
+  // @ts-expect-error: stir is on or off
+  el.stir = 'yes';
+  // @ts-expect-error: a uniform wind needs its velocity
+  void el.editScene({ version: 1, wind: [{ type: 'uniform' }] });
   el.addEventListener('error', (e) => {
     // @ts-expect-error: the detail carries a message, not a code
     console.log(e.detail.code);
@@ -61,7 +73,10 @@ const api = window.windfield;
 if (api) {
   void api.ready.then(async () => {
     api.pause();
+    api.setView('exact');
     await api.step(10);
+    const health = await api.health();
+    console.log(health.wasmBytes, health.nonFinite);
     const video: Blob = await api.recordWebM({ frames: 4, mode: 'points' });
     console.log(api.getScene().seed, video.size);
   });

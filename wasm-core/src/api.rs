@@ -15,6 +15,7 @@
 use crate::field::spectrum::SpectrumParams;
 use crate::field::statistics;
 use crate::field::{FieldParams, Synthesis, TurbulentField};
+use crate::frame::gpu_steps::{gas_by_slot, GpuSteps};
 use crate::frame::light_volume::light_twin;
 use crate::frame::volume::{density_twin, VoxelGrid};
 use crate::frame::{merged_list, MarchFrame, PackedFrame, ViewFrame};
@@ -42,6 +43,13 @@ export interface ViewFrame { words: Uint32Array; info: Float32Array; spheres: Fl
 /** The exact march's frame (`frame::MarchFrame`): the merged blobs packed, their description
  *  and the shadow grid (`frame::shadow_grid`). */
 export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Float32Array; }
+/** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
+ *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
+ *  slot and σ range after the last step. */
+export interface GpuSteps { births: Float32Array; birthSlots: Uint32Array; freed: Uint32Array;
+  ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; count: number;
+  highWater: number; sigmaRange: Float32Array; spheres: Float32Array; emissive: boolean;
+  time: number; }
 "#;
 
 /// A plain JavaScript object of `entries` (name, value).
@@ -298,6 +306,50 @@ impl SceneSimulation {
     ) -> Result<Vec<f32>, JsError> {
         let plane = SlicePlane::new(xyz(origin), xyz(u), xyz(v), nu, nv).map_err(js_error)?;
         Ok(self.inner.wind_slice(&plane))
+    }
+
+    /// Hands the centres to the GPU (`Simulation::hand_centres_to_gpu`): the whole gas as blob
+    /// records in slot order (`frame::gpu_steps`), what the GPU starts from. Throws for a
+    /// scene that splits blobs or plays a shape in reverse.
+    #[wasm_bindgen(js_name = handCentresToGpu)]
+    pub fn hand_centres_to_gpu(&mut self) -> Result<Vec<f32>, JsError> {
+        self.inner.hand_centres_to_gpu().map_err(js_error)?;
+        Ok(gas_by_slot(&self.inner))
+    }
+
+    /// `n` steps while the GPU advects the centres, whole (`frame::gpu_steps::GpuSteps`):
+    /// `{births, birthSlots, freed, ranges, wind, windOffsets, count, highWater, sigmaRange,
+    /// spheres, emissive, time}`.
+    #[wasm_bindgen(js_name = stepForGpu, unchecked_return_type = "GpuSteps")]
+    pub fn step_for_gpu(&mut self, n: u32) -> JsValue {
+        let steps = GpuSteps::run(&mut self.inner, n);
+        object(vec![
+            ("births", steps.births.into()),
+            ("birthSlots", steps.birth_slots.into()),
+            ("freed", steps.freed.into()),
+            ("ranges", steps.ranges.into()),
+            ("wind", steps.wind.into()),
+            ("windOffsets", steps.wind_offsets.into()),
+            ("count", steps.count.into()),
+            ("highWater", steps.high_water.into()),
+            ("sigmaRange", steps.sigma_range.to_vec().into()),
+            ("spheres", steps.spheres.into()),
+            ("emissive", steps.emissive.into()),
+            ("time", self.inner.time().into()),
+        ])
+    }
+
+    /// Takes the GPU's centres (xyz per slot, m) as the blobs' own; with `keepOnGpu` false the
+    /// core steps them again from now on.
+    #[wasm_bindgen(js_name = takeCentres)]
+    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool) {
+        self.inner.take_centres(centres, keep_on_gpu);
+    }
+
+    /// Whether the GPU advects the centres.
+    #[wasm_bindgen(js_name = centresOnGpu)]
+    pub fn centres_on_gpu(&self) -> bool {
+        self.inner.centres_on_gpu()
     }
 
     /// The current frame for the points and volume views, whole (`frame::ViewFrame`):

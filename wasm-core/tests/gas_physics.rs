@@ -454,3 +454,26 @@ fn integrator_names_parse() {
     let s = calm(json!({"simulation": {"integrator": "euler"}}));
     assert_eq!(s.simulation.integrator, Integrator::Euler);
 }
+
+#[test]
+fn a_moving_source_lays_its_blobs_along_its_path() {
+    // No wind: each blob stays where it was born, at the path's point at its birth time.
+    let s = calm(json!({
+        "emitters": [{"shape": "point", "rate": 20, "path": [[0, 0, 0, 0], [2, 2, 0, -1]]}],
+        "gas": {"dissipation": 0, "min_mass": 0}
+    }));
+    let mut sim = Simulation::new(s).unwrap();
+    sim.run(120);
+    let list = sim.blob_list();
+    assert_eq!(list.blobs.len(), 40);
+    for b in &list.blobs {
+        let birth = (2.0 - b.age.unwrap()) as f32;
+        let want = Vec3::new(birth, 0.0, -0.5 * birth);
+        assert!((Vec3::from_array(b.center) - want).length() < 1e-4, "{b:?}");
+    }
+    // A path's times must increase, as a repulsor's.
+    let bad =
+        serde_json::json!({"version": 1, "emitters": [{"path": [[1, 0, 0, 0], [1, 1, 0, 0]]}]});
+    let e = Scene::from_value(bad).unwrap_err();
+    assert_eq!(e.path, "emitters[0].path[1][0]");
+}

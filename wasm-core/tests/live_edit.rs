@@ -106,7 +106,7 @@ fn an_added_emitter_starts_now_and_an_unchanged_one_keeps_its_clock() {
     edited.run(30);
     plain.run(30);
     let mut two = base.clone();
-    let mut second = two.emitters[0];
+    let mut second = two.emitters[0].clone();
     second.center = [1.0, 0.0, 0.0];
     two.emitters.push(second);
     edited.edit(two, None).unwrap();

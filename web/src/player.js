@@ -1,33 +1,30 @@
 // A player: one scene running in its own engine worker, drawn into one canvas, with the
-// scripting API of DESIGN §5. The playground page and every <wind-field> element each own one.
+// scripting API of DESIGN §5. The playground page and every <wind-field> element each own one,
+// and use it through its methods only: its view, its engine and its state are its own.
 
 import { Engine } from './engine/client.js';
-import { recordWebM } from './recorder.js';
-import { ResolutionGovernor, startScale } from './resolution.js';
+import { FramePace } from './player/frame-pace.js';
+import { recordWebM } from './player/recorder.js';
+import { ResolutionGovernor, startScale } from './player/resolution.js';
+import { EXACT_QUALITY, exactFrameRequest } from './views/exact/exact-frame.js';
+import { moved } from './views/guides-layer.js';
 import { waitForGpu } from './views/gpu-sync.js';
 import { PointerStir } from './views/pointer-stir.js';
 import { SceneView } from './views/scene-view.js';
-import { SLICE_SAMPLES } from './views/wind-slice-layer.js';
+import { GpuStepper, gpuStepperUnsupported, MAX_GPU_LATTICE } from './stepper/gpu-stepper.js';
+import { SLICE_PLANES, SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
 
-/**
- * The exact march at each quality: shadow-grid points per axis, and the cell side (in σ) within
- * which blobs are merged by moments for it (`render::lod` in the core). The real-time view's
- * qualities are `VOLUME_QUALITY`.
- */
-export const QUALITY = {
-  draft: { shadowGrid: 16, merge: 1 },
-  standard: { shadowGrid: 32, merge: 0.5 },
-  high: { shadowGrid: 64, merge: 0.25 },
-};
 /** The views (DESIGN §5's capture modes). */
 export const MODES = ['points', 'raymarch', 'exact'];
+/** The qualities of the marched views (the exact march's `EXACT_QUALITY`, the volume's `VOLUME_QUALITY`). */
+export const QUALITIES = Object.keys(EXACT_QUALITY);
+/** The wind slice's planes (`slicePlane`): 'off', 'xy', 'xz', 'yz'. */
+export { SLICE_PLANES };
 /** A scene that has run this many steps without the engine failing is one to go back to. */
 const GOOD_AFTER_STEPS = 120;
 /** Most fixed steps taken in one animation frame. */
 const MAX_STEPS_PER_FRAME = 4;
-/** A frame that waited longer than this (ms) for the worker's step was paced by the worker. */
-const WORKER_WAIT_MS = 2;
 
 /** How long (ms) a lost GPU context may stay lost before the player reports it. */
 const CONTEXT_GRACE_MS = 3000;
@@ -42,6 +39,27 @@ function sceneText(scene) {
   }
 }
 
+/** Whether two cameras (DESIGN §4's form) are the same. */
+function sameCamera(a, b) {
+  if (!a || !b || a.fov_y_deg !== b.fov_y_deg) return false;
+  return ['position', 'target', 'up'].every((k) => a[k].every((v, i) => v === b[k][i]));
+}
+
+/** What a load or an edit may not do while a video is recorded. */
+const recordingRefuses = (what) => new Error(`a recording is under way: ${what} once it has ended`);
+
+/** Whether `scene` must be stepped in the worker: it splits blobs or plays a shape in reverse. */
+function sceneKeepsGpuAway(scene) {
+  if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
+  if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
+  return null;
+}
+
+/** Bytes that crossed from the worker for GPU steps `steps` (whole buffers). */
+function crossedBytes(steps) {
+  return ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'spheres'].reduce((n, k) => n + steps[k].byteLength, 0);
+}
+
 function bytesToDataUrl(bytes) {
   let binary = '';
   for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
@@ -49,6 +67,23 @@ function bytesToDataUrl(bytes) {
 }
 
 export class Player {
+  /** The 3-D view (three.js) the player draws into its canvas. */
+  #view;
+  /** The engine worker's handle. */
+  #engine;
+  /** What the player shows and how: the scene, playing, the view's mode and quality, the speed, visibility. */
+  #state;
+  /** The current scene as the core normalised it (JSON text): `#state.scene` parsed once from it. */
+  #sceneJson = null;
+  /** Dragging over the view stirs the gas while it is enabled (`setStirring`). */
+  #stirrer;
+  /**
+   * What steps the gas: the choice (`setStepper`: 'auto', 'cpu' or 'gpu'), what steps it now
+   * ('cpu': the worker's core; 'gpu': `stepper/gpu-stepper.js`), why the GPU does not when the
+   * choice allows it (or null), the GPU stepper once made, and the field version its lattice is.
+   */
+  #stepper = { choice: 'auto', active: 'cpu', reason: null, gpu: null, fieldVersion: -1 };
+
   /**
    * @param {HTMLCanvasElement} canvas
    * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
@@ -61,35 +96,28 @@ export class Player {
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
-    this.state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
+    this.#state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
     this.stats = {
       blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1,
       frames: 0, limitedBy: 'paused',
     };
-    /** When the last frames were drawn (ms), the newest last: `stats().fps` counts them. */
-    this.drawTimes = [];
     /**
      * Holds the frame rate by scaling the canvas's internal resolution and the real-time
      * view's voxels (`stats().scale`), starting lower on phone-sized screens.
      */
     this.resolution = new ResolutionGovernor({ start: startScale(window.innerWidth, window.innerHeight) });
+    /** The frame rate, what limits it, and the pace the resolution follows (`stats().fps`, `limitedBy`). */
+    this.pace = new FramePace(this.stats, this.resolution);
     this.busy = false;
     this.lastFrame = null;
     /** The step asked for ahead while playing (a promise of its frame), or null. */
     this.ahead = null;
     /** The showing of that step under way (`#settle`), or null. */
     this.settling = null;
-    /** When the loop last found nothing to do (rAF ms). */
-    this.idleAt = -Infinity;
-    /** Frames per second the view keeps up, from frames drawn back to back (the governor's input). */
-    this.pace = 0;
-    /** How long the last frame waited for the worker (ms), and the share of recent frames spent so. */
-    this.waited = 0;
-    this.waitShare = 0;
     this.accumulated = 0;
-    this.view = new SceneView(canvas);
-    this.view.volume.profile = Boolean(hooks.profile);
-    /** Failures of the engine per scene (its JSON text), and the last scene that ran well. */
+    this.#view = new SceneView(canvas);
+    this.#view.volume.profile = Boolean(hooks.profile);
+    /** Failures of the engine per scene (its normalised JSON text), and the last scene that ran well (its text). */
     this.failures = new Map();
     this.lastGood = null;
     /** Steps taken since the current scene was loaded (it is good after `GOOD_AFTER_STEPS`). */
@@ -98,32 +126,41 @@ export class Player {
     this.halted = null;
     /** Whether a recording is under way (scenes may not change meanwhile). */
     this.recording = false;
-    this.engine = new Engine({
+    this.#engine = new Engine({
       onError: (m) => hooks.onMessage?.(m),
       onRestart: (reason) => this.#recover(reason),
     }, { timeoutMs: hooks.requestTimeoutMs });
     /** Whether the view's GPU context is lost (drawing waits for it to come back). */
     this.contextLost = false;
     this.contextTimer = 0;
-    this.view.onContextLost = () => {
+    this.#view.onContextLost = () => {
       this.contextLost = true;
+      // The GPU's state goes with the context: let go of its objects now (deleting them is a
+      // no-op while lost), a new stepper takes the gas again after the restore.
+      this.#stepper.gpu?.dispose();
+      this.#stepper.gpu = null;
       clearTimeout(this.contextTimer);
       this.contextTimer = setTimeout(() => this.#fault('the view lost its GPU context and the browser did not give it back (too many 3-D views open at once, or the GPU was reset)'), CONTEXT_GRACE_MS);
     };
-    this.view.onContextRestored = () => {
+    this.#view.onContextRestored = () => {
       clearTimeout(this.contextTimer);
       this.contextLost = false;
-      if (this.lastFrame) this.view.setFrame(this.lastFrame);
+      if (this.#stepper.active === 'gpu') {
+        // The GPU's state went with the context: the worker steps the scene again to where it
+        // was, and hands it back to the GPU.
+        this.exclusive(() => this.#restep()).catch((e) => this.hooks.onMessage?.(e.message));
+        return;
+      }
+      if (this.lastFrame) this.#view.setFrame(this.lastFrame);
       this.invalidate();
     };
     this.lastTime = performance.now();
-    this.lastDrawn = 0;
     /** Whether something changed the picture since the last frame (the camera moved, …). */
     this.dirty = true;
-    this.view.controls.addEventListener('change', () => { this.dirty = true; });
-    /** Dragging stirs the gas instead of orbiting while `stirring.enabled` (off at first). */
-    this.stirring = new PointerStir(this.view, (position, velocity, radius) => {
-      if (this.state.scene) this.stir(position, velocity, radius).catch(() => {});
+    this.#view.controls.addEventListener('change', () => { this.dirty = true; });
+    /** Dragging stirs the gas instead of orbiting while stirring is on (off at first). */
+    this.#stirrer = new PointerStir(this.#view, (position, velocity, radius) => {
+      if (this.#state.scene) this.stir(position, velocity, radius).catch(() => {});
     });
     this.running = true;
     this.resize();
@@ -136,18 +173,17 @@ export class Player {
    * with a message; a scene never sends the engine into a loop of restarts.
    */
   #recover(reason) {
-    const scene = this.state.scene;
-    if (!scene) return;
-    const key = JSON.stringify(scene);
-    const failures = (this.failures.get(key) ?? 0) + 1;
-    this.failures.set(key, failures);
+    const json = this.#sceneJson;
+    if (!json) return;
+    const failures = (this.failures.get(json) ?? 0) + 1;
+    this.failures.set(json, failures);
     // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
-    const reload = (next) => this.exclusive(() => this.load(next)).catch((e) => this.hooks.onMessage?.(e.message));
+    const reload = (text) => this.exclusive(() => this.#load(text)).catch((e) => this.hooks.onMessage?.(e.message));
     if (failures === 1) {
-      reload(scene);
-    } else if (this.lastGood && this.lastGood !== key) {
+      reload(json);
+    } else if (this.lastGood && this.lastGood !== json) {
       this.hooks.onMessage?.(`This scene stopped the engine twice (${reason}); back to the last scene that ran.`);
-      reload(JSON.parse(this.lastGood));
+      reload(this.lastGood);
     } else {
       this.#fault(`this scene stopped the engine twice (${reason}); load another scene`);
       this.halted = reason;
@@ -162,24 +198,43 @@ export class Player {
 
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
-    if (this.recording) throw new Error('a recording is under way: load the scene once it has ended');
-    const text = sceneText(scene);
+    if (this.recording) throw recordingRefuses('load the scene');
+    return this.#load(sceneText(scene));
+  }
+
+  /**
+   * Loads the scene JSON `text`: the engine validates it and hands back the scene normalised
+   * (JSON text), which is parsed here once. Resolves with the scene.
+   */
+  async #load(text) {
+    if (this.recording) throw recordingRefuses('load the scene');
     await this.#settle();
-    const info = await this.engine.request('load', { scene: text }, {
+    const info = await this.#engine.request('load', { scene: text }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
     this.hooks.onProgress?.(1, 'done');
     this.halted = null;
     this.stepsSinceLoad = 0;
-    this.state.scene = info.scene;
+    const scene = this.#adopt(info.sceneJson);
     this.stats.fieldMs = info.fieldMs;
-    this.view.setCamera(info.scene.render.camera, info.scene.render.objects);
-    this.view.setRenderSettings(info.scene.render);
+    this.#view.setCamera(scene.render.camera, scene.render.objects);
+    this.#view.setRenderSettings(scene.render);
     this.resize();
     this.accumulated = 0;
+    // A new simulation: its centres are in the worker until the GPU takes them.
+    this.#stepper.active = 'cpu';
+    await this.#engage();
     await this.advance(0);
-    await this.hooks.onScene?.(info.scene);
-    return info.scene;
+    await this.hooks.onScene?.(scene);
+    return scene;
+  }
+
+  /** Takes the normalised scene `json` as the current scene; returns it parsed. */
+  #adopt(json) {
+    const scene = JSON.parse(json);
+    this.#state.scene = scene;
+    this.#sceneJson = json;
+    return scene;
   }
 
   /**
@@ -188,21 +243,28 @@ export class Player {
    * clear Error and keeps the scene as it was. Resolves with the scene as the core normalised it.
    */
   async edit(scene) {
-    if (this.recording) throw new Error('a recording is under way: change the scene once it has ended');
+    if (this.recording) throw recordingRefuses('change the scene');
     const text = sceneText(scene);
     await this.#settle();
-    const info = await this.engine.request('edit', { scene: text }, {
+    // A scene the GPU cannot step comes back to the worker before the edit.
+    if (this.#stepper.active === 'gpu' && sceneKeepsGpuAway(scene)) await this.#toCpu();
+    const info = await this.#engine.request('edit', { scene: text }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
-    const camera = JSON.stringify(this.state.scene?.render.camera);
-    this.state.scene = info.scene;
-    if (info.restarted || camera !== JSON.stringify(info.scene.render.camera)) this.view.setCamera(info.scene.render.camera, info.scene.render.objects);
-    else this.view.limits.set(info.scene.render.camera, info.scene.render.objects);
-    this.view.setRenderSettings(info.scene.render);
-    if (info.restarted) this.accumulated = 0;
+    const camera = this.#state.scene?.render.camera;
+    const next = this.#adopt(info.sceneJson);
+    const { render } = next;
+    if (info.restarted || !sameCamera(camera, render.camera)) this.#view.setCamera(render.camera, render.objects);
+    else this.#view.limits.set(render.camera, render.objects);
+    this.#view.setRenderSettings(render);
+    if (info.restarted) {
+      this.accumulated = 0;
+      this.#stepper.active = 'cpu';
+    }
+    await this.#engage();
     await this.advance(0);
-    await this.hooks.onScene?.(info.scene);
-    return info.scene;
+    await this.hooks.onScene?.(next);
+    return next;
   }
 
   /** Restarts the scene at t = 0. */
@@ -210,7 +272,10 @@ export class Player {
     return this.exclusive(async () => {
       const t0 = performance.now();
       this.accumulated = 0;
-      await this.#show(await this.engine.request('reset'), 0, t0);
+      await this.#show(await this.#engine.request('reset'), 0, t0);
+      this.#stepper.active = 'cpu';
+      await this.#engage();
+      if (this.#stepper.active === 'gpu') await this.advance(0);
     });
   }
 
@@ -219,26 +284,31 @@ export class Player {
    * off as exp(−distance/`radius`), until the next call; `radius` 0 stops it.
    */
   stir(position, velocity, radius) {
-    return this.engine.request('stir', { position, velocity, radius });
+    return this.#engine.request('stir', { position, velocity, radius });
   }
 
-  /** Loads the scene JSON at `url`. */
+  /** Loads the scene JSON at `url` (its text goes to the engine as it is). */
   async loadUrl(url) {
     const response = await fetch(url);
     if (!response.ok) throw new Error(`could not load ${url} (${response.status})`);
-    let scene;
+    const text = await response.text();
     try {
-      scene = await response.json();
-    } catch {
-      throw new Error(`${url} is not a scene (JSON expected)`);
+      return await this.#load(text);
+    } catch (err) {
+      if (/not valid JSON/.test(err.message)) throw new Error(`${url} is not a scene (JSON expected)`);
+      throw err;
     }
-    return this.load(scene);
   }
 
   async advance(steps) {
     const t0 = performance.now();
     await this.#settle();
-    await this.#show(await this.engine.request('advance', { steps }), steps, t0);
+    await this.#show(await this.#ask(steps), steps, t0);
+  }
+
+  /** Asks for `steps` steps of whoever steps the gas: the worker's frame, or the GPU's steps. */
+  #ask(steps) {
+    return this.#engine.request(this.#stepper.active === 'gpu' ? 'gpuAdvance' : 'advance', { steps });
   }
 
   /**
@@ -252,12 +322,14 @@ export class Player {
     const ahead = this.ahead;
     this.ahead = null;
     const left = ahead ? steps - 1 : steps;
-    const more = left > 0 ? this.engine.request('advance', { steps: left }) : null;
-    let frame = ahead ? await ahead : null;
-    if (more) frame = await more;
-    this.waited = performance.now() - t0;
-    if (this.state.playing) this.ahead = this.engine.request('advance', { steps: 1 });
-    await this.#show(frame, steps, t0);
+    const more = left > 0 ? this.#ask(left) : null;
+    // Both results count: a worker's frame is the whole state (the last one will do), but steps
+    // for the GPU are what changed, and the GPU takes each of them in turn.
+    const results = await Promise.all([ahead, more].filter(Boolean));
+    this.pace.waitedFor(performance.now() - t0);
+    if (this.#state.playing) this.ahead = this.#ask(1);
+    for (const earlier of results.slice(0, -1)) if (earlier.gpu) await this.#gpuSteps(earlier);
+    await this.#show(results.at(-1), steps, t0);
   }
 
   /**
@@ -274,59 +346,70 @@ export class Player {
     return this.settling ?? Promise.resolve();
   }
 
-  /** Takes `frame` (after `steps` steps) as the current one and draws it; `t0` when it was asked for. */
-  async #show(frame, steps, t0) {
+  /**
+   * Takes `result` (after `steps` steps: the worker's frame, or steps for the GPU, which it
+   * then takes) as the current frame and draws it; `t0` when it was asked for.
+   */
+  async #show(result, steps, t0) {
+    let frame = result;
+    if (result.gpu) {
+      if (this.#stepper.active !== 'gpu') throw new Error('the GPU no longer steps this gas');
+      await this.#gpuSteps(result);
+      if (!this.#stepper.gpu) return;
+      frame = { ...this.#gpuFrame(), stepMs: result.stepMs, packMs: 0, crossed: crossedBytes(result) };
+    }
     this.lastFrame = frame;
-    this.view.setFrame(frame);
-    this.stats.blobs = frame.count;
+    this.#view.setFrame(frame);
+    // A GPU frame draws every slot (`count`), of which `live` hold blobs.
+    this.stats.blobs = frame.live ?? frame.count;
     this.stats.time = frame.time;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
     this.stepsSinceLoad += steps;
-    if (this.stepsSinceLoad >= GOOD_AFTER_STEPS && this.state.scene) this.lastGood = JSON.stringify(this.state.scene);
+    if (this.stepsSinceLoad >= GOOD_AFTER_STEPS && this.#sceneJson) this.lastGood = this.#sceneJson;
     this.stats.packMs = frame.packMs;
-    this.stats.frameBytes = frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
+    this.stats.frameBytes = frame.crossed ?? frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
     await this.draw();
     this.stats.frameMs = performance.now() - t0;
     this.hooks.onFrame?.(frame);
   }
 
-  /** The blob list of the current state for the current view (DESIGN §4). */
-  exportBlobs({ width, height } = this.view.size()) {
-    return this.engine.request('blobList', { camera: this.view.cameraSettings(), image: { width, height } });
+  /** The blob list of the current state for the current view (DESIGN §4); the GPU's centres read back first. */
+  async exportBlobs({ width, height } = this.#view.size()) {
+    await this.#syncCentres();
+    return this.#engine.request('blobList', { camera: this.#view.cameraSettings(), image: { width, height } });
   }
 
-  async draw(size = this.view.size()) {
-    if (!this.lastFrame || !this.state.scene || this.contextLost) return;
+  async draw(size = this.#view.size()) {
+    if (!this.lastFrame || !this.#state.scene || this.contextLost) return;
     this.dirty = false;
-    this.view.setRenderSettings(this.state.scene.render);
-    this.view.guides.update(this.state.scene);
-    const square = this.view.sliceSquare();
+    this.#view.setRenderSettings(this.#state.scene.render);
+    this.#view.guides.update(this.#state.scene);
+    const square = this.#view.sliceSquare();
     if (square) {
-      const data = await this.engine.request('windSlice', { ...square, n: SLICE_SAMPLES });
-      this.view.windSlice.update(data, square);
+      const data = await this.#engine.request('windSlice', { ...square, n: SLICE_SAMPLES });
+      this.#view.windSlice.update(data, square);
     } else {
-      this.view.windSlice.hide();
+      this.#view.windSlice.hide();
     }
-    if (this.state.mode === 'exact') {
-      const quality = QUALITY[this.state.quality] ?? QUALITY.standard;
-      const frame = await this.engine.request('exactFrame', {
-        view: this.view.viewBasis(), width: size.width, height: size.height, fraction: quality.merge, res: quality.shadowGrid,
-      });
-      this.view.exact.update(frame);
+    if (this.#state.mode === 'exact') {
+      // The exact march draws the core's merged list: the GPU's centres go to the worker first.
+      await this.#syncCentres();
+      const frame = await this.#engine.request('exactFrame', exactFrameRequest(this.#view.viewBasis(), size.width, size.height, this.#state.quality));
+      this.#view.exact.update(frame);
     }
-    this.view.render(this.state.mode, this.state.quality);
+    this.#view.render(this.#state.mode, this.#state.quality);
   }
 
   /** Sizes the canvas's drawing buffer to its box times the resolution scale. */
   resize() {
-    const c = this.view.canvas;
-    const scale = this.state.mode === 'points' ? 1 : this.resolution.scale;
+    const c = this.#view.canvas;
+    const scale = this.#state.mode === 'points' ? 1 : this.resolution.scale;
     this.stats.scale = scale;
-    this.view.volumeScale = scale;
+    this.#view.volumeScale = scale;
     const width = Math.max(Math.round(c.clientWidth * scale), 1);
     const height = Math.max(Math.round(c.clientHeight * scale), 1);
-    const now = this.view.size();
-    if (now.width !== width || now.height !== height) this.view.resize(width, height);
+    const now = this.#view.size();
+    if (now.width !== width || now.height !== height) this.#view.resize(width, height);
     this.draw().catch(() => {});
   }
 
@@ -335,62 +418,28 @@ export class Player {
     this.dirty = true;
   }
 
-  /**
-   * Counts a frame drawn from `start` to `end` (ms). `stats().fps` is the number of frames drawn
-   * in the last second (the last two while the rate is low), so it says what the screen shows;
-   * `stats().limitedBy` what holds the rate down: `worker` (frames spend most of their time
-   * waiting for the step), `view` (drawing takes the time), `display` (the frames keep up with the display) or `paused`.
-   * The resolution follows the pace of frames the view itself paced: drawn back to back, not
-   * after an idle animation frame (a scene stepping slower than the display) nor after waiting
-   * for the worker.
-   */
+  /** Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace (not in the points view). */
   #drawn(start, end) {
-    const times = this.drawTimes;
-    times.push(end);
-    while (times.length > 2 && times[0] < end - 2000) times.shift();
-    this.stats.frames += 1;
-    this.#countRate(end);
-    const busy = start - this.lastDrawn < 100;
-    const seconds = (busy ? end - this.lastDrawn : end - start) / 1000;
-    // The share of the frame spent waiting for the worker's step (smoothed).
-    if (seconds > 0) this.waitShare = 0.8 * this.waitShare + 0.2 * Math.min(this.waited / (1000 * seconds), 1);
-    const paced = this.idleAt > this.lastDrawn || this.waited > WORKER_WAIT_MS;
-    this.waited = 0;
-    this.lastDrawn = end;
-    this.stats.limitedBy = !this.state.playing ? 'paused'
-      : this.waitShare > 0.5 ? 'worker'
-        : this.stats.fps < 0.9 * this.resolution.target ? 'view' : 'display';
-    if (!(seconds > 0) || paced) return;
-    this.pace = this.pace > 0 && busy ? 0.8 * this.pace + 0.2 / seconds : 1 / seconds;
-    if (this.state.mode !== 'points' && this.resolution.observe(end, this.pace)) this.resize();
-  }
-
-  /** Frames drawn per second at `now` (ms): those of the last second, or of two when few. */
-  #countRate(now) {
-    const times = this.drawTimes;
-    const inLast = (ms) => times.filter((t) => t > now - ms).length;
-    const recent = inLast(1000);
-    this.stats.fps = recent >= 10 ? recent : inLast(2000) / 2;
+    if (this.pace.drawn(start, end, { playing: this.#state.playing, scaled: this.#state.mode !== 'points' })) this.resize();
   }
 
   loop(now) {
     if (!this.running) return;
     const dt = Math.min((now - this.lastTime) / 1000, 0.1);
     this.lastTime = now;
-    if (this.state.scene && !this.busy && this.state.visible && !this.halted) {
+    if (this.#state.scene && !this.busy && this.#state.visible && !this.halted && !this.contextLost) {
       let steps = 0;
-      if (this.state.playing) {
-        this.accumulated += dt * this.state.speed;
-        const h = this.state.scene.simulation.dt;
+      if (this.#state.playing) {
+        this.accumulated += dt * this.#state.speed;
+        const h = this.#state.scene.simulation.dt;
         steps = Math.min(Math.floor(this.accumulated / h), MAX_STEPS_PER_FRAME);
         this.accumulated -= steps * h;
       }
       // Paused with a step in flight: show it.
       const work = steps > 0 ? () => this.#play(steps)
-        : this.ahead && !this.state.playing ? () => this.#settle()
+        : this.ahead && !this.#state.playing ? () => this.#settle()
           : this.dirty ? () => this.draw() : null;
-      // Frames stop counting while nothing is drawn.
-      if (now - (this.drawTimes.at(-1) ?? -Infinity) > 2000 && this.stats.fps > 0) this.#countRate(now);
+      this.pace.tick(now);
       if (work) {
         this.busy = true;
         const start = performance.now();
@@ -399,7 +448,7 @@ export class Player {
           .catch((e) => this.hooks.onMessage?.(e.message))
           .finally(() => { this.busy = false; });
       } else {
-        this.idleAt = now;
+        this.pace.idle(now);
       }
     }
     requestAnimationFrame((t) => this.loop(t));
@@ -421,43 +470,46 @@ export class Player {
    * Runs `fn` (exclusively) with the view at `width × height`, drawn in `mode` at `quality`,
    * with `standIns` and without guides; puts the view back as it was afterwards.
    */
-  offscreen({ mode, quality = this.state.quality, standIns = false, width, height }, fn) {
+  offscreen({ mode, quality = this.#state.quality, standIns = false, width, height }, fn) {
     return this.exclusive(async () => {
-      const before = { size: this.view.size(), mode: this.state.mode, quality: this.state.quality, guides: this.view.showGuides, volumeScale: this.view.volumeScale };
-      Object.assign(this.state, { mode, quality });
-      Object.assign(this.view, { standIns, showGuides: false, volumeScale: 1 });
+      const before = { size: this.#view.size(), mode: this.#state.mode, quality: this.#state.quality, guides: this.#view.showGuides, volumeScale: this.#view.volumeScale };
+      Object.assign(this.#state, { mode, quality });
+      Object.assign(this.#view, { standIns, showGuides: false, volumeScale: 1 });
+      this.#exactGpuFrame();
       try {
-        this.view.resize(width, height);
+        this.#view.resize(width, height);
         return await fn();
       } finally {
-        Object.assign(this.state, { mode: before.mode, quality: before.quality });
-        Object.assign(this.view, { standIns: false, showGuides: before.guides, volumeScale: before.volumeScale });
-        this.view.resize(before.size.width, before.size.height);
+        Object.assign(this.#state, { mode: before.mode, quality: before.quality });
+        Object.assign(this.#view, { standIns: false, showGuides: before.guides, volumeScale: before.volumeScale });
+        this.#view.resize(before.size.width, before.size.height);
       }
     });
   }
 
   /** Renders the current view offscreen at `width × height`; a PNG data URL. */
-  captureGPU({ mode = 'raymarch', width = 640, height = 480, standIns = false, quality = this.state.quality } = {}) {
+  captureGPU({ mode = 'raymarch', width = 640, height = 480, standIns = false, quality = this.#state.quality } = {}) {
     return this.offscreen({ mode, quality, standIns, width, height }, async () => {
       await this.draw({ width, height });
-      return this.view.canvas.toDataURL('image/png');
+      return this.#view.canvas.toDataURL('image/png');
     });
   }
 
   /**
    * The real-time view's volumes for the current frame at `quality`, as the GPU holds them and
-   * as the core's twin computes them on the same grid (`render::volume`): {grid, gpu: {density,
+   * as the core's twin computes them on the same grid (`frame::volume`, `frame::light_volume`): {grid, gpu: {density,
    * source, light}, twin: {density, source, light}} (see `VolumeLayer.read`). For tests.
    */
-  inspectVolume({ quality = this.state.quality } = {}) {
+  inspectVolume({ quality = this.#state.quality } = {}) {
     return this.exclusive(async () => {
-      const volume = this.view.volume;
-      if (!volume.prepare(this.view.renderer, quality)) return null;
-      const gpu = volume.read(this.view.renderer);
+      this.#exactGpuFrame();
+      const volume = this.#view.volume;
+      if (!volume.prepare(this.#view.renderer, quality)) return null;
+      const gpu = volume.read(this.#view.renderer);
       const grid = structuredClone(volume.grid);
       const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
-      const twin = await this.engine.request('volumeTwin', { lo: grid.lo, h: grid.h, dims: grid.dims, step: q.column });
+      await this.#syncCentres();
+      const twin = await this.#engine.request('volumeTwin', { lo: grid.lo, h: grid.h, dims: grid.dims, step: q.column });
       const voxels = grid.dims[0] * grid.dims[1] * grid.dims[2];
       return {
         grid,
@@ -468,29 +520,40 @@ export class Player {
   }
 
   /**
+   * The GPU stepper's own σ (m) and mass of every blob it holds (slot order), or null while
+   * the worker steps the gas. For tests: the core's are in `exportBlobs`.
+   */
+  inspectStepper() {
+    return this.exclusive(async () => (this.#stepper.active === 'gpu' ? this.#stepper.gpu.readSigmaAndMass() : null));
+  }
+
+  /**
    * The median time (ms) of drawing the current state `frames` times in `mode` at `width ×
    * height`, finished on the GPU: each frame from scratch (the real-time view's volumes rebuilt,
    * as after a step), or with `rebuild: false` the volumes kept (as when orbiting a paused scene
    * or between steps). For benchmarks.
    */
-  timeFrames({ mode = 'raymarch', width = 640, height = 360, frames = 5, quality = this.state.quality, rebuild = true } = {}) {
+  timeFrames({ mode = 'raymarch', width = 640, height = 360, frames = 5, quality = this.#state.quality, rebuild = true } = {}) {
     return this.offscreen({ mode, quality, width, height }, async () => {
       const times = [];
       for (let i = 0; i <= frames; i++) {
-        if (rebuild) this.view.volume.invalidate();
+        if (rebuild) this.#view.volume.invalidate();
         const t0 = performance.now();
         await this.draw({ width, height });
-        waitForGpu(this.view.renderer);
+        waitForGpu(this.#view.renderer);
         if (i > 0) times.push(performance.now() - t0);
       }
       return times.sort((a, b) => a - b)[Math.floor(times.length / 2)];
     });
   }
 
-  /** The WASM reference still of the current view at `width × height`; a PNG data URL. */
+  /**
+   * The WASM reference still of the current view at `width × height`; a PNG data URL. The
+   * engine renders the blob list of its current state from this camera: only the PNG crosses.
+   */
   async renderReference({ width = 320, height = 240 } = {}) {
-    const list = await this.exportBlobs({ width, height });
-    const out = await this.engine.request('reference', { list, width, height }, {
+    await this.#syncCentres();
+    const out = await this.#engine.request('reference', { camera: this.#view.cameraSettings(), width, height }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, 'Rendering reference still'),
     });
     this.hooks.onProgress?.(1, 'done');
@@ -501,15 +564,15 @@ export class Player {
    * A WebM of `frames` consecutive fixed steps (one step a frame, from the current state),
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
-  async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.state.mode } = {}) {
+  async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.#state.mode } = {}) {
     // One step a frame: the budget of DESIGN §7 holds before anything is recorded.
-    await this.engine.request('checkSteps', { steps: frames });
+    await this.#engine.request('checkSteps', { steps: frames });
     if (this.recording) throw new Error('a recording is under way already');
     // One scene, one size: the scene may not change while the video is made.
     this.recording = true;
     try {
       return await this.offscreen({ mode, width, height }, () => recordWebM({
-        canvas: this.view.canvas,
+        canvas: this.#view.canvas,
         frames,
         fps,
         renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
@@ -522,42 +585,42 @@ export class Player {
 
   /** Whether the wind guides (and the drag handle, and the wind slice) are drawn. */
   get guides() {
-    return this.view.showGuides;
+    return this.#view.showGuides;
   }
 
   setGuides(on) {
-    this.view.showGuides = on;
+    this.#view.showGuides = on;
     this.invalidate();
   }
 
   /** The wind slice's plane ('off', 'xy', 'xz', 'yz') and its offset along the normal (m). */
   get slicePlane() {
-    return this.view.slicePlane;
+    return this.#view.slicePlane;
   }
 
   set slicePlane(plane) {
-    this.view.slicePlane = plane;
+    this.#view.slicePlane = plane;
     this.invalidate();
   }
 
   get sliceOffset() {
-    return this.view.sliceOffset;
+    return this.#view.sliceOffset;
   }
 
   set sliceOffset(d) {
-    this.view.sliceOffset = d;
+    this.#view.sliceOffset = d;
     this.invalidate();
   }
 
   /** The wind slice's colour scale while it is drawn: `{plane, maxSpeed}` (m/s), else null. */
   sliceLegend() {
-    const slice = this.view.windSlice;
-    return slice.group.visible ? { plane: this.view.slicePlane, maxSpeed: slice.maxSpeed } : null;
+    const slice = this.#view.windSlice;
+    return slice.group.visible ? { plane: this.#view.slicePlane, maxSpeed: slice.maxSpeed } : null;
   }
 
   /** The real-time view's density volume in voxels `[nx, ny, nz]`, when that view is shown. */
   volumeDims() {
-    return this.state.mode === 'raymarch' ? this.view.volume.grid?.dims ?? null : null;
+    return this.#state.mode === 'raymarch' ? this.#view.volume.grid?.dims ?? null : null;
   }
 
   /** Fixes the view's resolution (a scale in (0, 1]) or lets it hold the frame rate ('auto'). */
@@ -568,19 +631,26 @@ export class Player {
 
   /** Picks the wind primitive or emitter (`{list, index}`) the drag handle moves, or none. */
   selectHandle(selection) {
-    this.view.guides.select(selection);
-    if (selection) this.view.showGuides = true;
+    this.#view.guides.select(selection);
+    if (selection) this.#view.showGuides = true;
     this.invalidate();
   }
 
-  /** Calls `fn(selection, to)` when the drag handle has moved its item to `to` (m). */
+  /**
+   * Calls `fn(selection, item)` when the drag handle has moved its item: `item` is a copy of the
+   * scene's wind primitive or emitter with its anchor where the handle was let go (m, to the
+   * millimetre; a repulsor's whole path moves with it).
+   */
   onHandleMoved(fn) {
-    this.view.guides.onMoved = fn;
+    this.#view.guides.onMoved = (selection, to) => {
+      const item = this.#state.scene?.[selection.list]?.[selection.index];
+      if (item) fn(selection, moved(item, to.map((v) => Math.round(v * 1000) / 1000)));
+    };
   }
 
   /** Orbits or zooms for a key pressed on the view (arrows, + and −); true when it did. */
   orbitKey(event) {
-    const handled = this.view.limits.key(event);
+    const handled = this.#view.limits.key(event);
     if (handled) this.invalidate();
     return handled;
   }
@@ -592,48 +662,208 @@ export class Player {
 
   /** The statistics of `stats()`: the engine's, the view's and how the frames go. */
   snapshot() {
-    return { ...this.stats, stepper: 'cpu', ...(this.view.volume.timings && { passes: { ...this.view.volume.timings } }) };
+    const st = this.#stepper;
+    return {
+      ...this.stats,
+      stepper: st.active,
+      ...(st.reason && { stepperReason: st.reason }),
+      ...(this.#view.volume.timings && { passes: { ...this.#view.volume.timings } }),
+    };
   }
 
   /** The field's statistics against `spectrum` (its own when absent), measured in the worker. */
   fieldStats(spectrum) {
-    return this.engine.request('fieldStats', { spectrum });
+    return this.#engine.request('fieldStats', { spectrum });
   }
 
   /** The engine's health: its memory, the blob count and blobs whose centre is not finite. */
-  health() {
-    return this.engine.request('health');
+  async health() {
+    await this.#syncCentres();
+    return this.#engine.request('health');
   }
 
   /** The small-scale field at lattice coordinates (x, y, z, t). */
   sample(x, y, z, t) {
-    return this.engine.request('sample', { x, y, z, t });
+    return this.#engine.request('sample', { x, y, z, t });
   }
 
   /**
-   * Chooses what steps the gas: 'cpu' (the worker's core), 'gpu' or 'auto' (the GPU where it
-   * can). Stepping on the GPU is not available in this build: 'gpu' rejects, 'auto' takes the
-   * worker.
+   * Chooses what steps the gas: 'cpu' (the worker's core, the reference), 'gpu' (the GPU
+   * stepper; rejects where it cannot, saying why) or 'auto' (the default: the GPU where it can,
+   * else the worker). Resolves with what steps it now ('cpu' or 'gpu').
    */
   async setStepper(kind) {
     if (!['cpu', 'gpu', 'auto'].includes(kind)) throw new Error(`setStepper: the stepper must be 'cpu', 'gpu' or 'auto' (got ${kind})`);
-    if (kind === 'gpu') throw new Error('setStepper: stepping on the GPU is not available here; the worker steps the gas');
-    return this.snapshot().stepper;
+    return this.exclusive(async () => {
+      if (kind === 'gpu') {
+        const reason = this.#gpuUnavailable();
+        if (reason) throw new Error(`setStepper: the GPU cannot step this gas here: ${reason}`);
+      }
+      this.#stepper.choice = kind;
+      await this.#engage();
+      await this.advance(0);
+      return this.#stepper.active;
+    });
+  }
+
+  /** Why the GPU cannot step the current scene here, or null when it can. */
+  #gpuUnavailable() {
+    const scene = this.#state.scene;
+    const renderer = this.#view.renderer;
+    const lattice = scene && scene.field.amplitude > 0 ? scene.field.size.reduce((a, b) => a * b, 1) : 0;
+    return (this.contextLost && 'the view has lost its GPU context')
+      || gpuStepperUnsupported(renderer)
+      || (scene && sceneKeepsGpuAway(scene))
+      || (lattice > MAX_GPU_LATTICE && `the field's lattice has over ${MAX_GPU_LATTICE} points`)
+      || null;
+  }
+
+  /** Puts the gas where the choice of stepper says: on the GPU where it can be, else in the worker. */
+  async #engage() {
+    const st = this.#stepper;
+    st.reason = st.choice === 'cpu' ? null : this.#gpuUnavailable();
+    const wanted = st.choice !== 'cpu' && !st.reason ? 'gpu' : 'cpu';
+    if (wanted === st.active || !this.#state.scene) return;
+    if (wanted === 'gpu') await this.#toGpu();
+    else await this.#toCpu();
+  }
+
+  /** Hands the worker's gas to the GPU stepper. */
+  async #toGpu() {
+    const st = this.#stepper;
+    const start = await this.#engine.request('gpuStart');
+    const scene = this.#state.scene;
+    const births = scene.emitters.reduce((n, e) => n + (e.enabled ? e.rate : 0), 0) * scene.simulation.dt;
+    st.gpu ??= new GpuStepper(this.#view.renderer);
+    st.gpu.start({ records: start.records, capacity: scene.gas.max_blobs + Math.ceil(4 * births) + 1024, time: start.time });
+    st.gpu.setLattice(start.lattice.data, start.lattice.size);
+    st.fieldVersion = start.lattice.version;
+    st.active = 'gpu';
+  }
+
+  /** Brings the gas back from the GPU stepper to the worker, which steps it from now on. */
+  async #toCpu() {
+    const st = this.#stepper;
+    if (st.active !== 'gpu') return;
+    const centres = st.gpu.readCentres();
+    st.active = 'cpu';
+    await this.#engine.request('takeCentres', { centres, keepOnGpu: false }, { transfer: [centres.buffer] });
+  }
+
+  /** Gives the worker the GPU's centres as they are now (for a still, an export, a check). */
+  async #syncCentres() {
+    if (this.#stepper.active !== 'gpu') return;
+    const centres = this.#stepper.gpu.readCentres();
+    await this.#engine.request('takeCentres', { centres, keepOnGpu: true }, { transfer: [centres.buffer] });
+  }
+
+  /** The GPU takes the steps the worker took (`steps`), on the field the worker now runs on. */
+  async #gpuSteps(steps) {
+    const st = this.#stepper;
+    // Without a GPU stepper (its context lost) the steps are let go: the restore re-steps.
+    if (!st.gpu) return;
+    if (steps.fieldVersion !== st.fieldVersion) {
+      const lattice = await this.#engine.request('gpuLattice');
+      st.gpu.setLattice(lattice.data, lattice.size);
+      st.fieldVersion = lattice.version;
+    }
+    const { simulation, gas } = this.#state.scene;
+    st.gpu.apply(steps, { dt: simulation.dt, kappa: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
+  }
+
+  /** The views' frame of the GPU stepper's state (`exact`: its bounds read at once, for captures). */
+  #gpuFrame(exact = false) {
+    return this.#stepper.gpu.frame(this.#state.scene.render.medium.albedo, { exact });
+  }
+
+  /** While the GPU steps: the frame shown again with bounds read at once (captures, checks). */
+  #exactGpuFrame() {
+    if (this.#stepper.active !== 'gpu' || !this.lastFrame) return;
+    this.lastFrame = { ...this.lastFrame, ...this.#gpuFrame(true) };
+    this.#view.setFrame(this.lastFrame);
+  }
+
+  /** After a lost context came back: the worker steps the scene again to where it was, and the GPU takes it. */
+  async #restep() {
+    const t0 = performance.now();
+    this.#stepper.active = 'cpu';
+    await this.#show(await this.#engine.request('restep'), 0, t0);
+    await this.#engage();
+    if (this.#stepper.active === 'gpu') await this.advance(0);
+  }
+
+  /** The current scene as the core normalised it, or null before one is loaded. Shared: change a copy (`api().getScene()`). */
+  get scene() {
+    return this.#state.scene;
+  }
+
+  /** Whether the scene plays (steps in real time); `setPlaying` changes it. */
+  get playing() {
+    return this.#state.playing;
+  }
+
+  setPlaying(on) {
+    this.#state.playing = Boolean(on);
+  }
+
+  /** The view shown: one of MODES. */
+  get mode() {
+    return this.#state.mode;
+  }
+
+  /** Shows the view `mode` (one of MODES); throws for any other. */
+  setView(mode) {
+    if (!MODES.includes(mode)) throw new Error(`setView: the view must be one of ${MODES.join(', ')} (got ${mode})`);
+    this.#state.mode = mode;
+    this.resize();
+  }
+
+  /** The marched views' quality: one of QUALITIES. */
+  get quality() {
+    return this.#state.quality;
+  }
+
+  /** Draws the marched views at `quality` (one of QUALITIES); throws for any other. */
+  setQuality(quality) {
+    if (!QUALITIES.includes(quality)) throw new Error(`setQuality: the quality must be one of ${QUALITIES.join(', ')} (got ${quality})`);
+    this.#state.quality = quality;
+    this.invalidate();
+  }
+
+  /** Simulated seconds per second while playing. */
+  get speed() {
+    return this.#state.speed;
+  }
+
+  /** Plays at `speed` simulated seconds per second (0 or more); throws for anything else. */
+  setSpeed(speed) {
+    if (!(Number.isFinite(speed) && speed >= 0)) throw new Error(`setSpeed: the speed must be a number of 0 or more (got ${speed})`);
+    this.#state.speed = speed;
+  }
+
+  /** Whether the view is on screen: a hidden player neither steps nor draws. */
+  setVisible(on) {
+    this.#state.visible = Boolean(on);
+  }
+
+  /** Whether dragging over the view stirs the gas (instead of orbiting). */
+  get stirring() {
+    return this.#stirrer.enabled;
+  }
+
+  setStirring(on) {
+    this.#stirrer.enabled = Boolean(on);
   }
 
   /** DESIGN §5's methods, bound to this player. */
   api(ready) {
     return {
       ready,
-      getScene: () => structuredClone(this.state.scene),
+      getScene: () => structuredClone(this.#state.scene),
       setScene: (scene) => this.load(scene),
-      pause: () => { this.state.playing = false; },
-      setView: (mode) => {
-        if (!MODES.includes(mode)) throw new Error(`setView: the view must be one of ${MODES.join(', ')} (got ${mode})`);
-        this.state.mode = mode;
-        this.resize();
-      },
-      play: () => { this.state.playing = true; },
+      pause: () => this.setPlaying(false),
+      setView: (mode) => this.setView(mode),
+      play: () => this.setPlaying(true),
       step: (n = 1) => this.step(n),
       stats: () => this.snapshot(),
       editScene: (scene) => this.edit(scene),
@@ -643,13 +873,14 @@ export class Player {
       renderReference: (options) => this.renderReference(options),
       recordWebM: (options) => this.recordWebM(options),
       inspectVolume: (options) => this.inspectVolume(options),
+      inspectStepper: () => this.inspectStepper(),
       timeFrames: (options) => this.timeFrames(options),
     };
   }
 
   dispose() {
     this.running = false;
-    this.engine.terminate();
-    this.view.renderer.dispose();
+    this.#engine.terminate();
+    this.#view.renderer.dispose();
   }
 }

@@ -10,10 +10,12 @@
 //! - [`volume`]: the real-time view's density volume, computed as its shaders do;
 //!   [`light_volume`]: its light volume, the columns towards each light.
 //! - [`views`]: the two frames the page asks for, each made whole in one call.
+//! - [`gpu_steps`]: what crosses to the page's GPU stepper while the GPU advects the gas.
 //!
 //! The numbers this format shares with the page's shaders are written once, here and in the
 //! renderer, and handed to JavaScript by [`crate::contract`].
 
+pub mod gpu_steps;
 pub mod light_volume;
 pub mod lod;
 pub mod packed;

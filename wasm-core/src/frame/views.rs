@@ -20,18 +20,21 @@ pub struct ViewFrame {
     pub spheres: Vec<f32>,
 }
 
+/// The visible repulsor spheres of `sim` now, [`SPHERE_FLOATS`] each.
+pub fn sphere_floats(sim: &Simulation) -> Vec<f32> {
+    sim.wind
+        .visible_spheres(sim.time())
+        .iter()
+        .flat_map(|(c, r, rgb)| [c.x, c.y, c.z, *r, rgb[0], rgb[1], rgb[2]])
+        .collect()
+}
+
 impl ViewFrame {
     /// The frame of `sim` now (albedo resolved against the medium's).
     pub fn of(sim: &Simulation) -> Self {
-        let spheres = sim
-            .wind
-            .visible_spheres(sim.time())
-            .iter()
-            .flat_map(|(c, r, rgb)| [c.x, c.y, c.z, *r, rgb[0], rgb[1], rgb[2]])
-            .collect();
         Self {
             packed: PackedFrame::of_simulation(sim),
-            spheres,
+            spheres: sphere_floats(sim),
         }
     }
 }

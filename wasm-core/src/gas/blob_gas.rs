@@ -85,6 +85,9 @@ pub struct Gas {
     /// When κ last changed (s; −∞ if never): a blob's σ0 is its σ at the later of its birth and
     /// this time, so Eq. 15 reads σ² = σ0² + κ·(t − max(birth, diffusion_epoch)).
     diffusion_epoch: f64,
+    /// Whether the centres are advected elsewhere (on the GPU, [`crate::gas::slots`]): a step
+    /// then leaves them as they are and does the rest.
+    pub centres_elsewhere: bool,
 }
 
 /// Re-base the decay epoch once α(t − epoch) exceeds this (keeps factors well inside f32).
@@ -98,13 +101,14 @@ impl Gas {
             emitters: emitters
                 .iter()
                 .enumerate()
-                .map(|(i, e)| EmitterState::new(*e, seed, i))
+                .map(|(i, e)| EmitterState::new(e.clone(), seed, i))
                 .collect(),
             counts: GasCounts::default(),
             rng: Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x0053_504C_4954)),
             epoch: 0.0,
             decayed: Vec::new(),
             diffusion_epoch: f64::NEG_INFINITY,
+            centres_elsewhere: false,
         }
     }
 
@@ -143,10 +147,10 @@ impl Gas {
             if kept[i].is_none() {
                 kept[i] = Some(match old.get_mut(i).and_then(Option::take) {
                     Some(mut state) => {
-                        state.retune(*e, t);
+                        state.retune(e.clone(), t);
                         state
                     }
-                    None => EmitterState::starting_at(*e, seed, i, t),
+                    None => EmitterState::starting_at(e.clone(), seed, i, t),
                 });
             }
         }
@@ -197,7 +201,9 @@ impl Gas {
         fh: &WindFrame,
         factor: f32,
     ) -> bool {
-        self.advect(t, dt, integrator, f0, fh);
+        if !self.centres_elsewhere {
+            self.advect(t, dt, integrator, f0, fh);
+        }
         self.age_from(0, t + dt, factor)
     }
 
@@ -257,8 +263,8 @@ impl Gas {
                 let birth = self.emitters[e].next_birth();
                 let state = &mut self.emitters[e];
                 state.births += 1;
-                let em = state.emitter;
-                let x = state.sample_position();
+                let x = state.sample_position(birth);
+                let em = &state.emitter;
                 let v0 = Vec3::from_array(em.velocity);
                 let age = (t1 - birth) as f32;
                 let position = x + (frame.velocity(x) + v0) * age;
@@ -434,6 +440,10 @@ impl Gas {
                 0 => self.counts.dissipated += 1,
                 1 => {
                     out.push(&old.get(i), old.sigma[i], old.mass[i]);
+                    // A blob that stays keeps its place on the GPU; children take new ones.
+                    if let Some(slot) = out.slot.last_mut() {
+                        *slot = old.slot[i];
+                    }
                     self.decayed.push(old_decayed[i]);
                 }
                 _ => {

@@ -5,6 +5,9 @@
 
 use glam::Vec3;
 
+/// The slot of a blob the GPU does not hold.
+pub const NO_SLOT: u32 = u32::MAX;
+
 /// The blobs, structure of arrays. Vectors are xyz (or rgb) interleaved.
 #[derive(Debug, Clone, Default)]
 pub struct Blobs {
@@ -27,6 +30,9 @@ pub struct Blobs {
     pub velocity0: Vec<f32>,
     /// τ (s).
     pub velocity_time: Vec<f32>,
+    /// Where each blob lives in the page's GPU state while the GPU steps the gas
+    /// ([`NO_SLOT`] when it has none): see [`super::slots`].
+    pub slot: Vec<u32>,
     /// Whether any blob pushed since the arrays were built has a velocity of its own (saves a
     /// scan of `velocity0` per step; a zero velocity adds exactly nothing either way).
     own_velocity: bool,
@@ -97,6 +103,7 @@ impl Blobs {
         self.birth.push(b.birth);
         self.velocity0.extend_from_slice(&b.velocity0.to_array());
         self.velocity_time.push(b.velocity_time);
+        self.slot.push(NO_SLOT);
         self.own_velocity |= b.velocity0 != Vec3::ZERO;
     }
 
@@ -112,6 +119,7 @@ impl Blobs {
         self.birth.extend(other.birth.iter().map(|b| b + shift));
         self.velocity0.extend_from_slice(&other.velocity0);
         self.velocity_time.extend_from_slice(&other.velocity_time);
+        self.slot.extend(std::iter::repeat_n(NO_SLOT, other.len()));
         self.own_velocity |= other.own_velocity;
     }
 
@@ -140,6 +148,7 @@ impl Blobs {
         compact(&mut self.birth, 1, keep);
         compact(&mut self.velocity0, 3, keep);
         compact(&mut self.velocity_time, 1, keep);
+        compact(&mut self.slot, 1, keep);
     }
 
     /// Removes the `count` oldest blobs (the first `count`), moving the rest down.
@@ -157,6 +166,7 @@ impl Blobs {
         drop(&mut self.birth, 1, count);
         drop(&mut self.velocity0, 3, count);
         drop(&mut self.velocity_time, 1, count);
+        drop(&mut self.slot, 1, count);
     }
 
     /// The full state of blob `i`.

@@ -4,6 +4,7 @@
 
 use crate::gas::random::{stream_seed, uniform};
 use crate::gas::scene::{Emitter, EmitterShape};
+use crate::gas::spline::Path;
 use glam::Vec3;
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::rand_core::SeedableRng;
@@ -13,6 +14,8 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 #[derive(Debug, Clone)]
 pub struct EmitterState {
     pub emitter: Emitter,
+    /// The centre's path of a moving source.
+    path: Option<Path>,
     rng: Xoshiro256PlusPlus,
     /// Births so far.
     pub births: u64,
@@ -25,6 +28,7 @@ pub struct EmitterState {
 impl EmitterState {
     pub fn new(emitter: Emitter, seed: u64, index: usize) -> Self {
         Self {
+            path: (!emitter.path.is_empty()).then(|| Path::new(&emitter.path)),
             emitter,
             rng: Xoshiro256PlusPlus::seed_from_u64(stream_seed(seed, 0x454D_4954 + index as u64)),
             births: 0,
@@ -47,6 +51,7 @@ impl EmitterState {
         if emitter == self.emitter {
             return;
         }
+        self.path = (!emitter.path.is_empty()).then(|| Path::new(&emitter.path));
         self.emitter = emitter;
         self.origin = now;
         self.births_at_origin = self.births;
@@ -61,10 +66,14 @@ impl EmitterState {
         }
     }
 
-    /// Draws a birth position.
-    pub fn sample_position(&mut self) -> Vec3 {
-        let e = self.emitter;
-        let c = Vec3::from_array(e.center);
+    /// Draws the position of a birth at time `t` (s): in the region about the centre, which a
+    /// moving source takes from its path at `t`.
+    pub fn sample_position(&mut self, t: f64) -> Vec3 {
+        let e = &self.emitter;
+        let c = match &self.path {
+            Some(path) => path.at(t).0.as_vec3(),
+            None => Vec3::from_array(e.center),
+        };
         match e.shape {
             EmitterShape::Point => c,
             EmitterShape::Disk => {

@@ -21,7 +21,7 @@
 //! - [`blobs`]: the blobs' state (Eq. 13); [`blob_gas`]: advection (Eq. 14), diffusion
 //!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
 //! - [`simulation`]: the scene's field, wind and gas advanced together, live edits, and the
-//!   blob list of the current state.
+//!   blob list of the current state; [`slots`]: where each blob lives while the GPU advects it.
 //! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model.
 
 pub mod blob_gas;
@@ -35,6 +35,7 @@ pub mod read;
 pub mod scene;
 pub mod shapes;
 pub mod simulation;
+pub mod slots;
 pub mod spline;
 pub mod validate;
 pub mod wind;

@@ -238,7 +238,7 @@ pub enum EmitterShape {
 }
 
 /// A blob emitter (paper §6: region of birth, birth rate, σ0 and m0 of each blob).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Emitter {
     pub shape: EmitterShape,
@@ -273,6 +273,10 @@ pub struct Emitter {
     #[schemars(range(max = 1e6), extend("exclusiveMinimum" = 0))]
     pub velocity_time: f32,
     pub enabled: bool,
+    /// A moving source: keys `[t, x, y, z]` (s, m) the region's centre follows (the smooth
+    /// spline of a repulsor's path), in place of `center`; empty keeps it at `center`.
+    #[schemars(length(max = MAX_PATH_KEYS), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]
+    pub path: Vec<[f64; 4]>,
 }
 
 impl Default for Emitter {
@@ -291,6 +295,7 @@ impl Default for Emitter {
             velocity: [0.0; 3],
             velocity_time: 1.0,
             enabled: true,
+            path: Vec::new(),
         }
     }
 }

@@ -8,6 +8,7 @@ use crate::gas::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
 use crate::gas::blobs::{Blob, Blobs};
 use crate::gas::scene::{Primitive, Scene};
 use crate::gas::shapes::Shape;
+use crate::gas::slots::{SlotChanges, SlotTable};
 use crate::gas::wind::{Wind, WindFrame};
 use crate::gas::wind_slice::SlicePlane;
 use glam::Vec3;
@@ -29,6 +30,8 @@ pub struct Simulation {
     time_origin: f64,
     steps_at_origin: u64,
     frames: [WindFrame; 2],
+    /// While the GPU advects the centres: where each blob lives there ([`SlotTable`]).
+    slots: Option<SlotTable>,
 }
 
 /// What an edit did to the running simulation.
@@ -96,6 +99,7 @@ impl Simulation {
             time_origin: 0.0,
             steps_at_origin: 0,
             frames: Default::default(),
+            slots: None,
         }
     }
 
@@ -311,6 +315,75 @@ impl Simulation {
             &mut self.frames,
         );
         self.steps += 1;
+    }
+
+    /// Hands the centres to the GPU: from now on a step leaves them where they are (the GPU
+    /// advects them, Eq. 14) and does the rest (births, σ, mass, removal, the cap), and every
+    /// blob has a slot in the GPU's state ([`crate::gas::slots`]). Refused for a scene that
+    /// splits blobs or plays a shape in reverse: those are stepped here.
+    pub fn hand_centres_to_gpu(&mut self) -> Result<(), ParamError> {
+        if self.scene.gas.split_sigma.is_some() {
+            return Err(ParamError::new(
+                "gas.split_sigma",
+                "a scene that splits blobs is stepped by the worker, not on the GPU",
+            ));
+        }
+        if !self.reversed.is_empty() {
+            return Err(ParamError::new(
+                "shapes",
+                "a scene that plays a shape in reverse is stepped by the worker, not on the GPU",
+            ));
+        }
+        self.gas.centres_elsewhere = true;
+        self.slots = Some(SlotTable::new(&mut self.gas.blobs));
+        Ok(())
+    }
+
+    /// Whether the GPU advects the centres.
+    pub fn centres_on_gpu(&self) -> bool {
+        self.slots.is_some()
+    }
+
+    /// One past the highest GPU slot in use (0 while the centres are here).
+    pub fn slot_high_water(&self) -> u32 {
+        self.slots.as_ref().map_or(0, SlotTable::high_water)
+    }
+
+    /// Takes the GPU's centres (`xyz` per slot, m) as the blobs' own: for an export, a still, or
+    /// to step here again (`keep_on_gpu` false). Slots beyond `centres` leave their blob as it
+    /// is.
+    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool) {
+        let b = &mut self.gas.blobs;
+        for (i, &s) in b.slot.iter().enumerate() {
+            let s = s as usize;
+            if let Some(c) = centres.get(3 * s..3 * s + 3) {
+                b.position[3 * i..3 * i + 3].copy_from_slice(c);
+            }
+        }
+        if !keep_on_gpu {
+            self.slots = None;
+            self.gas.centres_elsewhere = false;
+            b.slot
+                .iter_mut()
+                .for_each(|s| *s = crate::gas::blobs::NO_SLOT);
+        }
+    }
+
+    /// One fixed step while the GPU advects the centres: what changed in the GPU's slots (the
+    /// newborns to write, the slots to empty). The wind the GPU steps through is
+    /// [`Self::wind_frames`]. Without slots it is a plain step.
+    pub fn step_for_gpu(&mut self) -> SlotChanges {
+        self.step();
+        match &mut self.slots {
+            Some(table) => table.reconcile(&mut self.gas.blobs),
+            None => SlotChanges::default(),
+        }
+    }
+
+    /// The wind of the last step frozen at its start and at its middle (the RK2 midpoint;
+    /// with Euler only the first is current).
+    pub fn wind_frames(&self) -> &[WindFrame; 2] {
+        &self.frames
     }
 
     /// `n` fixed steps.

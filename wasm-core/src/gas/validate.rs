@@ -94,6 +94,10 @@ fn lengths(scene: &Scene) -> Result<(), ParamError> {
             check::length(&at, path.len(), MAX_PATH_KEYS, "keys")?;
         }
     }
+    for (i, e) in scene.emitters.iter().enumerate() {
+        let at = format!("emitters[{i}].path");
+        check::length(&at, e.path.len(), MAX_PATH_KEYS, "keys")?;
+    }
     Ok(())
 }
 
@@ -177,7 +181,8 @@ fn primitive(path: &str, w: &Primitive) -> Result<(), ParamError> {
     }
 }
 
-/// A repulsor's path: at least one key `[t, x, y, z]`, times strictly increasing.
+/// A repulsor's (or a moving emitter's) path: at least one key `[t, x, y, z]`, times strictly
+/// increasing.
 fn path_keys(path: &str, keys: &[[f64; 4]]) -> Result<(), ParamError> {
     if keys.is_empty() {
         return Err(ParamError::new(
@@ -202,6 +207,9 @@ fn path_keys(path: &str, keys: &[[f64; 4]]) -> Result<(), ParamError> {
 /// An emitter (paper §6: region of birth, birth rate, σ0 and m0).
 fn emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
     let p = |s: &str| format!("{path}.{s}");
+    if !e.path.is_empty() {
+        path_keys(path, &e.path)?;
+    }
     check::vector(&p("center"), e.center, MAX_COORD)?;
     check::direction(&p("normal"), e.normal)?;
     check::range(&p("radius"), e.radius as f64, 0.0, MAX_COORD)?;

@@ -123,6 +123,8 @@ impl SmallScale {
         slice.inv_extent = slice.extent.recip();
         slice.cells_per_metre = self.cells_per_metre.into();
         slice.offset = (self.carry * t as f32).into();
+        slice.time_slices = (i0 as u32, i1 as u32, f);
+        slice.velocity_scale = self.velocity_scale.into();
     }
 }
 
@@ -138,6 +140,10 @@ pub struct FieldSlice {
     data: Vec<f32>,
     cells_per_metre: Vec3A,
     offset: Vec3A,
+    /// The lattice's two bracketing time slices and the blend between them: the slice is
+    /// `(1 − f)·u[i0] + f·u[i1]`, times `velocity_scale` (for the GPU's own sampling).
+    time_slices: (u32, u32, f32),
+    velocity_scale: Vec3A,
 }
 
 impl FieldSlice {
@@ -469,7 +475,66 @@ pub struct WindFrame {
     primitives: Vec<FrozenPrimitive>,
 }
 
+/// Floats of a wind table's header ([`WindFrame::write_gpu_table`]).
+pub const WIND_TABLE_HEADER: usize = 20;
+/// Floats per frozen primitive in a wind table.
+pub const WIND_TABLE_PRIMITIVE: usize = 16;
+/// A frozen primitive's kind in a wind table.
+pub const UNIFORM_KIND: f32 = 0.0;
+pub const SOURCE_KIND: f32 = 1.0;
+pub const VORTEX_KIND: f32 = 2.0;
+pub const REPULSOR_KIND: f32 = 3.0;
+
 impl WindFrame {
+    /// The wind frozen at this frame's time as the GPU stepper reads it, appended to `out`:
+    ///
+    /// - header ([`WIND_TABLE_HEADER`] floats): `[has_field, i0, i1, f]` (the small-scale
+    ///   field's two lattice time slices and their blend), `[offset xyz (m), 0]` (the carried
+    ///   eddies' shift), `[lattice cells per metre xyz, 0]`, `[velocity scale xyz (m/s per
+    ///   lattice unit), 0]`, `[constant wind xyz (m/s), primitive count]`;
+    /// - per primitive ([`WIND_TABLE_PRIMITIVE`] floats, four vec4):
+    ///   `[kind, 1/decay (1/m; 0: none), a, b]`, `[decay origin xyz (m), 0]`, `[p xyz, 0]`,
+    ///   `[q xyz, 0]`, where uniform: p = velocity; source: p = position, a = s/(4π),
+    ///   b = core²; vortex: p = position, q = unit axis, a = Γ/(2π), b = core²; repulsor:
+    ///   p = centre, q = velocity, a = radius, b = strength.
+    pub fn write_gpu_table(&self, out: &mut Vec<f32>) {
+        let s = &self.slice;
+        let (i0, i1, f) = s.time_slices;
+        let v = |v: Vec3A, w: f32| [v.x, v.y, v.z, w];
+        out.extend_from_slice(&[
+            if self.has_slice { 1.0 } else { 0.0 },
+            i0 as f32,
+            i1 as f32,
+            f,
+        ]);
+        out.extend_from_slice(&v(s.offset, 0.0));
+        out.extend_from_slice(&v(s.cells_per_metre, 0.0));
+        out.extend_from_slice(&v(s.velocity_scale, 0.0));
+        out.extend_from_slice(&v(self.constant, self.primitives.len() as f32));
+        for p in &self.primitives {
+            let (kind, a, b, pos, q) = match p.kind {
+                Frozen::Uniform { velocity } => (UNIFORM_KIND, 0.0, 0.0, velocity, Vec3A::ZERO),
+                Frozen::Source { position, k, a2 } => (SOURCE_KIND, k, a2, position, Vec3A::ZERO),
+                Frozen::Vortex {
+                    position,
+                    axis,
+                    g,
+                    a2,
+                } => (VORTEX_KIND, g, a2, position, axis),
+                Frozen::Repulsor {
+                    center,
+                    velocity,
+                    radius,
+                    strength,
+                } => (REPULSOR_KIND, radius, strength, center, velocity),
+            };
+            out.extend_from_slice(&[kind, p.inv_decay, a, b]);
+            out.extend_from_slice(&v(p.origin, 0.0));
+            out.extend_from_slice(&v(pos, 0.0));
+            out.extend_from_slice(&v(q, 0.0));
+        }
+    }
+
     /// u(x) = u_s(x) + Σ primitives (m/s).
     #[inline]
     pub fn velocity(&self, x: Vec3) -> Vec3 {

@@ -1,19 +1,10 @@
-// Screen tiles for the exact GPU march, built in the engine worker: each blob's truncated
-// sphere is projected to the screen and its index appended to every tile it may cover, nearest
-// blobs first. A pixel then visits only the blobs of its tile, so the cost per pixel follows
-// local, not total, blob count.
+// Screen tiles for the exact GPU march, built in the engine worker: each blob's sphere,
+// truncated at TRUNCATION σ as in the reference renderer, is projected to the screen and its
+// index appended to every tile it may cover, nearest blobs first. A pixel then visits only the
+// blobs of its tile, so the cost per pixel follows local, not total, blob count. The march's
+// index textures are BLOBS_PER_ROW texels wide: the worker pads their data to whole rows.
 
-import { BLOBS_PER_ROW, TRUNCATION, WORDS_PER_BLOB } from '../generated/contract.js';
-
-/** Blobs are truncated at TRUNCATION σ, as in the reference renderer (the core's contract). */
-export { TRUNCATION };
-/** Screen tile side (pixels). */
-export const TILE = 16;
-/**
- * Width (texels) of the exact march's index and shadow textures: the blob texture's row
- * (`BLOBS_PER_ROW` of the core's contract); the worker pads their data to whole rows.
- */
-export const TEX_WIDTH = BLOBS_PER_ROW;
+import { TRUNCATION, WORDS_PER_BLOB } from '../generated/contract.js';
 
 /** `data` padded with zeros to a multiple of `row` elements (a copy; at least one row). */
 export function padRows(data, row) {
@@ -28,7 +19,7 @@ export function padRows(data, row) {
  * @param {{position: number[], forward: number[], right: number[], up: number[], tanHalf: number}} view
  *   camera basis (unit vectors) and tan(fov_y / 2)
  * @param {number} width @param {number} height pixels; tile rows count from the bottom (GL)
- * @param {number} tile tile side in pixels
+ * @param {number} tile tile side in pixels (the exact march's `TILE`)
  * @returns {{tilesX: number, tilesY: number, heads: Float32Array, list: Float32Array}}
  *   heads: per tile [start, count, 0, 0]; list: blob indices, front to back within each tile
  */

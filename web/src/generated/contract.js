@@ -55,6 +55,29 @@ export const STEP_FRACTION = 0.5;
 /** Floats of the shadow grid before its columns: lo xyz, hi xyz, res, lights. (`frame::shadow_grid::SHADOW_GRID_HEADER`) */
 export const SHADOW_GRID_HEADER = 8;
 
+// The GPU stepper (the gas advected on the GPU)
+
+/** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
+export const BLOB_FLOATS = 20;
+
+/** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count. (`gas::wind::WIND_TABLE_HEADER`) */
+export const WIND_TABLE_HEADER = 20;
+
+/** Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin; p; q. (`gas::wind::WIND_TABLE_PRIMITIVE`) */
+export const WIND_TABLE_PRIMITIVE = 16;
+
+/** A uniform wind's kind in a wind table. (`gas::wind::UNIFORM_KIND`) */
+export const UNIFORM_KIND = 0;
+
+/** A source's (or sink's) kind in a wind table. (`gas::wind::SOURCE_KIND`) */
+export const SOURCE_KIND = 1;
+
+/** A vortex's kind in a wind table. (`gas::wind::VORTEX_KIND`) */
+export const VORTEX_KIND = 2;
+
+/** A repulsor's kind in a wind table. (`gas::wind::REPULSOR_KIND`) */
+export const REPULSOR_KIND = 3;
+
 // The scene format
 
 /** Smallest lattice extent along any axis (field.size[i]). (`field::lattice::MIN_EXTENT`) */

@@ -1,7 +1,7 @@
 // The wind slice's legend: the colour bar of its speed scale (viridis, 0 to the slice's fastest
 // wind) with its ends in m/s.
 
-import { viridis } from '../colormap.js';
+import { viridis } from '../charts/colormap.js';
 
 /** Paints the colour bar into `legend`'s canvas and labels its top speed `maxSpeed` (m/s). */
 export function drawSliceLegend(legend, maxSpeed) {

@@ -18,7 +18,7 @@ export function statusText(stats, { mode, volume = null, stirring = false }) {
     `t = ${stats.time.toFixed(2)} s`,
     `${stats.blobs.toLocaleString('en')} blobs`,
     `${Math.round(stats.fps)} fps (${LIMITS[stats.limitedBy] ?? stats.limitedBy})`,
-    `step ${stats.stepMs.toFixed(2)} ms (${stats.stepper === 'gpu' ? 'GPU' : 'worker'})`,
+    `step ${stats.stepMs.toFixed(2)} ms (${stats.stepper === 'gpu' ? 'GPU' : `worker${stats.stepperReason ? `: ${stats.stepperReason}` : ''}`})`,
     `field ${stats.fieldMs.toFixed(0)} ms`,
   ];
   if (mode !== 'points') parts.push(`resolution ${Math.round(stats.scale * 100)} %`);

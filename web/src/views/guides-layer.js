@@ -138,10 +138,14 @@ export class GuidesLayer {
     this.onMoved = null;
   }
 
-  /** Rebuilds the guides when the scene's primitives or emitters change. */
+  /** Rebuilds the guides when the scene's primitives or emitters change (a new scene is compared once). */
   update(scene) {
+    if (scene === this.scene) return;
     const key = JSON.stringify([scene.wind, scene.emitters]);
-    if (key === this.key) return;
+    if (key === this.key) {
+      this.scene = scene;
+      return;
+    }
     this.key = key;
     for (const child of [...this.group.children]) {
       this.group.remove(child);

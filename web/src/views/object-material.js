@@ -4,9 +4,10 @@
 // so objects and gas always see the same frame.
 
 import * as THREE from 'three';
-import { GRID_SHADOW_GLSL } from './exact-layer.js';
-import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
-import { VOLUME_SHADOW_GLSL } from './volume/march-glsl.js';
+import { VIEW_LIGHTS } from '../generated/contract.js';
+import { GRID_SHADOW_GLSL } from './shaders/grid-shadow.js';
+import { LIGHTS_GLSL } from './shaders/lights.js';
+import { VOLUME_SHADOW_GLSL } from './shaders/volume-shadow.js';
 
 const vertexShader = /* glsl */ `
 out vec3 vWorld;
@@ -35,7 +36,7 @@ void main() {
   vec3 n = normalize(vNormal) * (gl_FrontFacing ? 1.0 : -1.0);
   vec3 x = vWorld + n * 1e-4;
   vec3 lit = vec3(0.0);
-  for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+  for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
     if (l >= lightCount) break;
     float dist;
     vec3 toLight = towardsLight(l, x, dist);

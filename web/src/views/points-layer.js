@@ -9,8 +9,9 @@
 // real-time view and the stills are.
 
 import * as THREE from 'three';
-import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
-import { BLOB_GLSL } from './volume/glsl.js';
+import { VIEW_LIGHTS } from '../generated/contract.js';
+import { BLOB_GLSL } from './shaders/blob-record.js';
+import { LIGHTS_GLSL } from './shaders/lights.js';
 
 /** Sprites reach this many σ from the centre. */
 const REACH = 3;
@@ -40,7 +41,7 @@ void main() {
   float k = (kappa.r + kappa.g + kappa.b) / 3.0;
   vDepth = k * mass / (6.2831853 * sigma * sigma) * min(1.0, (size * size) / (shown * shown));
   vec3 L = vec3(0.0);
-  for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+  for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
     if (l >= lightCount) break;
     L += lightColor[l];
   }

@@ -14,8 +14,9 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { INFO_HEADER, INFO_PER_CLASS, SPHERE_FLOATS } from '../generated/contract.js';
 import { BlobTexture } from './blob-texture.js';
-import { ExactMarchLayer } from './exact-layer.js';
+import { ExactMarchLayer } from './exact/exact-layer.js';
 import { gasUniforms, setLights } from './gas-uniforms.js';
 import { PointsLayer } from './points-layer.js';
 import { classSigma } from './volume/grid.js';
@@ -60,6 +61,9 @@ export class SceneView {
     this.points = new PointsLayer(this.gas, this.blobs);
     this.scene.add(this.points.points);
     this.target = null;
+    /** The render settings applied last (the object, with or without stand-ins, and its content). */
+    this.settings = null;
+    this.settingsStandIns = false;
     this.settingsKey = '';
     this.background = [0, 0, 0];
     /** Draw plain cylinders in place of models (for comparisons with the CPU still). */
@@ -177,6 +181,11 @@ export class SceneView {
    * `standIns`, cylinders that name a model are drawn as the plain cylinders the CPU still uses.
    */
   setRenderSettings(settings, { standIns = this.standIns } = {}) {
+    // The same settings object as last time (a scene is replaced, never changed in place): nothing
+    // to compare. A new one is compared by its content once.
+    if (settings === this.settings && standIns === this.settingsStandIns) return;
+    this.settings = settings;
+    this.settingsStandIns = standIns;
     const key = JSON.stringify([settings.objects, settings.lights, settings.medium, settings.background, settings.shadows, settings.image, standIns]);
     if (key === this.settingsKey) return;
     this.settingsKey = key;
@@ -196,16 +205,19 @@ export class SceneView {
   }
 
   /**
-   * A new frame from the worker: the packed blobs for every view and the repulsor spheres
-   * (`spheres`: x y z radius r g b each), moved in place.
+   * A new frame: the packed blobs for every view (the worker's words, `blobs`, or a packed
+   * texture the GPU stepper keeps, `texture`), their description (`info`) and the repulsor
+   * spheres (`spheres`: SPHERE_FLOATS each, x y z radius r g b), moved in place.
    */
   setFrame(frame) {
-    this.blobs.upload(frame.blobs, frame.count);
-    this.volume.setFrame(frameInfo(frame.info));
+    // The worker's packed words, or the GPU stepper's packed state where it is.
+    if (frame.texture) this.blobs.show(frame.texture, frame.count);
+    else this.blobs.upload(frame.blobs, frame.count);
+    this.volume.setFrame(frameDescription(frame.info));
     this.points.update();
     const s = frame.spheres;
-    const n = s.length / 7;
-    const key = `${n}|${Array.from({ length: n }, (_, i) => s.slice(7 * i + 3, 7 * i + 7).join()).join(';')}`;
+    const n = s.length / SPHERE_FLOATS;
+    const key = `${n}|${Array.from({ length: n }, (_, i) => s.slice(SPHERE_FLOATS * i + 3, SPHERE_FLOATS * (i + 1)).join()).join(';')}`;
     if (key !== this.spheresKey) {
       this.spheresKey = key;
       for (const child of [...this.spheres.children]) {
@@ -214,11 +226,12 @@ export class SceneView {
         child.material.dispose();
       }
       for (let i = 0; i < n; i++) {
-        const sphere = { type: 'sphere', center: [0, 0, 0], radius: s[7 * i + 3], color: Array.from(s.subarray(7 * i + 4, 7 * i + 7)) };
+        const at = SPHERE_FLOATS * i;
+        const sphere = { type: 'sphere', center: [0, 0, 0], radius: s[at + 3], color: Array.from(s.subarray(at + 4, at + 7)) };
         this.spheres.add(objectMesh(sphere, false, this.gas));
       }
     }
-    this.spheres.children.forEach((mesh, i) => mesh.position.fromArray(s, 7 * i));
+    this.spheres.children.forEach((mesh, i) => mesh.position.fromArray(s, SPHERE_FLOATS * i));
   }
 
   resize(width, height) {
@@ -281,14 +294,19 @@ function opaqueTarget(width, height) {
 }
 
 /**
- * `frameInfo` (the core's `PackedFrame::info`) as an object; each σ class {index, offset, count,
- * sigmaMax, sigmaLow (its lower bound, `classSigma(index)`)}.
+ * A frame's description (`info`, the core's `frame::packed::PackedFrame::info`: INFO_HEADER
+ * floats, count, lo xyz, hi xyz, emissive, σ_min, classes, then INFO_PER_CLASS a σ class) as an
+ * object; each σ class {index, offset, count, sigmaMax, sigmaLow (its lower bound,
+ * `classSigma(index)`)}. A class of index −1 is `mixed`: blobs of every σ up to `sigmaMax`,
+ * unsorted (the GPU stepper's state, drawn slot by slot), its lower bound 0.
  */
-export function frameInfo(info) {
+export function frameDescription(info) {
   const classes = [];
-  for (let k = 0; k < info[9]; k++) {
-    const [index, offset, count, sigmaMax] = info.subarray(10 + 4 * k, 14 + 4 * k);
-    classes.push({ index, offset, count, sigmaMax, sigmaLow: classSigma(index) });
+  for (let k = 0; k < info[INFO_HEADER - 1]; k++) {
+    const at = INFO_HEADER + INFO_PER_CLASS * k;
+    const [index, offset, count, sigmaMax] = info.subarray(at, at + INFO_PER_CLASS);
+    const mixed = index < 0;
+    classes.push({ index, offset, count, sigmaMax, sigmaLow: mixed ? 0 : classSigma(index), mixed });
   }
   return {
     count: info[0],

@@ -2,8 +2,8 @@
 // (viridis) with arrows for the in-plane velocity (u₁, u₂), and optionally its colour bar.
 
 import * as THREE from 'three';
-import { viridis } from '../colormap.js';
-import { ColourBar } from '../colour-bar.js';
+import { viridis } from '../charts/colormap.js';
+import { ColourBar } from '../charts/colour-bar.js';
 import { releaseGeometries } from './context-loss.js';
 
 /** Arrows drawn per side of the slice. */

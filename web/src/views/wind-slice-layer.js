@@ -3,7 +3,7 @@
 // slice's largest speed) with arrows for the wind's component in the plane.
 
 import * as THREE from 'three';
-import { viridis } from '../colormap.js';
+import { viridis } from '../charts/colormap.js';
 
 /** Samples per side of the slice. */
 export const SLICE_SAMPLES = 48;

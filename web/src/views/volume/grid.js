@@ -1,34 +1,39 @@
 // The real-time view's voxel grid: cubes of side h covering the gas's bounds, and the layout of
 // its slices in a 2-D atlas texture (slice k is the tile at column k mod cols, row ⌊k/cols⌋).
-// Pure functions: the page fits the grid to each frame's bounds and the quality's budget.
+// Pure functions: the page fits the grid to each frame's bounds and the quality's budget. The
+// numbers it shares with the core (`frame::volume`, `frame::packed`) come from the contract.
 
-/** A blob's footprint reaches this many σ from its centre (`render::frame::FOOTPRINT`). */
-export const FOOTPRINT = 3;
-/** Blobs narrower than this many voxels are splatted directly (`render::volume::DIRECT_LIMIT`). */
-export const DIRECT_LIMIT = 0.5;
-/** Longest blur kernel, voxels either side (`render::volume::MAX_BLUR_RADIUS`). */
-export const MAX_BLUR_RADIUS = 32;
+import { BLUR_NARROW, BLUR_REACH, CLASS_BIAS, MAX_BLUR_RADIUS } from '../../generated/contract.js';
 
-/** Class k starts at σ = √2^(k − CLASS_BIAS) m (`render::frame`). */
-export const CLASS_BIAS = 48;
-
-/** σ_k, the lower bound of σ class k (m; `render::frame::class_sigma`). */
+/** σ_k, the lower bound of σ class k (m; `frame::packed::class_sigma`). */
 export function classSigma(k) {
   return 2 ** ((k - CLASS_BIAS) / 2);
 }
 
+const squared = new Float32Array(1);
+const squaredBits = new Uint32Array(squared.buffer);
+/**
+ * The σ class of σ (m): the binary exponent of σ² (single precision) plus CLASS_BIAS, clamped
+ * to classes 0–63, as the core counts them (`frame::packed::class_of`).
+ */
+export function classOf(sigma) {
+  squared[0] = sigma * sigma;
+  const exponent = ((squaredBits[0] >>> 23) & 255) - 127;
+  return Math.min(Math.max(exponent + CLASS_BIAS, 0), 63);
+}
+
 /**
  * The blur taking a cloud-in-cell deposit on voxels of side `h` to a Gaussian of `sigma`
- * (`render::volume::blur_kernel`): normalised taps at offsets −R..R of variance σ² − h²/6.
+ * (`frame::volume::blur_kernel`): normalised taps at offsets −R..R of variance σ² − h²/6.
  */
 export function blurKernel(sigma, h) {
   const variance = Math.max(sigma * sigma - (h * h) / 6, 0);
   const width = Math.sqrt(variance);
-  if (width < 0.8 * h) {
+  if (width < BLUR_NARROW * h) {
     const a = variance / (2 * h * h);
     return [a, 1 - 2 * a, a];
   }
-  const r = Math.min(Math.ceil((3 * width) / h), MAX_BLUR_RADIUS);
+  const r = Math.min(Math.ceil((BLUR_REACH * width) / h), MAX_BLUR_RADIUS);
   const taps = [];
   for (let t = -r; t <= r; t++) taps.push(Math.exp(-0.5 * ((t * h) / width) ** 2));
   const total = taps.reduce((a, b) => a + b, 0);
@@ -49,7 +54,7 @@ export function fitGrid(lo, hi, { budget, maxDim = 256, minH = 0 }) {
   return { lo: gridLo, h, dims };
 }
 
-/** The light volume's grid: voxels twice as wide from the same corner (`VoxelGrid::halved`). */
+/** The light volume's grid: voxels twice as wide from the same corner (`frame::volume::VoxelGrid::halved`). */
 export function halved(grid) {
   return { lo: grid.lo, h: 2 * grid.h, dims: grid.dims.map((n) => Math.ceil(n / 2)) };
 }
@@ -71,5 +76,5 @@ export function atlasLayout(dims, maxSize) {
 
 /** Smallest voxel side (m) whose blur kernels reach the widest mesh class of blobs up to `sigmaMax`. */
 export function minVoxelFor(sigmaMax) {
-  return (3 * Math.SQRT2 * sigmaMax) / MAX_BLUR_RADIUS;
+  return (BLUR_REACH * Math.SQRT2 * sigmaMax) / MAX_BLUR_RADIUS;
 }

@@ -2,13 +2,14 @@
 // density grid's resolution, the optical column ∫ρ ds towards each light (up to four, one per
 // channel), a midpoint sum through the density volume along the path inside the density grid's
 // box and short of a point light, in ⌈length / (step·h)⌉ equal steps — as
-// `render::volume::light_columns` in the core. Drawn in one draw into a 2-D atlas of the light
+// `frame::light_volume::light_columns` in the core. Drawn in one draw into a 2-D atlas of the light
 // grid's slices (then copied into a 3-D texture, `slice-copy.js`). The march and the objects
 // read S_k = exp(−κ_t · column) from it (Eq. 25).
 
 import { ScreenPass } from '../screen-pass.js';
+import { VIEW_LIGHTS } from '../../generated/contract.js';
+import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { ATLAS_PASS_GLSL } from './glsl.js';
-import { LIGHTS_GLSL, MAX_LIGHTS } from '../gas-uniforms.js';
 /** Most steps of one column (a 256-voxel diagonal at step 0.5 is 887). */
 const MAX_COLUMN_STEPS = 1024;
 
@@ -46,7 +47,7 @@ void main() {
   }
   vec3 x = lightGrid.lo + lightGrid.h * (vec3(v) + 0.5);
   vec4 c = vec4(0.0);
-  for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+  for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
     if (l >= lightCount) break;
     c[l] = column(x, l);
   }

@@ -1,40 +1,9 @@
-// GLSL of the real-time view's ray march: the light volume read at any point (objects included),
-// and the march through the density volume with jittered steps, leaping over empty bricks.
+// GLSL of the real-time view's ray march through the density volume with jittered steps,
+// leaping over empty bricks. It follows the light volume's chunk (`../shaders/volume-shadow.js`:
+// the voxel grid, `volumeColumn`), which the objects' material reads too.
 
-import { GRID_GLSL } from './glsl.js';
+import { VIEW_LIGHTS } from '../../generated/contract.js';
 import { BRICK_GLSL } from './occupancy-pass.js';
-import { MAX_LIGHTS } from '../gas-uniforms.js';
-
-/** Gas shadows from the light volume: `volumeColumn(l, x)`, ∫ρ ds from x towards light l. */
-export const VOLUME_SHADOW_GLSL = /* glsl */ `
-${GRID_GLSL}
-uniform sampler3D lightVolume;
-uniform Grid grid;
-uniform Grid lightGrid;
-
-// The part [near, far] of the ray x + s·d, 0 ≤ s ≤ sMax, inside the density grid's box (slab
-// test); near > far if it misses.
-vec2 boxSpan(vec3 x, vec3 d, float sMax) {
-  vec3 inv = 1.0 / d;
-  vec3 a = (grid.lo - x) * inv;
-  vec3 b = (grid.lo + grid.h * vec3(grid.dims) - x) * inv;
-  vec3 tMin = min(a, b);
-  vec3 tMax = max(a, b);
-  return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), min(tMax.z, sMax)));
-}
-
-// Inside the density grid's box, the light volume at x; outside, where the path to the light
-// enters the box (no gas lies outside), or 0 if it never does.
-float volumeColumn(int l, vec3 x, vec3 toLight, float toLightDistance) {
-  vec3 hi = grid.lo + grid.h * vec3(grid.dims);
-  if (any(lessThan(x, grid.lo)) || any(greaterThan(x, hi))) {
-    vec2 span = boxSpan(x, toLight, toLightDistance);
-    if (span.x > span.y) return 0.0;
-    x += toLight * span.x;
-  }
-  return sampleVolume(lightVolume, lightGrid, x)[l];
-}
-`;
 
 export const MAX_MARCH_STEPS = 1024;
 
@@ -79,7 +48,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));
     vec3 albedo = d.yzw / d.x;
     vec3 L = vec3(0.0);
-    for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+    for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
       if (l >= lightCount) break;
       float dist;
       vec3 toLight = towardsLight(l, x, dist);

@@ -7,9 +7,9 @@
 // across the gas at `standard`): at two view pixels a march pixel the gas loses little.
 
 import * as THREE from 'three';
-import { LIGHTS_GLSL } from '../gas-uniforms.js';
-import { MARCH_PREAMBLE } from '../march-quad.js';
 import { ScreenPass } from '../screen-pass.js';
+import { LIGHTS_GLSL } from '../shaders/lights.js';
+import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
 
 /** The march's own outputs in its split form (after MARCH_PREAMBLE's outColor, location 0). */
 export const SPLIT_OUTPUTS_GLSL = /* glsl */ `

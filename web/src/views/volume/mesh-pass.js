@@ -1,5 +1,5 @@
 // The particle mesh (the real-time view's path for blobs at least DIRECT_LIMIT voxels wide), as
-// `render::volume::splat` in the core does it: per mesh class k (σ_k = √2^(k − 48) m), every
+// `frame::volume::splat` in the core does it: per mesh class k (σ_k = √2^(k − CLASS_BIAS) m), every
 // blob of σ classes k − 1 and k deposits its share of mass — the split between classes k and
 // k + 1 that keeps its column through the centre, w = 2σ_k²/σ² − 1 — on the eight voxels around
 // its centre (cloud in cell), and the
@@ -9,20 +9,24 @@
 
 import * as THREE from 'three';
 import { ScreenPass } from '../screen-pass.js';
-import { ATLAS_PASS_GLSL, BLOB_GLSL, GRID_GLSL } from './glsl.js';
-import { blurKernel, classSigma, DIRECT_LIMIT, MAX_BLUR_RADIUS } from './grid.js';
+import { CLASS_BIAS, DIRECT_LIMIT, MAX_BLUR_RADIUS } from '../../generated/contract.js';
+import { BLOB_GLSL } from '../shaders/blob-record.js';
+import { VOXEL_GRID_GLSL } from '../shaders/voxel-grid.js';
+import { ATLAS_PASS_GLSL } from './glsl.js';
+import { blurKernel, classOf, classSigma } from './grid.js';
 import { ADDITIVE, additivePoints } from './point-draws.js';
 
 const depositVertex = /* glsl */ `
 precision highp float;
 precision highp int;
 ${BLOB_GLSL}
-${GRID_GLSL}
+${VOXEL_GRID_GLSL}
 uniform Grid grid;
 uniform int atlasCols;
 uniform vec2 atlasSize;
 uniform int classOffset;
 uniform float sigmaLow;   // σ_k of the drawn σ class k
+uniform int sigmaClass;   // k: blobs of other classes are left out (a mixed range holds them all)
 uniform bool upper;       // deposit the share of mesh class k + 1 (else k)
 flat out vec3 vFraction;  // trilinear fractions towards the next voxel
 flat out float vScale;    // share of density of the slice, before the xy weights
@@ -39,7 +43,8 @@ void main() {
   gl_PointSize = 2.0;
   float lower = clamp(2.0 * sigmaLow * sigmaLow / (sigma * sigma) - 1.0, 0.0, 1.0);
   float share = upper ? 1.0 - lower : lower;
-  if (sigma < ${DIRECT_LIMIT.toFixed(2)} * grid.h || mass <= 0.0 || share <= 0.0) {
+  int own = clamp(int((floatBitsToUint(sigma * sigma) >> 23) & 255u) - 127 + ${CLASS_BIAS}, 0, 63);
+  if (own != sigmaClass || sigma < ${DIRECT_LIMIT.toFixed(2)} * grid.h || mass <= 0.0 || share <= 0.0) {
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
@@ -140,22 +145,44 @@ export class MeshPass {
 
   #deposit(i) {
     while (this.deposits.length <= i) {
-      const points = additivePoints(depositVertex, depositFragment, { ...this.shared, classOffset: { value: 0 }, sigmaLow: { value: 1 }, upper: { value: false } });
+      const points = additivePoints(depositVertex, depositFragment, { ...this.shared, classOffset: { value: 0 }, sigmaLow: { value: 1 }, sigmaClass: { value: 0 }, upper: { value: false } });
       this.depositScene.add(points);
       this.deposits.push(points);
     }
     return this.deposits[i];
   }
 
-  /** Mesh classes that receive blobs: one past every σ class that holds a blob this wide. */
+  /**
+   * Mesh classes that receive blobs: every σ class that holds a blob this wide, and one past it
+   * (for a mixed range, every class from its narrowest wide blob's to its widest's).
+   */
   static classes(frame, h) {
     const out = new Set();
     for (const c of frame.classes) {
       if (c.sigmaMax < DIRECT_LIMIT * h) continue;
-      out.add(c.index);
-      out.add(c.index + 1);
+      const [first, last] = c.mixed ? [classOf(Math.max(frame.sigmaMin, DIRECT_LIMIT * h)), classOf(c.sigmaMax)] : [c.index, c.index];
+      for (let k = first; k <= last; k++) {
+        out.add(k);
+        out.add(k + 1);
+      }
     }
     return [...out].sort((a, b) => a - b);
+  }
+
+  /**
+   * The deposits into mesh class k: σ class k − 1's upper shares and class k's lower shares,
+   * each {offset, count, sigmaClass, upper}; a mixed range gives both from all its blobs.
+   */
+  static deposits(frame, k) {
+    const out = [];
+    for (const c of frame.classes) {
+      if (c.mixed) {
+        out.push({ ...c, sigmaClass: k - 1, upper: true }, { ...c, sigmaClass: k, upper: false });
+      } else if (c.index === k || c.index === k - 1) {
+        out.push({ ...c, sigmaClass: c.index, upper: c.index === k - 1 });
+      }
+    }
+    return out;
   }
 
   /**
@@ -172,14 +199,14 @@ export class MeshPass {
     for (const k of MeshPass.classes(frame, h)) {
       // Deposit: σ class k − 1's upper shares and class k's lower shares.
       let used = 0;
-      for (const c of frame.classes) {
-        if (c.index !== k && c.index !== k - 1) continue;
+      for (const d of MeshPass.deposits(frame, k)) {
         const points = this.#deposit(used++);
         const m = points.material.uniforms;
-        m.classOffset.value = c.offset;
-        m.sigmaLow.value = c.sigmaLow;
-        m.upper.value = c.index === k - 1;
-        points.geometry.setDrawRange(0, 2 * c.count);
+        m.classOffset.value = d.offset;
+        m.sigmaLow.value = classSigma(d.sigmaClass);
+        m.sigmaClass.value = d.sigmaClass;
+        m.upper.value = d.upper;
+        points.geometry.setDrawRange(0, 2 * d.count);
         points.visible = true;
       }
       for (let i = used; i < this.deposits.length; i++) this.deposits[i].visible = false;

@@ -1,15 +1,18 @@
 // The direct splat (the real-time view's first pass, for blobs narrower than DIRECT_LIMIT
 // voxels): every such blob adds its average over each voxel of its footprint to the density
-// atlas, renormalised over the footprint so the mass is kept, exactly as `render::volume::splat`
+// atlas, renormalised over the footprint so the mass is kept, exactly as `frame::volume::splat`
 // in the core does. One point sprite per (blob, slice): the sprite covers the footprint's rows
 // and columns in that slice's tile; its fragments are voxels. Additive blending into one or two
 // float targets: [ρ, ρΩ] and [ρ(1 − Ω)Q, 0] (DESIGN §4's density-weighted source). Blobs are
-// drawn class by class (`frameInfo`), each class with as many slices per blob as its widest
-// needs; wider blobs are culled here and go through the particle mesh (`mesh-pass.js`).
+// drawn σ class by class (`frameDescription` in `scene-view.js`), each class with as many slices
+// per blob as its widest needs; wider blobs are culled here and go through the particle mesh
+// (`mesh-pass.js`).
 
 import * as THREE from 'three';
-import { BLOB_GLSL, ERF_GLSL, GRID_GLSL } from './glsl.js';
-import { DIRECT_LIMIT, FOOTPRINT } from './grid.js';
+import { DIRECT_LIMIT, FOOTPRINT } from '../../generated/contract.js';
+import { BLOB_GLSL } from '../shaders/blob-record.js';
+import { ERF_GLSL } from '../shaders/erf.js';
+import { VOXEL_GRID_GLSL } from '../shaders/voxel-grid.js';
 import { additivePoints } from './point-draws.js';
 
 const vertexShader = /* glsl */ `
@@ -17,7 +20,7 @@ precision highp float;
 precision highp int;
 ${BLOB_GLSL}
 ${ERF_GLSL}
-${GRID_GLSL}
+${VOXEL_GRID_GLSL}
 uniform Grid grid;
 uniform int atlasCols;   // slice k is the tile at column k mod atlasCols, row ⌊k / atlasCols⌋
 uniform vec2 atlasSize;  // texels
@@ -76,7 +79,7 @@ const fragmentShader = /* glsl */ `
 precision highp float;
 precision highp int;
 ${ERF_GLSL}
-${GRID_GLSL}
+${VOXEL_GRID_GLSL}
 uniform Grid grid;
 flat in vec3 vCentre;
 flat in float vInvWidth;
@@ -122,7 +125,7 @@ export class SplatPass {
   }
 
   /**
-   * Splats the narrow blobs of the frame's `classes` (from `frameInfo`: {offset, count,
+   * Splats the narrow blobs of the frame's `classes` (`frameDescription`: {offset, count,
    * sigmaMax}) into `target` (cleared first) on voxels of side `h`.
    */
   render(renderer, target, classes, h) {

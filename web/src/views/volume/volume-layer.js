@@ -12,14 +12,16 @@
 // the next `prepare` makes them again and rebuilds the volumes from the frame it holds.
 
 import * as THREE from 'three';
-import { LIGHTS_GLSL } from '../gas-uniforms.js';
 import { waitForGpu } from '../gpu-sync.js';
-import { MARCH_PREAMBLE, MarchQuad } from '../march-quad.js';
+import { MarchQuad } from '../march-quad.js';
 import { releaseGeometries } from '../context-loss.js';
+import { LIGHTS_GLSL } from '../shaders/lights.js';
+import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
+import { VOLUME_SHADOW_GLSL } from '../shaders/volume-shadow.js';
 import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
-import { MARCH_GLSL, VOLUME_SHADOW_GLSL } from './march-glsl.js';
+import { MARCH_GLSL } from './march-glsl.js';
 import { marchSize, MarchUpsample, SPLIT_OUTPUTS_GLSL } from './march-upsample.js';
 import { MeshPass } from './mesh-pass.js';
 import { brickDims, OccupancyPass } from './occupancy-pass.js';
@@ -205,7 +207,7 @@ export class VolumeLayer extends MarchQuad {
     this.invalidate();
   }
 
-  /** A new frame: `info` is `frameInfo` parsed ({count, lo, hi, emissive, classes}). */
+  /** A new frame: `info` is its description (`frameDescription` in `scene-view.js`: {count, lo, hi, emissive, σ classes}). */
   setFrame(info) {
     this.info = info;
     this.frameSerial += 1;

@@ -1,6 +1,6 @@
 // The exact GPU march (DESIGN §5 `exact`) of the blob list (DESIGN §4) in a fragment shader.
 // Each pixel gathers the chords of the blobs in its screen tile, then steps along the ray as the
-// CPU reference does: steps of half the smallest σ met, the exact Gaussian line integral of
+// CPU reference does: steps of STEP_FRACTION of the smallest σ met, the exact Gaussian line integral of
 // every chord over each step (erf), the density-weighted source Ω L + (1 − Ω) Q, front-to-back
 // compositing. Shadows come from a grid of shadow columns ∫ρ towards each light computed by the
 // WASM core and interpolated trilinearly. The opaque pass's colour and depth sit behind the gas.
@@ -9,58 +9,24 @@
 // width merged by moments), the shadow grid, and the screen tiles; this layer only uploads them.
 
 import * as THREE from 'three';
-import { TEX_WIDTH, TILE, TRUNCATION } from '../engine/tiles.js';
-import { LIGHTS_GLSL, MAX_LIGHTS } from './gas-uniforms.js';
-import { BLOB_GLSL, BLOBS_PER_ROW, ERF_GLSL } from './volume/glsl.js';
-import { BlobTexture } from './blob-texture.js';
-import { MARCH_PREAMBLE, MarchQuad } from './march-quad.js';
-import { releaseGeometries } from './context-loss.js';
-
+import { BLOBS_PER_ROW, STEP_FRACTION, TRUNCATION, VIEW_LIGHTS, WORDS_PER_BLOB } from '../../generated/contract.js';
+import { BlobTexture } from '../blob-texture.js';
+import { releaseGeometries } from '../context-loss.js';
+import { MarchQuad } from '../march-quad.js';
+import { BLOB_GLSL } from '../shaders/blob-record.js';
+import { ERF_GLSL } from '../shaders/erf.js';
+import { GRID_SHADOW_GLSL } from '../shaders/grid-shadow.js';
+import { LIGHTS_GLSL } from '../shaders/lights.js';
+import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
+import { TILE } from './exact-frame.js';
 
 /**
- * Gas shadows from the core's shadow grid (the exact march's, shared with the objects'
- * material); needs LIGHTS_GLSL before it.
+ * Where the shadow grid's header (`frame::shadow_grid`: SHADOW_GRID_HEADER floats, lo xyz, hi
+ * xyz, res, lights) holds its corners (m) and its points per axis.
  */
-export const GRID_SHADOW_GLSL = /* glsl */ `
-uniform sampler2D shadowTex;  // shadow columns: light-major, then z, y, x (in .x)
-uniform vec3 gridMin, gridMax;
-uniform int gridRes;
-float fetchShadow(int i) { return texelFetch(shadowTex, ivec2(i % ${TEX_WIDTH}, i / ${TEX_WIDTH}), 0).x; }
-
-// Shadow column ∫ρ towards light l from x, trilinear on the grid of the gas's bounds. Outside
-// the grid the column is the one from where the path to the light enters it (no gas lies
-// outside), or 0 if it never does.
-float gridColumn(int l, vec3 g) {
-  ivec3 i0 = min(ivec3(floor(g)), ivec3(gridRes - 2));
-  vec3 f = g - vec3(i0);
-  int base = l * gridRes * gridRes * gridRes;
-  float v[8];
-  for (int c = 0; c < 8; c++) {
-    ivec3 o = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-    ivec3 p = i0 + o;
-    v[c] = fetchShadow(base + (p.z * gridRes + p.y) * gridRes + p.x);
-  }
-  float x00 = mix(v[0], v[1], f.x), x10 = mix(v[2], v[3], f.x);
-  float x01 = mix(v[4], v[5], f.x), x11 = mix(v[6], v[7], f.x);
-  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
-}
-
-float shadowColumn(int l, vec3 x) {
-  float top = float(gridRes - 1);
-  vec3 scale = top / (gridMax - gridMin);
-  vec3 g = (x - gridMin) * scale;
-  if (all(greaterThanEqual(g, vec3(0.0))) && all(lessThanEqual(g, vec3(top)))) return gridColumn(l, g);
-  // Enter the grid's box along the path towards the light (slab test in grid units).
-  vec3 d = (lightType[l] == 0 ? lightVec[l] - x : lightVec[l]) * scale;
-  float sMax = lightType[l] == 0 ? 1.0 : 1e30;
-  vec3 inv = 1.0 / d;
-  vec3 t0 = (vec3(0.0) - g) * inv, t1 = (vec3(top) - g) * inv;
-  float near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
-  float far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), sMax));
-  if (near > far) return 0.0;
-  return gridColumn(l, clamp(g + d * near, vec3(0.0), vec3(top)));
-}
-`;
+const GRID_LO = 0;
+const GRID_HI = 3;
+const GRID_RES = 6;
 
 const fragmentShader = /* glsl */ `
 ${MARCH_PREAMBLE}
@@ -68,7 +34,7 @@ uniform sampler2D headTex;    // a texel a tile: start, count
 uniform sampler2D listTex;    // blob indices (in .x)
 uniform int tilesX;
 
-const int W = ${TEX_WIDTH};
+const int W = ${BLOBS_PER_ROW};
 const float TRUNC = ${TRUNCATION.toFixed(2)};
 vec4 fetch(sampler2D t, int i) { return texelFetch(t, ivec2(i % W, i / W), 0); }
 
@@ -82,7 +48,7 @@ const int MAX_WINDOWS = 256;
 
 // The chord of blob idx along the ray: [s0, s1] clipped to [0, sMax]; false if none.
 bool chordOf(int idx, vec3 rd, float sMax, out float s0, out float s1, out float sm, out float r2, out float sigma) {
-  uvec4 a = texelFetch(blobTex, ivec2((idx % ${BLOBS_PER_ROW}) * 2, idx / ${BLOBS_PER_ROW}), 0);
+  uvec4 a = texelFetch(blobTex, ivec2((idx % ${BLOBS_PER_ROW}) * ${WORDS_PER_BLOB / 4}, idx / ${BLOBS_PER_ROW}), 0);
   sigma = uintBitsToFloat(a.w);
   vec3 oc = uintBitsToFloat(a.xyz) - camPos;
   sm = dot(oc, rd);
@@ -97,7 +63,7 @@ bool chordOf(int idx, vec3 rd, float sMax, out float s0, out float s1, out float
 
 // m/(4πσ²) exp(−r²/2σ²): the chord's line integral per unit of erf.
 float peakOf(int idx, float sigma, float r2) {
-  float m = uintBitsToFloat(texelFetch(blobTex, ivec2((idx % ${BLOBS_PER_ROW}) * 2 + 1, idx / ${BLOBS_PER_ROW}), 0).x);
+  float m = uintBitsToFloat(texelFetch(blobTex, ivec2((idx % ${BLOBS_PER_ROW}) * ${WORDS_PER_BLOB / 4} + 1, idx / ${BLOBS_PER_ROW}), 0).x);
   return m / (12.566370614 * sigma * sigma) * exp(-r2 / (2.0 * sigma * sigma));
 }
 
@@ -175,7 +141,7 @@ void main() {
       width *= 0.5;
       continue;
     }
-    float step = 0.5 * minSigma;
+    float step = ${STEP_FRACTION.toFixed(1)} * minSigma;
     float s = max(sA, nextIn);
     while (hits > 0 && s < sB && steps < MAX_STEPS) {
       steps++;
@@ -201,7 +167,7 @@ void main() {
         albedo /= w;
         vec3 x = camPos + rd * (0.5 * (s + e));
         vec3 L = vec3(0.0);
-        for (int l = 0; l < ${MAX_LIGHTS}; l++) {
+        for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
           if (l >= lightCount) break;
           vec3 toLight = lightType[l] == 0 ? normalize(lightVec[l] - x) : lightVec[l];
           float column = hasShadows ? shadowColumn(l, x) : 0.0;
@@ -225,12 +191,12 @@ void main() {
 }
 `;
 
-/** A float texture TEX_WIDTH wide over `data` (whole rows, as the worker pads them). */
+/** A float texture BLOBS_PER_ROW wide over `data` (whole rows, as the worker pads them). */
 function floatTexture(data, format) {
   const channels = format === THREE.RGBAFormat ? 4 : 1;
-  const rows = Math.max(1, data.length / (channels * TEX_WIDTH));
+  const rows = Math.max(1, data.length / (channels * BLOBS_PER_ROW));
   if (!Number.isInteger(rows)) throw new Error('float texture data must fill whole rows');
-  const tex = new THREE.DataTexture(data, TEX_WIDTH, rows, format, THREE.FloatType);
+  const tex = new THREE.DataTexture(data, BLOBS_PER_ROW, rows, format, THREE.FloatType);
   tex.needsUpdate = true;
   return tex;
 }
@@ -259,11 +225,11 @@ export class ExactMarchLayer extends MarchQuad {
     for (const t of this.textures) t.dispose();
     const u = this.material.uniforms;
     const g = this.gas;
-    const res = frame.grid[6];
+    const res = frame.grid[GRID_RES];
     g.shadowTex.value = floatTexture(frame.columns, THREE.RedFormat);
     if (res > 1) {
-      g.gridMin.value.fromArray(frame.grid.subarray(0, 3));
-      g.gridMax.value.fromArray(frame.grid.subarray(3, 6));
+      g.gridMin.value.fromArray(frame.grid.subarray(GRID_LO, GRID_LO + 3));
+      g.gridMax.value.fromArray(frame.grid.subarray(GRID_HI, GRID_HI + 3));
       g.gridRes.value = res;
     }
     u.blobTex.value = this.blobs.texture;

@@ -3,15 +3,13 @@
 // exposes `window.windfield`.
 
 import GUI from 'lil-gui';
+import { MODES, Player, QUALITIES, SLICE_PLANES } from '../player.js';
+import { decodeScene, encodeScene } from '../state/url-codec.js';
 import { showMessage, showProgress } from './page-ui.js';
-import { MODES, Player, QUALITY } from './player.js';
-import { presetCatalog, PRESET_NAME, scenePicker } from './pages/scene-picker.js';
-import { drawSliceLegend } from './pages/slice-legend.js';
-import { statusText } from './pages/status-line.js';
 import { sceneEditor } from './scene-editor.js';
-import { moved } from './views/guides-layer.js';
-import { SLICE_PLANES } from './views/wind-slice-layer.js';
-import { decodeScene, encodeScene } from './state/url-codec.js';
+import { presetCatalog, PRESET_NAME, scenePicker } from './scene-picker.js';
+import { drawSliceLegend } from './slice-legend.js';
+import { statusText } from './status-line.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
@@ -49,10 +47,9 @@ const player = new Player($('#canvas'), {
     controls?.refresh();
   },
 });
-const state = player.state;
 const initialView = query.get('view');
-state.mode = MODES.includes(initialView) ? initialView : 'raymarch';
-if (Object.hasOwn(QUALITY, query.get('quality') ?? '')) state.quality = query.get('quality');
+player.setView(MODES.includes(initialView) ? initialView : 'raymarch');
+if (QUALITIES.includes(query.get('quality'))) player.setQuality(query.get('quality'));
 player.setGuides(true);
 
 /** The status line: always visible over the view, rewritten at most four times a second. */
@@ -60,7 +57,7 @@ function updateStatus(force = false) {
   const now = performance.now();
   if (!$('#status') || (!force && now - lastStatus < STATUS_EVERY)) return;
   lastStatus = now;
-  $('#status').textContent = statusText(player.snapshot(), { mode: state.mode, volume: player.volumeDims(), stirring: player.stirring.enabled });
+  $('#status').textContent = statusText(player.snapshot(), { mode: player.mode, volume: player.volumeDims(), stirring: player.stirring });
   const legend = player.sliceLegend();
   $('#slice-legend').hidden = !legend;
   if (legend) drawSliceLegend($('#slice-legend'), legend.maxSpeed);
@@ -109,60 +106,44 @@ async function tryEdit(next) {
 
 /** Stirring on or off (the Stir button and the `s` key). */
 function setStirring(on) {
-  player.stirring.enabled = on;
+  player.setStirring(on);
   $('#stir').setAttribute('aria-pressed', String(on));
   $('#stir').textContent = on ? 'Stirring: drag the smoke' : 'Stir';
   updateStatus(true);
 }
 
-let controls = null;
-function buildControls() {
-  // lil-gui's stylesheet is linked (style.css), not injected: the page runs under a strict CSP.
-  const gui = new GUI({ container: $('#panel'), title: 'windfield', injectStyles: false });
-  if (smallScreen) gui.close();
+/** Applies `fn` (a change of a copy of the scene) to the running scene. */
+const editWith = (fn) => () => {
+  const next = structuredClone(player.scene);
+  fn(next);
+  return tryEdit(next);
+};
+
+/** The Simulation folder: playing, the view and its settings, the guides, the drag handle. */
+function simulationFolder(gui) {
+  const sim = gui.addFolder('Simulation');
   const actions = {
-    play: () => { state.playing = true; },
-    pause: () => { state.playing = false; },
+    play: () => player.setPlaying(true),
+    pause: () => player.setPlaying(false),
     step: () => player.step(1),
     reset: () => player.reset().catch((e) => showMessage(`Could not restart the scene: ${e.message}`)),
-    copyLink: () => navigator.clipboard?.writeText(location.href).then(() => showMessage('Link copied', { transient: true })),
-    exportScene: () => download('scene.json', URL.createObjectURL(new Blob([JSON.stringify(state.scene, null, 2)], { type: 'application/json' }))),
-    importScene: () => $('#import').click(),
-    still: async () => {
-      const size = { width: 480, height: 360 };
-      const url = await player.renderReference(size);
-      $('#still').src = url;
-      $('#still-figure .still-caption').textContent = `Reference still (CPU renderer), t = ${player.snapshot().time.toFixed(2)} s, ${size.width} × ${size.height}`;
-      $('#still-figure').hidden = false;
-    },
-    png: async () => {
-      // The view as it is drawn, without the wind guides.
-      const { width, height } = $('#canvas');
-      download('windfield.png', await player.captureGPU({ mode: state.mode, width, height }));
-    },
-    blobs: async () => {
-      const list = await player.exportBlobs();
-      download('blobs.json', URL.createObjectURL(new Blob([JSON.stringify(list)], { type: 'application/json' })));
-    },
-    frames: 120,
-    video: async () => {
-      state.playing = false;
-      try {
-        const video = await player.recordWebM({ frames: actions.frames, width: 640, height: 480 });
-        download('windfield.webm', URL.createObjectURL(video));
-      } catch (e) {
-        showMessage(`Could not record: ${e.message}`);
-      }
-    },
   };
-  const sim = gui.addFolder('Simulation');
   sim.add(actions, 'play');
   sim.add(actions, 'pause');
   sim.add(actions, 'step').name('step once');
   sim.add(actions, 'reset').name('restart at t = 0');
-  sim.add(state, 'speed', 0, 4, 0.05).name('time speed');
-  sim.add(state, 'mode', MODES).name('view').onChange(() => player.resize());
-  sim.add(state, 'quality', Object.keys(QUALITY)).name('quality').onChange(() => player.invalidate());
+  // The player's settings, as properties for the panel.
+  const settings = {
+    get speed() { return player.speed; },
+    set speed(v) { player.setSpeed(v); },
+    get mode() { return player.mode; },
+    set mode(v) { player.setView(v); },
+    get quality() { return player.quality; },
+    set quality(v) { player.setQuality(v); },
+  };
+  sim.add(settings, 'speed', 0, 4, 0.05).name('time speed');
+  sim.add(settings, 'mode', MODES).name('view');
+  sim.add(settings, 'quality', QUALITIES).name('quality');
   const resolution = { scale: 'auto' };
   sim.add(resolution, 'scale', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution')
     .onChange((v) => player.setResolution(v));
@@ -178,25 +159,28 @@ function buildControls() {
   sim.add(view, 'slice', SLICE_PLANES).name('wind slice').listen();
   sim.add(view, 'offset', -2, 2, 0.01).name('slice offset (m)');
   const handle = { drag: 'none' };
-  const handleChoices = () => ['none', ...state.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),
-    ...state.scene.emitters.map((e, i) => `emitters ${i + 1}: ${e.shape}`)];
+  const handleChoices = () => ['none', ...player.scene.wind.map((p, i) => `wind ${i + 1}: ${p.type}`),
+    ...player.scene.emitters.map((e, i) => `emitters ${i + 1}: ${e.shape}`)];
   const selectHandle = (label) => {
     const m = /^(wind|emitters) (\d+)/.exec(label);
     player.selectHandle(m ? { list: m[1], index: Number(m[2]) - 1 } : null);
   };
   let dragControl = sim.add(handle, 'drag', handleChoices()).name('drag handle').onChange(selectHandle);
-  const edit = (fn) => () => {
-    const next = structuredClone(state.scene);
-    fn(next);
-    return tryEdit(next);
+  player.onHandleMoved((selection, item) => editWith((s) => { s[selection.list][selection.index] = item; })());
+  return {
+    refresh: () => {
+      if (!handleChoices().includes(handle.drag)) handle.drag = 'none';
+      dragControl = dragControl.options(handleChoices()).name('drag handle').onChange(selectHandle);
+      selectHandle(handle.drag);
+    },
   };
-  player.onHandleMoved((selection, to) => edit((s) => {
-    const list = s[selection.list];
-    list[selection.index] = moved(list[selection.index], to.map((v) => Math.round(v * 1000) / 1000));
-  })());
+}
+
+/** The paper's settings (§3–5) as number fields, and the scene editor's folders. */
+function sceneFolders(gui) {
   const proxy = {};
   const getters = {};
-  const scene = () => state.scene;
+  const scene = () => player.scene;
   // Number fields without slider ranges: a typed value goes to the core as it is, and the core
   // names the valid range when it refuses one.
   const bind = (folder, label, get, set, step) => {
@@ -204,7 +188,7 @@ function buildControls() {
     getters[label] = get;
     const c = folder.add(proxy, label);
     if (step !== undefined) c.step(step);
-    return c.onFinishChange(edit((s) => set(s, proxy[label])));
+    return c.onFinishChange(editWith((s) => set(s, proxy[label])));
   };
   const field = gui.addFolder('Small-scale field (§3)');
   bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01);
@@ -219,6 +203,48 @@ function buildControls() {
   const look = gui.addFolder('Rendering (§5)');
   bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
   const editor = sceneEditor(gui, { scene, apply: (draft) => tryEdit(structuredClone(draft)) });
+  return {
+    refresh: () => {
+      for (const [label, get] of Object.entries(getters)) proxy[label] = get(scene());
+      for (const c of gui.controllersRecursive()) if (c.object === proxy) c.updateDisplay();
+      editor.refresh();
+    },
+  };
+}
+
+/** The Share and export folder: the link, the scene, the still, the view, the blobs, a video. */
+function shareFolder(gui) {
+  const actions = {
+    copyLink: () => navigator.clipboard?.writeText(location.href).then(() => showMessage('Link copied', { transient: true })),
+    exportScene: () => download('scene.json', URL.createObjectURL(new Blob([JSON.stringify(player.scene, null, 2)], { type: 'application/json' }))),
+    importScene: () => $('#import').click(),
+    still: async () => {
+      const size = { width: 480, height: 360 };
+      const url = await player.renderReference(size);
+      $('#still').src = url;
+      $('#still-figure .still-caption').textContent = `Reference still (CPU renderer), t = ${player.snapshot().time.toFixed(2)} s, ${size.width} × ${size.height}`;
+      $('#still-figure').hidden = false;
+    },
+    png: async () => {
+      // The view as it is drawn, without the wind guides.
+      const { width, height } = $('#canvas');
+      download('windfield.png', await player.captureGPU({ mode: player.mode, width, height }));
+    },
+    blobs: async () => {
+      const list = await player.exportBlobs();
+      download('blobs.json', URL.createObjectURL(new Blob([JSON.stringify(list)], { type: 'application/json' })));
+    },
+    frames: 120,
+    video: async () => {
+      player.setPlaying(false);
+      try {
+        const video = await player.recordWebM({ frames: actions.frames, width: 640, height: 480 });
+        download('windfield.webm', URL.createObjectURL(video));
+      } catch (e) {
+        showMessage(`Could not record: ${e.message}`);
+      }
+    },
+  };
   const share = gui.addFolder('Share and export');
   share.add(actions, 'copyLink').name('copy link');
   share.add(actions, 'exportScene').name('export scene JSON');
@@ -228,15 +254,22 @@ function buildControls() {
   share.add(actions, 'blobs').name('export blob list JSON');
   share.add(actions, 'frames', 2, 1800, 1).name('video frames');
   share.add(actions, 'video').name('record WebM');
+}
+
+let controls = null;
+/** The panel; `refresh()` shows the current scene in it. */
+function buildControls() {
+  // lil-gui's stylesheet is linked (style.css), not injected: the page runs under a strict CSP.
+  const gui = new GUI({ container: $('#panel'), title: 'windfield', injectStyles: false });
+  if (smallScreen) gui.close();
+  const simulation = simulationFolder(gui);
+  const scene = sceneFolders(gui);
+  shareFolder(gui);
   $('#panel').append($('#still-figure'));
   return {
     refresh: () => {
-      for (const [label, get] of Object.entries(getters)) proxy[label] = get(scene());
-      for (const c of gui.controllersRecursive()) if (c.object === proxy) c.updateDisplay();
-      editor.refresh();
-      if (!handleChoices().includes(handle.drag)) handle.drag = 'none';
-      dragControl = dragControl.options(handleChoices()).name('drag handle').onChange(selectHandle);
-      selectHandle(handle.drag);
+      scene.refresh();
+      simulation.refresh();
     },
     gui,
   };
@@ -263,17 +296,17 @@ function wireKeys() {
       e.preventDefault();
       return;
     }
-    if (e.key === ' ') { state.playing = !state.playing; e.preventDefault(); }
+    if (e.key === ' ') { player.setPlaying(!player.playing); e.preventDefault(); }
     if (e.key === '.') player.step(1);
-    if (e.key === 'v') { state.mode = state.mode === 'points' ? 'raymarch' : 'points'; player.resize(); }
+    if (e.key === 'v') player.setView(player.mode === 'points' ? 'raymarch' : 'points');
     if (e.key === 'g') player.setGuides(!player.guides);
-    if (e.key === 's') setStirring(!player.stirring.enabled);
+    if (e.key === 's') setStirring(!player.stirring);
     if (e.key === 'w') {
       player.slicePlane = SLICE_PLANES[(SLICE_PLANES.indexOf(player.slicePlane) + 1) % SLICE_PLANES.length];
       showSlice();
     }
   });
-  $('#stir').addEventListener('click', () => setStirring(!player.stirring.enabled));
+  $('#stir').addEventListener('click', () => setStirring(!player.stirring));
   $('#still-figure .still-close').addEventListener('click', () => { $('#still-figure').hidden = true; });
 }
 

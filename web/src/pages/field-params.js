@@ -1,5 +1,8 @@
 // Field parameters as the core takes them (DESIGN §2–3): lattice size, spectrum, seed.
-// Pure functions, shared by the page and the unit tests.
+// Pure functions, shared by the field explorer, the classroom and the unit tests. The lattice's
+// limits are the core's (the contract's).
+
+import { MAX_EXTENT, MAX_POINTS, MIN_EXTENT } from '../generated/contract.js';
 
 /** The paper's statistics (§6): ε = 1, k_inertial = 4, σ = 1, on a 32⁴ lattice. */
 export const DEFAULT_FIELD = Object.freeze({
@@ -9,11 +12,8 @@ export const DEFAULT_FIELD = Object.freeze({
 });
 
 export const LAWS = ['kolmogorov', 'paper-literal'];
-/** Extents per axis: even numbers from 4 to 256 (powers of two are the fastest). */
-export const MIN_EXTENT = 4;
-export const MAX_EXTENT = 256;
-/** At most 2^24 lattice points in all (64⁴: a 192 MiB field). */
-export const MAX_POINTS = 2 ** 24;
+// Extents per axis: even numbers from MIN_EXTENT to MAX_EXTENT (powers of two are the fastest);
+// at most MAX_POINTS lattice points in all (2^24, 64⁴: a 192 MiB field).
 const AXES = ['nx', 'ny', 'nz', 'nt'];
 
 const isExtent = (n) => Number.isInteger(n) && n % 2 === 0 && n >= MIN_EXTENT && n <= MAX_EXTENT;
@@ -54,6 +54,13 @@ export function validateField(field) {
     errors.push('seed: must be an integer between 0 and 2^53');
   }
   return errors;
+}
+
+/**
+ * The scene (JSON text, as the engine takes it) of the field `field` alone: no wind, no gas.
+ */
+export function fieldScene(field) {
+  return JSON.stringify({ version: 1, seed: field.seed, field: { size: field.size, spectrum: field.spectrum } });
 }
 
 /** A deep copy of `field` with the lattice given as one extent or four. */

@@ -2,10 +2,10 @@
 // progress), animates one slice of it over time, and lets the spectrum be edited.
 
 import GUI from 'lil-gui';
+import { Engine } from '../engine/client.js';
+import { SliceView } from '../views/slice-view.js';
+import { DEFAULT_FIELD, fieldScene, LAWS, maxInertial, validateField } from './field-params.js';
 import { showMessage, showProgress } from './page-ui.js';
-import { Engine } from './engine/client.js';
-import { SliceView } from './views/slice-view.js';
-import { DEFAULT_FIELD, LAWS, maxInertial, validateField } from './field-params.js';
 
 /** Samples per side of the displayed slice. */
 const SLICE_RES = 64;
@@ -71,10 +71,7 @@ function regenerate() {
   generation = generation
     .catch(() => {})
     .then(async () => {
-      // The field alone: a scene with only a field (no wind, no gas).
-      const loaded = await engine.request('load', {
-        scene: { version: 1, seed: params.seed, field: { size: params.size, spectrum: params.spectrum } },
-      }, { onProgress: (p) => showProgress(p.progress, `Generating field: ${p.stage}`) });
+      const loaded = await engine.request('load', { scene: fieldScene(params) }, { onProgress: (p) => showProgress(p.progress, `Generating field: ${p.stage}`) });
       info = { size: loaded.size, fieldMs: loaded.fieldMs };
       stats.fieldMs = info.fieldMs;
       const report = await engine.request('fieldStats');

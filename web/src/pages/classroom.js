@@ -5,15 +5,15 @@
 // `snapshots`: Figure 1's row filled; `sideBySide`: the three players, which load as they near
 // the viewport, running their variants).
 
-import './embed.js';
-import init, { Figure1Demo } from '../pkg/windfield.js';
-import { Engine } from './engine/client.js';
+import '../embed.js';
+import init, { Figure1Demo } from '../../pkg/windfield.js';
+import { viridis } from '../charts/colormap.js';
+import { ColourBar } from '../charts/colour-bar.js';
+import { CHART, drawChart, linearAxis, logAxis } from '../charts/plot-axes.js';
+import { Engine } from '../engine/client.js';
+import { SliceView } from '../views/slice-view.js';
+import { DEFAULT_FIELD, fieldScene } from './field-params.js';
 import { showMessage } from './page-ui.js';
-import { SliceView } from './views/slice-view.js';
-import { viridis } from './colormap.js';
-import { ColourBar } from './colour-bar.js';
-import { CHART, drawChart, linearAxis, logAxis } from './plot-axes.js';
-import { DEFAULT_FIELD } from './field-params.js';
 
 const $ = (s) => document.querySelector(s);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
@@ -52,7 +52,7 @@ function chart(id, spec) {
 
 async function fieldLesson() {
   const engine = new Engine({ onError: (m) => showMessage(m) });
-  await engine.request('load', { scene: { version: 1, seed: DEFAULT_FIELD.seed, field: { size: DEFAULT_FIELD.size, spectrum: DEFAULT_FIELD.spectrum } } });
+  await engine.request('load', { scene: fieldScene(DEFAULT_FIELD) });
   const report = await engine.request('fieldStats');
   classroom.report = report;
   classroom.series = spectrumSeries(report);

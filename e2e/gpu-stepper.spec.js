@@ -1,0 +1,159 @@
+// The GPU stepper against the core: one step from the same state agrees blob by blob; 240 steps
+// of a turbulent plume agree in their statistics (paths diverge through chaos, statistics must
+// not); the real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still
+// of its read-back blobs; without float render targets the worker steps, and says so.
+import { test, expect } from '@playwright/test';
+import { readFileSync, writeFileSync } from 'node:fs';
+import { decodePng } from '../tests/support/png.js';
+import { psnr } from '../web/src/image-metrics.js';
+import { encodeScene } from '../web/src/state/url-codec.js';
+
+const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
+
+async function open(page, scene) {
+  await page.goto(`./?view=points#${await encodeScene(scene)}`);
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+  await page.evaluate(() => window.windfield.pause());
+}
+
+/** A scene about 2 m across with every primitive kind and every emitter shape. */
+const everyKind = {
+  version: 1,
+  seed: 5,
+  field: { size: [8, 8, 8, 8], spectrum: { k_inertial: 2 }, period: [1.5, 2, 2.5], time_period: 3, amplitude: 1.2, carried_by_wind: true },
+  wind: [
+    { type: 'uniform', velocity: [0.1, 0.3, 0] },
+    { type: 'uniform', velocity: [0, 0, 0.2], position: [0.2, 0.5, 0], decay: 0.5 },
+    { type: 'source', position: [0.3, 0.2, 0.1], strength: 0.4, radius: 0.15 },
+    { type: 'source', position: [-0.3, 0.8, 0], strength: -0.2, decay: 0.7 },
+    { type: 'vortex', position: [0, 0.6, 0], axis: [0.2, 1, 0.1], strength: 0.6, radius: 0.1 },
+    { type: 'repulsor', radius: 0.2, strength: 0.3, path: [[0, -1, 0.5, 0], [2, 0.5, 0.6, 0.2], [4, 1, 0.4, 0]], color: [0.8, 0.2, 0.1] },
+  ],
+  emitters: [
+    { shape: 'point', center: [0, 0, 0], rate: 200, velocity: [0, 0.4, 0], velocity_time: 0.3 },
+    { shape: 'disk', center: [0.2, 0, 0], radius: 0.1, rate: 300, mass0: 0.5 },
+    { shape: 'sphere', center: [-0.2, 0.1, 0], radius: 0.1, rate: 250, albedo: [0.9, 0.5, 0.2] },
+    { shape: 'box', center: [0, 0.2, 0.3], size: [0.2, 0.1, 0.2], rate: 150, emission: [1, 0.5, 0.2] },
+  ],
+  gas: { diffusion: 0.002, dissipation: 0.4, min_mass: 0.3, max_blobs: 600 },
+};
+
+test('one step from the same state: the GPU moves every blob where the core does', async ({ page }) => {
+  await open(page, everyKind);
+  const out = await page.evaluate(async (scene) => {
+    const w = window.windfield;
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(30);
+    // The GPU takes the gas at step 30 and takes one step.
+    const stepper = await w.setStepper('gpu');
+    await w.step(1);
+    const gpu = await w.exportBlobs({ width: 32, height: 24 });
+    const own = await w.inspectStepper();
+    // The core alone, 31 steps.
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(31);
+    const cpu = await w.exportBlobs({ width: 32, height: 24 });
+    return { stepper, gpu: gpu.blobs, cpu: cpu.blobs, sigma: Array.from(own.sigma), mass: Array.from(own.mass) };
+  }, everyKind);
+  expect(out.stepper).toBe('gpu');
+  expect(out.gpu.length).toBe(out.cpu.length);
+  expect(out.gpu.length).toBeGreaterThan(200);
+  let worst = 0;
+  out.gpu.forEach((b, i) => {
+    worst = Math.max(worst, Math.hypot(...b.center.map((v, a) => v - out.cpu[i].center[a])));
+  });
+  expect(worst).toBeLessThan(1e-5);
+  // The GPU's own σ and mass (it steps them itself) against the core's, as sets.
+  const sorted = (a) => Float64Array.from(a).sort();
+  const relative = (a, b) => Math.max(...a.map((v, i) => Math.abs(v - b[i]) / Math.abs(b[i])));
+  expect(out.sigma.length).toBe(out.cpu.length);
+  expect(relative(sorted(out.sigma), sorted(out.cpu.map((b) => b.sigma)))).toBeLessThan(1e-6);
+  expect(relative(sorted(out.mass), sorted(out.cpu.map((b) => b.mass)))).toBeLessThan(1e-6);
+});
+
+test('a turbulent plume stepped 240 times on each: the same count, mass and statistics', async ({ page }) => {
+  const plume = fixture('small-plume');
+  await open(page, plume);
+  const runs = await page.evaluate(async (scene) => {
+    const w = window.windfield;
+    const run = async (kind) => {
+      await w.setStepper(kind);
+      await w.setScene(scene);
+      await w.step(240);
+      return { stepper: w.stats().stepper, blobs: (await w.exportBlobs({ width: 32, height: 24 })).blobs };
+    };
+    return { gpu: await run('gpu'), cpu: await run('cpu') };
+  }, plume);
+  expect(runs.gpu.stepper).toBe('gpu');
+  expect(runs.cpu.stepper).toBe('cpu');
+  const { gpu, cpu } = { gpu: runs.gpu.blobs, cpu: runs.cpu.blobs };
+  expect(gpu.length).toBe(cpu.length);
+  expect(gpu.length).toBeGreaterThan(400);
+  const total = (list) => list.reduce((m, b) => m + b.mass, 0);
+  expect(Math.abs(total(gpu) - total(cpu)) / total(cpu)).toBeLessThan(1e-4);
+  const stats = (list) => [0, 1, 2].map((a) => {
+    const mean = list.reduce((s, b) => s + b.center[a], 0) / list.length;
+    const spread = Math.sqrt(list.reduce((s, b) => s + (b.center[a] - mean) ** 2, 0) / list.length);
+    return { mean, spread };
+  });
+  const [g, c] = [stats(gpu), stats(cpu)];
+  for (let a = 0; a < 3; a++) {
+    expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
+    expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);
+  }
+});
+
+test('the real-time view of a 250,000-blob GPU-stepped plume matches the reference still of its read-back blobs', async ({ page }) => {
+  test.setTimeout(240_000);
+  const plume = fixture('small-plume');
+  Object.assign(plume.emitters[0], { rate: 75_000, radius: 0.2, sigma0: 0.01, mass0: 2e-5 });
+  Object.assign(plume.gas, { max_blobs: 300_000, dissipation: 0.05, min_mass: 1e-6, diffusion: 5e-5 });
+  plume.render.medium.extinction = 3;
+  await open(page, plume);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    await w.setStepper('gpu');
+    await w.step(200);
+    const size = { width: 96, height: 72 };
+    return {
+      stepper: w.stats().stepper,
+      blobs: w.stats().blobs,
+      view: await w.captureGPU({ mode: 'raymarch', quality: 'standard', ...size }),
+      ref: await w.renderReference(size),
+    };
+  });
+  expect(out.stepper).toBe('gpu');
+  expect(out.blobs).toBeGreaterThanOrEqual(250_000);
+  const bytes = (url) => Buffer.from(url.split(',')[1], 'base64');
+  writeFileSync(test.info().outputPath('view.png'), bytes(out.view));
+  writeFileSync(test.info().outputPath('reference.png'), bytes(out.ref));
+  expect(psnr(decodePng(bytes(out.view)).rgb, decodePng(bytes(out.ref)).rgb)).toBeGreaterThanOrEqual(30);
+});
+
+test('without float render targets the worker steps the gas, and says why', async ({ page }) => {
+  await page.addInitScript(() => {
+    const get = WebGL2RenderingContext.prototype.getExtension;
+    WebGL2RenderingContext.prototype.getExtension = function getExtension(name) {
+      return name === 'EXT_color_buffer_float' ? null : get.call(this, name);
+    };
+    const supported = WebGL2RenderingContext.prototype.getSupportedExtensions;
+    WebGL2RenderingContext.prototype.getSupportedExtensions = function getSupportedExtensions() {
+      return supported.call(this).filter((e) => e !== 'EXT_color_buffer_float');
+    };
+  });
+  await open(page, fixture('small-plume'));
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    await w.step(10);
+    const refused = await w.setStepper('gpu').then(() => 'accepted', (e) => e.message);
+    return { stats: w.stats(), refused, status: document.querySelector('#status').textContent };
+  });
+  expect(out.stats.stepper).toBe('cpu');
+  expect(out.stats.stepperReason).toMatch(/float/);
+  expect(out.refused).toMatch(/float/);
+  expect(out.stats.blobs).toBeGreaterThan(0);
+  await expect(page.locator('#status')).toContainText('(worker');
+});

@@ -1,0 +1,226 @@
+// The engine's scene over an initialised WASM core: the current field (synthesised in stages
+// with progress, shared by scenes of the same field parameters), the running simulation and its
+// scene. The request handlers (`handlers.js`) call it; it knows nothing of messages.
+//
+// A scene arrives as JSON text and is turned from and to JSON once per load: the core validates
+// it and returns it normalised (JSON text), the session parses that once (it needs the field's
+// amplitude and the shapes) and hands the normalised text on for the page to parse once. Nothing
+// re-reads it afterwards: `reset`, edits and a finished synthesis use what was kept.
+//
+// A field synthesis yields to the event loop between its stages, so requests keep being
+// answered meanwhile (on the current scene), and a newer valid `load` or `edit` wanting other
+// field parameters supersedes it: the older one then rejects with "cancelled: ...".
+
+/** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
+const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
+
+const cancelled = () => new Error('cancelled: a newer scene was loaded before this one was ready');
+
+/** `scene` if it is JSON text (the engine's protocol), else a clear Error. */
+function sceneText(scene) {
+  if (typeof scene !== 'string') throw new Error('the scene must be sent as JSON text');
+  return scene;
+}
+
+/** Whether two values parsed from JSON are equal (deep). */
+function sameData(a, b) {
+  if (a === b) return true;
+  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null) return false;
+  if (Array.isArray(a) !== Array.isArray(b)) return false;
+  const keys = Object.keys(a);
+  if (keys.length !== Object.keys(b).length) return false;
+  return keys.every((k) => Object.hasOwn(b, k) && sameData(a[k], b[k]));
+}
+
+export class Session {
+  /** The current field, its parameters (JSON, the key of its synthesis) and synthesis time (ms). */
+  field = null;
+  fieldKey = '';
+  fieldMs = 0;
+  /** The running simulation, or null before the first load. */
+  sim = null;
+  /**
+   * The field the simulation runs on (a `WindField`, or null), and a count of its changes: the
+   * GPU stepper holds a copy of its lattice and asks again when the count moves.
+   */
+  simField = null;
+  fieldVersion = 0;
+  /** Its scene: the core's normalised JSON text, that parsed, and its field parameters ('' for none). */
+  current = null;
+  /**
+   * The field parameters the newest valid `load` or `edit` wants ('' for none): a synthesis in
+   * flight for other parameters gives way to it.
+   */
+  #wantedKey = '';
+  /** The newest valid `load` or `edit` request: an older `load` still waiting gives way to it. */
+  #latestLoad = 0;
+  /** The synthesis in flight: its parameters and its promise, or null. */
+  #synthesis = null;
+
+  /**
+   * @param {object} core the WASM module's exports, initialised
+   * @param {(id: number, value: number, stage: string) => void} progress reports a request's progress
+   */
+  constructor(core, progress) {
+    this.core = core;
+    this.progress = progress;
+  }
+
+  /** The running simulation, or a clear Error before a scene is loaded. */
+  requireSim() {
+    if (!this.sim) throw new Error('no scene loaded yet');
+    return this.sim;
+  }
+
+  /** The current field, or a clear Error when the scene has none. */
+  requireField() {
+    if (!this.field) throw new Error('this scene has no small-scale field');
+    return this.field;
+  }
+
+  /** `text` validated and normalised by the core: {json, scene, key}. */
+  #read(text) {
+    const json = this.core.validateScene(sceneText(text));
+    const scene = JSON.parse(json);
+    const key = scene.field.amplitude > 0 ? this.core.sceneFieldParams(json) : '';
+    return { json, scene, key };
+  }
+
+  /** Notes the field the simulation runs on now. */
+  #runsOn(field) {
+    if (field !== this.simField) {
+      this.simField = field;
+      this.fieldVersion += 1;
+    }
+  }
+
+  /** A new simulation of `next` (from `#read`), on the current field when it has one. */
+  #simulationOf({ json, key }) {
+    return key ? this.core.SceneSimulation.withField(json, this.field) : new this.core.SceneSimulation(json);
+  }
+
+  /**
+   * Synthesises the field for `key` unless the current one already matches, reporting progress
+   * under request `id`; one synthesis for the same parameters is shared.
+   */
+  ensureField(id, key) {
+    if (this.field && this.fieldKey === key) return Promise.resolve();
+    if (this.#synthesis?.key === key) return this.#synthesis.promise;
+    const promise = this.#synthesise(id, key).finally(() => {
+      if (this.#synthesis?.promise === promise) this.#synthesis = null;
+    });
+    this.#synthesis = { key, promise };
+    return promise;
+  }
+
+  async #synthesise(id, key) {
+    const wanted = () => {
+      if (key !== this.#wantedKey) throw cancelled();
+    };
+    // A superseded synthesis frees its memory at its next stage: let it, before allocating.
+    await yieldToEvents();
+    wanted();
+    const t0 = performance.now();
+    const run = new this.core.FieldSynthesis(key);
+    try {
+      this.progress(id, 0, run.stage());
+      while (run.step()) {
+        this.progress(id, run.progress() * 0.95, run.stage());
+        await yieldToEvents();
+        wanted();
+      }
+      const next = run.finish();
+      this.field?.free();
+      this.field = next;
+      this.fieldKey = key;
+      this.fieldMs = performance.now() - t0;
+    } finally {
+      run.free();
+    }
+  }
+
+  /**
+   * Loads the scene `text` (JSON) from its start, on its field (synthesised under request `id`
+   * when it is not the current one). Resolves with {sceneJson (normalised), fieldMs, size}.
+   */
+  load(id, text) {
+    return this.#start(id, this.#read(text));
+  }
+
+  async #start(id, next) {
+    this.#wantedKey = next.key;
+    this.#latestLoad = id;
+    if (next.key) await this.ensureField(id, next.key);
+    if (id !== this.#latestLoad) throw cancelled();
+    const sim = this.#simulationOf(next);
+    this.sim?.free();
+    this.sim = sim;
+    this.current = next;
+    this.#runsOn(next.key ? this.field : null);
+    this.progress(id, 1, 'done');
+    return { sceneJson: next.json, fieldMs: this.fieldMs, size: this.field ? Array.from(this.field.size()) : null };
+  }
+
+  /**
+   * Applies the edited scene `text` to the running simulation, keeping its blobs and time. A
+   * change of the field's settings synthesises the new field meanwhile (progress under `id`)
+   * and swaps it in when ready; the gas keeps moving on the field in use. A change to `shapes`
+   * with it restarts the scene (on its own field, so it waits for it). Resolves with
+   * {sceneJson, restarted, fieldPending, fieldMs}.
+   */
+  async edit(id, text) {
+    const next = this.#read(text);
+    if (!this.sim) return { ...(await this.#start(id, next)), restarted: true, fieldPending: false };
+    const ready = !next.key || (this.field && this.fieldKey === next.key);
+    if (!ready && !sameData(next.scene.shapes, this.current.scene.shapes)) {
+      return { ...(await this.#start(id, next)), restarted: true, fieldPending: false };
+    }
+    this.#wantedKey = next.key;
+    this.#latestLoad = id;
+    const restarted = ready && next.key ? this.sim.editWithField(next.json, this.field) : this.sim.edit(next.json);
+    this.current = next;
+    if (!next.key) this.#runsOn(null);
+    else if (ready) this.#runsOn(this.field);
+    if (!ready) {
+      this.ensureField(id, next.key).then(() => {
+        if (this.sim && this.current.key === next.key) {
+          this.sim.setField(this.field);
+          this.#runsOn(this.field);
+        }
+        this.progress(id, 1, 'done');
+      }, () => {});
+    }
+    return { sceneJson: next.json, restarted, fieldPending: !ready, fieldMs: this.fieldMs };
+  }
+
+  /** Restarts the current scene at t = 0, on its own field (waiting for one being synthesised). */
+  async reset(id) {
+    this.requireSim();
+    const scene = this.current;
+    if (scene.key) await this.ensureField(id, scene.key);
+    const sim = this.#simulationOf(scene);
+    this.sim.free();
+    this.sim = sim;
+    this.#runsOn(scene.key ? this.field : null);
+  }
+
+  /**
+   * The lattice of the field the simulation runs on, for the GPU stepper: {data (xyz per point,
+   * `[t][z][y][x]`), size, version}, or no data for a scene without one.
+   */
+  lattice() {
+    const f = this.simField;
+    return { data: f ? f.data() : null, size: f ? Array.from(f.size()) : null, version: this.fieldVersion };
+  }
+
+  /**
+   * The blob list (DESIGN §4) of the current state seen from `camera` at `image`'s size, either
+   * kept from the scene if absent.
+   */
+  blobList(camera, image) {
+    const list = JSON.parse(this.requireSim().blobList());
+    if (camera) list.camera = camera;
+    if (image) list.image = { ...list.image, ...image };
+    return list;
+  }
+}

@@ -1,0 +1,279 @@
+// The GPU stepper: the gas's centres advected on the GPU (paper §4, Eq. 14) through the wind the
+// core freezes for each step, while the core in the worker keeps the rest of the gas (births,
+// σ, mass, removal, the cap: `gas::slots`). Per step only the newborns, the emptied slots and the
+// frozen wind cross to the GPU; the views draw the packed state where it is; the centres come
+// back only on demand (`readCentres`: a still, an export, a recording, or stepping in the
+// worker again).
+//
+// WebGL2 with float render targets (EXT_color_buffer_float) and three draw buffers is enough:
+// every pass is a per-texel map. Where these are missing the worker steps the gas.
+
+import * as THREE from 'three';
+import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS } from '../generated/contract.js';
+import { BoundsPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
+import { StepperState } from './state.js';
+import { HEADER_TEXELS, PRIMITIVE_TEXELS } from './wind-glsl.js';
+
+/** Widest lattice texture row (texels); a lattice fills rows of this many points. */
+const LATTICE_WIDTH = 4096;
+/** Most steps the bounds read without a stall may lag behind the state. */
+const MAX_BOUNDS_LAG = 4;
+/** Most lattice points the GPU takes (64 MiB as RGBA32F); larger fields are stepped in the worker. */
+export const MAX_GPU_LATTICE = 1 << 22;
+
+/**
+ * Why the GPU cannot step the gas with `renderer`, or null when it can: WebGL2, float render
+ * targets, three draw buffers, and textures wide enough for the state and the lattice.
+ */
+export function gpuStepperUnsupported(renderer) {
+  if (!renderer.capabilities.isWebGL2) return 'this browser has no WebGL2';
+  const gl = renderer.getContext();
+  if (!renderer.extensions.has('EXT_color_buffer_float')) return 'this GPU cannot render to float textures (no EXT_color_buffer_float)';
+  if (gl.getParameter(gl.MAX_DRAW_BUFFERS) < 3) return 'this GPU draws to fewer than three targets at once';
+  if (gl.getParameter(gl.MAX_TEXTURE_SIZE) < LATTICE_WIDTH) return `this GPU's textures are narrower than ${LATTICE_WIDTH}`;
+  return null;
+}
+
+/** Copies every attachment of one state into a larger one (the first rows of it). */
+class CopyPass extends ScreenPass {
+  constructor(count) {
+    const outputs = Array.from({ length: count }, (_, k) => `layout(location = ${k}) out vec4 o${k};`).join('\n');
+    const inputs = Array.from({ length: count }, (_, k) => `uniform highp sampler2D i${k};`).join('\n');
+    const copies = Array.from({ length: count }, (_, k) => `o${k} = p.y < rows ? texelFetch(i${k}, p, 0) : vec4(0.0);`).join('\n  ');
+    const uniforms = { rows: { value: 0 } };
+    for (let k = 0; k < count; k++) uniforms[`i${k}`] = { value: null };
+    super(`${inputs}\nuniform int rows;\n${outputs}\nvoid main() {\n  ivec2 p = ivec2(gl_FragCoord.xy);\n  ${copies}\n}`, uniforms);
+    this.count = count;
+  }
+
+  copy(renderer, from, to) {
+    const u = this.material.uniforms;
+    u.rows.value = from.height;
+    for (let k = 0; k < this.count; k++) u[`i${k}`].value = from.textures[k];
+    this.draw(renderer, to);
+  }
+}
+
+export class GpuStepper {
+  /** @param {THREE.WebGLRenderer} renderer the views' renderer: the state is in its context */
+  constructor(renderer) {
+    this.renderer = renderer;
+    this.stepPass = new StepPass();
+    this.writePass = new WritePass();
+    this.packPass = new PackPass();
+    this.boundsPass = new BoundsPass();
+    this.copyMoving = new CopyPass(2);
+    this.copyFixed = new CopyPass(3);
+    this.state = null;
+    this.lattice = null;
+    this.windTable = null;
+    /** One past the highest slot in use; what the views draw. */
+    this.highWater = 0;
+    this.count = 0;
+    this.sigmaRange = [0, 0];
+    this.emissive = false;
+    this.spheres = new Float32Array(0);
+    this.time = 0;
+    /** Steps taken since the bounds were last read (the async read's lag). */
+    this.stepsSinceBounds = 0;
+  }
+
+  /**
+   * Takes the gas over: `records` (BLOB_FLOATS per slot, slot order, as the core's
+   * `handCentresToGpu` gives them), room for `capacity` slots, at simulated time `time` (s).
+   */
+  start({ records, capacity, time = 0 }) {
+    const slots = records.length / BLOB_FLOATS;
+    this.state?.dispose();
+    this.state = new StepperState(Math.max(capacity, slots, 1));
+    const renderer = this.renderer;
+    for (const target of [...this.state.moving, this.state.fixed]) {
+      renderer.setRenderTarget(target);
+      renderer.setClearColor(0x000000, 0);
+      renderer.clear(true, false, false);
+    }
+    const all = Uint32Array.from({ length: slots }, (_, i) => i);
+    this.writePass.write(renderer, this.state, this.state.now, records, all, new Uint32Array(0));
+    renderer.setRenderTarget(null);
+    this.highWater = slots;
+    this.time = time;
+    this.boundsPass.bounds = boundsOfRecords(records);
+    this.stepsSinceBounds = 0;
+  }
+
+  /**
+   * The small-scale field's lattice (`data`: xyz per point, `[t][z][y][x]`, lattice units) of
+   * `size` `[nx, ny, nz, nt]`, or none (a scene without one).
+   */
+  setLattice(data, size) {
+    this.lattice?.dispose();
+    this.lattice = null;
+    this.latticeSize = size;
+    if (!data) return;
+    const points = data.length / 3;
+    const rows = Math.ceil(points / LATTICE_WIDTH);
+    const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
+    for (let i = 0; i < points; i++) texels.set(data.subarray(3 * i, 3 * i + 3), 4 * i);
+    this.lattice = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
+    this.lattice.needsUpdate = true;
+  }
+
+  /** Room for at least `slots` slots, keeping the state. */
+  #ensureCapacity(slots) {
+    if (slots <= this.state.capacity) return;
+    const old = this.state;
+    const grown = new StepperState(Math.max(slots, Math.ceil(1.5 * old.capacity)));
+    this.copyMoving.copy(this.renderer, old.now, grown.now);
+    this.copyFixed.copy(this.renderer, old.fixed, grown.fixed);
+    old.dispose();
+    this.state = grown;
+  }
+
+  /** The wind table texture holding tables `a` (row 0) and `b` (row 1). */
+  #setWind(a, b) {
+    const width = Math.max(a.length / 4, b.length / 4, HEADER_TEXELS + PRIMITIVE_TEXELS);
+    if (!this.windTable || this.windTable.image.width < width) {
+      this.windTable?.dispose();
+      const w = Math.ceil(width / 64) * 64;
+      this.windTable = new THREE.DataTexture(new Float32Array(8 * w), w, 2, THREE.RGBAFormat, THREE.FloatType);
+    }
+    const data = this.windTable.image.data;
+    data.fill(0);
+    data.set(a, 0);
+    data.set(b, 4 * this.windTable.image.width);
+    this.windTable.needsUpdate = true;
+  }
+
+  /**
+   * Takes the steps the core took (`steps`: its `stepForGpu` result) with time step `dt` (s),
+   * diffusion κ (m²/s), dissipation α (1/s) and the RK2 midpoint rule or Euler.
+   */
+  apply(steps, { dt, kappa, alpha, rk2 }) {
+    const renderer = this.renderer;
+    this.#ensureCapacity(steps.highWater);
+    const n = steps.ranges.length / 4;
+    const u = this.stepPass.material.uniforms;
+    u.dt.value = dt;
+    u.kappa.value = kappa;
+    u.alpha.value = alpha;
+    u.rk2.value = rk2;
+    u.lattice.value = this.lattice;
+    const [nx, ny, nz, nt] = this.latticeSize ?? [1, 1, 1, 1];
+    u.latticeSize.value.set(nx, ny, nz, nt);
+    u.latticeWidth.value = LATTICE_WIDTH;
+    const table = (k) => steps.wind.subarray(steps.windOffsets[k], steps.windOffsets[k + 1] ?? steps.wind.length);
+    for (let k = 0; k < n; k++) {
+      this.#setWind(table(2 * k), table(2 * k + 1));
+      u.windTable.value = this.windTable;
+      u.centres.value = this.state.now.textures[0];
+      u.masses.value = this.state.now.textures[1];
+      u.ownVelocities.value = this.state.fixed.textures[0];
+      this.stepPass.draw(renderer, this.state.next);
+      const [firstBirth, births, firstFreed, freed] = steps.ranges.subarray(4 * k, 4 * k + 4);
+      this.writePass.write(
+        renderer,
+        this.state,
+        this.state.next,
+        steps.births.subarray(BLOB_FLOATS * firstBirth, BLOB_FLOATS * (firstBirth + births)),
+        steps.birthSlots.subarray(firstBirth, firstBirth + births),
+        steps.freed.subarray(firstFreed, firstFreed + freed),
+      );
+      this.state.swap();
+    }
+    renderer.setRenderTarget(null);
+    this.highWater = steps.highWater;
+    this.count = steps.count;
+    this.sigmaRange = Array.from(steps.sigmaRange);
+    this.emissive = steps.emissive;
+    this.spheres = steps.spheres;
+    this.time = steps.time;
+    this.stepsSinceBounds += n;
+  }
+
+  /**
+   * The views' frame of the current state, on the GPU: the packed blob texture, the frame's
+   * description (`frame::packed` info: one σ class over every slot; bounds from the GPU) and the
+   * moving spheres. While playing the bounds come back without a stall, a step or two behind
+   * and padded for it; with `exact` (captures), or after more steps than the padding covers,
+   * they are read at once.
+   */
+  frame(mediumAlbedo, { exact = false } = {}) {
+    const renderer = this.renderer;
+    const texture = this.packPass.pack(renderer, this.state, mediumAlbedo);
+    const wait = exact || this.stepsSinceBounds > MAX_BOUNDS_LAG;
+    if (this.boundsPass.update(renderer, this.state, { wait })) this.stepsSinceBounds = 0;
+    renderer.setRenderTarget(null);
+    const b = this.boundsPass.bounds;
+    const info = new Float32Array(INFO_HEADER + INFO_PER_CLASS);
+    info[0] = this.highWater;
+    if (b) {
+      // The gas moves a little while its bounds come back: pad by a tenth and 2 cm.
+      for (let a = 0; a < 3; a++) {
+        const pad = wait ? 0 : 0.1 * (b[3 + a] - b[a]) + 0.02;
+        info[1 + a] = b[a] - pad;
+        info[4 + a] = b[3 + a] + pad;
+      }
+    }
+    const [sigmaMin, sigmaMax] = this.sigmaRange;
+    // σ on the GPU may round a little above the core's: the widest class reaches past it.
+    const reach = 1.0001 * sigmaMax;
+    info[7] = this.emissive ? 1 : 0;
+    info[8] = sigmaMin;
+    info[9] = this.highWater > 0 ? 1 : 0;
+    // One mixed class (index −1): the slots are not sorted by σ; the views sort each blob
+    // into its class themselves.
+    info.set([-1, 0, this.highWater, reach], INFO_HEADER);
+    return { texture, count: this.highWater, live: this.count, info, spheres: this.spheres, time: this.time };
+  }
+
+  /** Attachment `k` of the moving state, every slot in use (RGBA per slot), read back (a stall). */
+  #read(k) {
+    const rows = Math.ceil(this.highWater / BLOBS_PER_ROW);
+    const texels = new Float32Array(4 * BLOBS_PER_ROW * Math.max(rows, 1));
+    if (rows > 0) this.renderer.readRenderTargetPixels(this.state.now, 0, 0, BLOBS_PER_ROW, rows, texels, undefined, k);
+    return texels.subarray(0, 4 * this.highWater);
+  }
+
+  /** The centres (xyz per slot, m) as they are now, read back from the GPU (a stall). */
+  readCentres() {
+    const texels = this.#read(0);
+    const out = new Float32Array(3 * this.highWater);
+    for (let i = 0; i < this.highWater; i++) out.set(texels.subarray(4 * i, 4 * i + 3), 3 * i);
+    return out;
+  }
+
+  /** σ (m) and mass of every slot holding a blob, in slot order, read back (for tests). */
+  readSigmaAndMass() {
+    const a = this.#read(0);
+    const b = this.#read(1);
+    const sigma = [];
+    const mass = [];
+    for (let i = 0; i < this.highWater; i++) {
+      if (!(b[4 * i] > 0)) continue;
+      sigma.push(Math.sqrt(a[4 * i + 3]));
+      mass.push(b[4 * i]);
+    }
+    return { sigma: Float32Array.from(sigma), mass: Float32Array.from(mass) };
+  }
+
+  dispose() {
+    this.state?.dispose();
+    this.lattice?.dispose();
+    this.windTable?.dispose();
+    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.copyMoving, this.copyFixed]) p.dispose();
+  }
+}
+
+/** The bounds of blob records (centre ± FOOTPRINT σ of those with mass): [lo xyz, hi xyz], or null. */
+function boundsOfRecords(records) {
+  const b = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < records.length; i += BLOB_FLOATS) {
+    if (!(records[i + 4] > 0)) continue;
+    const reach = FOOTPRINT * Math.sqrt(Math.max(records[i + 3], 0));
+    for (let a = 0; a < 3; a++) {
+      b[a] = Math.min(b[a], records[i + a] - reach);
+      b[3 + a] = Math.max(b[3 + a], records[i + a] + reach);
+    }
+  }
+  return b[0] <= b[3] ? b : null;
+}
