@@ -1,4 +1,4 @@
-// <wind-field>: several players per page, each with DESIGN §5's methods; the built
+// <wind-field>: several players per page, each with the methods of the browser API (docs/FORMATS.md); the built
 // dist/embed.js is a small loader that fetches the player's code only when a player nears the
 // viewport (once for all of them); without autoplay a player shows its scene at poster-time
 // with a play button; ready/error events; attributes mirrored as properties and live changes.

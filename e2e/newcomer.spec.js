@@ -28,7 +28,7 @@ test('the playground opens on smoke: at least 20,000 blobs by t = 4 s, from the 
   await open(page);
   const out = await page.evaluate(async () => {
     const w = window.windfield;
-    w.pause();
+    await w.pause();
     const scene = w.getScene();
     const { time } = w.stats();
     await w.step(Math.round((4 - time) / scene.simulation.dt));

@@ -1,4 +1,4 @@
-// The playground (index.html): DESIGN §5's window.windfield, the scene in the URL, fallbacks.
+// The playground (index.html): `window.windfield` (docs/FORMATS.md, the browser API), the scene in the URL, fallbacks.
 import { test, expect } from '@playwright/test';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';

@@ -1,7 +1,7 @@
 // Browser benchmarks over the built site (dist/) in Debian's chromium with SwiftShader:
-// navigation to first frame; the worker's step, packing and frame size at 100,000 blobs; the
-// real-time view's frame at 10,000 and 100,000 blobs of one plume (640×360) against the points
-// view's. SwiftShader runs shaders on the CPU: compare the ratios, not the
+// navigation to first frame; the worker's step, packing and frame size at 100,000 and 1,000,000
+// blobs against one GPU step of the same gas; the real-time view's frame at 10,000, 100,000 and
+// 1,000,000 blobs of one plume (640×360) against the points view's. SwiftShader runs shaders on the CPU: compare the ratios, not the
 // times. Prints {name, value, unit} objects.
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
@@ -34,7 +34,7 @@ export async function benchBrowser() {
     const plume = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));
     const plumeOf = (count) => page.evaluate(async ({ scene, n }) => {
       const w = window.windfield;
-      w.pause();
+      await w.pause();
       scene.emitters[0].rate = n / 5;
       scene.gas.max_blobs = n;
       await w.setScene(scene);
@@ -42,10 +42,12 @@ export async function benchBrowser() {
       return w.stats().blobs;
     }, { scene: structuredClone(plume), n: count });
 
-    const n100 = await plumeOf(100_000);
+    // The worker steps unless a benchmark below hands the gas to the GPU.
+    await page.evaluate(() => window.windfield.setStepper('cpu'));
+
     // The worker alone: SwiftShader draws on the same two cores, so the page shows points and
     // rests between steps, and no frame is being drawn while the worker steps.
-    const worker = await page.evaluate(async () => {
+    const workerStep = () => page.evaluate(async () => {
       const w = window.windfield;
       const step = [];
       const pack = [];
@@ -60,22 +62,61 @@ export async function benchBrowser() {
       const mid = (t) => t.sort((a, b) => a - b)[3];
       return { step: mid(step), pack: mid(pack), bytes: w.stats().frameBytes };
     });
+    // One GPU step of the same gas (the state handed over, one step taken, then timed passes).
+    // With `view`, also the real-time view's frame of the state as the GPU holds it (its slots
+    // unsorted by σ: one mixed class).
+    const gpuStep = ({ view = false } = {}) => page.evaluate(async (withView) => {
+      const w = window.windfield;
+      w.setView('points');
+      const stepper = await w.setStepper('gpu');
+      await w.step(1);
+      const ms = stepper === 'gpu' ? await w.timeGpuStep({ repeats: 5 }) : null;
+      const frame = stepper === 'gpu' && withView
+        ? await w.timeFrames({ mode: 'raymarch', width: 640, height: 360, frames: 5, quality: 'standard' }) : null;
+      await w.setStepper('cpu');
+      w.setView('raymarch');
+      return { ms, frame };
+    }, view);
+    const frame = (mode) => page.evaluate((m) => window.windfield.timeFrames({ mode: m, width: 640, height: 360, frames: 5, quality: 'standard' }), mode);
+
+    const n100 = await plumeOf(100_000);
+    const worker = await workerStep();
     const k = `${Math.round(n100 / 1000)}k`;
     emit(`worker_step_${k}_ms`, worker.step + worker.pack, 'ms');
     emit(`worker_pack_${k}_ms`, worker.pack, 'ms');
     emit(`frame_bytes_${k}`, worker.bytes, 'bytes');
+    const gpu100 = await gpuStep();
+    if (gpu100.ms !== null) emit('gpu_step_100k_ms', gpu100.ms, 'ms');
 
-    const frame = (mode) => page.evaluate((m) => window.windfield.timeFrames({ mode: m, width: 640, height: 360, frames: 5, quality: 'standard' }), mode);
     const view = {};
+    const points = {};
     view[100] = await frame('raymarch');
-    const points100 = await frame('points');
+    points[100] = await frame('points');
     await plumeOf(10_000);
     view[10] = await frame('raymarch');
     emit('view_frame_640x360_10k_ms', view[10], 'ms');
     emit('view_frame_640x360_100k_ms', view[100], 'ms');
     emit('view_100k_over_10k', view[100] / view[10], 'ratio');
-    emit('points_frame_640x360_100k_ms', points100, 'ms');
-    emit('view_over_points_100k', view[100] / points100, 'ratio');
+    emit('points_frame_640x360_100k_ms', points[100], 'ms');
+    emit('view_over_points_100k', view[100] / points[100], 'ratio');
+
+    // A million blobs: the same plume, ten times as dense.
+    const n1m = await plumeOf(1_000_000);
+    const worker1m = await workerStep();
+    emit('blobs_1m', n1m, 'blobs');
+    emit('worker_step_1m_wasm_ms', worker1m.step + worker1m.pack, 'ms');
+    const gpu1m = await gpuStep({ view: true });
+    if (gpu1m.ms !== null) {
+      emit('gpu_step_1m_ms', gpu1m.ms, 'ms');
+      emit('worker_over_gpu_step_1m', (worker1m.step + worker1m.pack) / gpu1m.ms, 'ratio');
+      emit('view_frame_640x360_1m_gpu_stepped_ms', gpu1m.frame, 'ms');
+    }
+    view[1000] = await frame('raymarch');
+    points[1000] = await frame('points');
+    emit('view_frame_640x360_1m_ms', view[1000], 'ms');
+    emit('view_frame_640x360_1m_over_100k', view[1000] / view[100], 'ratio');
+    emit('points_frame_640x360_1m_ms', points[1000], 'ms');
+    emit('points_frame_640x360_1m_over_100k', points[1000] / points[100], 'ratio');
   });
   return results;
 }

@@ -1,4 +1,4 @@
-// `windfield render --frames` (DESIGN §7): shards run as separate processes write exactly the
+// `windfield render --frames` (docs/FORMATS.md, the command line): shards run as separate processes write exactly the
 // unsharded run's bytes; complete frames are skipped unless --force; a killed run leaves no half
 // frame and a rerun finishes it; bad ranges, patterns and shards are refused before anything is
 // written; runs over the step budget are refused naming simulation.dt and the time.

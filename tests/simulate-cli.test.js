@@ -1,4 +1,4 @@
-// `windfield simulate`: deterministic bytes, the blob list of DESIGN §4, clear errors, and the
+// `windfield simulate`: deterministic bytes, the blob list (docs/FORMATS.md), clear errors, and the
 // WASM simulation agreeing with the native one.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';

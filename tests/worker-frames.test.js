@@ -1,4 +1,4 @@
-// What crosses from the engine worker to the page per frame (DESIGN §1): whole typed arrays and
+// What crosses from the engine worker to the page per frame (docs/ARCHITECTURE.md): whole typed arrays and
 // plain numbers only — no JSON strings, no per-blob objects — each array transferred, and the
 // packed blobs decode to the same blobs the blob list holds.
 import { test } from 'node:test';

@@ -1,6 +1,6 @@
 // TypeScript declarations for windfield in the browser: the <wind-field> element (web/src/embed.js,
 // dist/embed.js), its attributes, properties, methods and events, the playground's
-// `window.windfield` (DESIGN §5), and the scene (DESIGN §3) and blob list (DESIGN §4) formats.
+// `window.windfield` (docs/FORMATS.md, the browser API), and the scene (docs/FORMATS.md) and blob list (docs/FORMATS.md) formats.
 // Importing the package's main entry defines the element; `import type` from it costs nothing.
 //
 // The scene's types are generated from its JSON Schema (public/scene.schema.json) into
@@ -21,7 +21,7 @@ export type WindFieldQuality = 'draft' | 'standard' | 'high';
 /** What steps the gas: the engine worker's core, or the GPU. */
 export type WindFieldStepper = 'cpu' | 'gpu';
 
-/** The blob list (DESIGN §4): the render input of the reference renderer and the CLI. */
+/** The blob list (docs/FORMATS.md): the render input of the reference renderer and the CLI. */
 export interface BlobList extends Omit<RenderSettings, 'image' | 'time'> {
   image: { width: number; height: number; encoding: 'srgb' | 'linear' };
   blobs: { center: Vec3; sigma: number; mass: number; albedo?: Vec3; emission?: Vec3; age?: number; sigma0?: number; mass0?: number }[];
@@ -46,6 +46,8 @@ export interface WindFieldStats {
   limitedBy: 'worker' | 'view' | 'display' | 'paused';
   /** What steps the gas now. */
   stepper: WindFieldStepper;
+  /** Why the worker steps the gas where the GPU was asked for (`setStepper('gpu' | 'auto')`); absent otherwise. */
+  stepperReason?: string;
   /** With the playground's `?profile`: the real-time view's passes on the GPU (ms). */
   passes?: Record<string, number>;
 }
@@ -59,7 +61,7 @@ export interface CaptureOptions {
   standIns?: boolean;
 }
 
-/** DESIGN §5's methods, on every <wind-field> and on the playground's `window.windfield`. */
+/** The methods of the browser API (docs/FORMATS.md), on every <wind-field> and on the playground's `window.windfield`. */
 export interface WindFieldMethods {
   /** The current scene (a copy); the element returns null before its scene is loaded. */
   getScene(): Scene | null;
@@ -70,9 +72,10 @@ export interface WindFieldMethods {
    * of the field's settings is synthesised meanwhile); rejects like `setScene`.
    */
   editScene(scene: SceneInput): Promise<Scene>;
-  /** Chooses what steps the gas (`auto`: the GPU where it can); resolves with the one that steps now. */
+  /** Chooses what steps the gas (`gpu` and `auto`: the GPU where it can, else the worker); resolves with the one that steps now. */
   setStepper(kind: WindFieldStepper | 'auto'): Promise<WindFieldStepper>;
-  pause(): void;
+  /** Stops playing; resolves once the steps already in flight are shown, so `stats()` holds still. */
+  pause(): Promise<void>;
   play(): void;
   /** Takes `n` fixed steps (deterministic) and draws. */
   step(n?: number): Promise<void>;
@@ -140,10 +143,10 @@ export declare class WindFieldElement extends HTMLElement {
   removeEventListener(type: string, listener: EventListenerOrEventListenerObject, options?: boolean | EventListenerOptions): void;
 }
 
-/** The methods of DESIGN §5 (declaration merging adds them to the class). */
+/** The methods of the browser API (docs/FORMATS.md) (declaration merging adds them to the class). */
 export interface WindFieldElement extends WindFieldMethods {}
 
-/** The playground's `window.windfield`: DESIGN §5's methods and a few for scripts and benchmarks. */
+/** The playground's `window.windfield`: the methods of the browser API (docs/FORMATS.md) and a few for scripts and benchmarks. */
 export interface WindFieldPageAPI extends WindFieldMethods {
   getScene(): Scene;
   /** Resolves once the page's first scene is loaded. */
@@ -158,8 +161,12 @@ export interface WindFieldPageAPI extends WindFieldMethods {
   inspectVolume(options?: { quality?: WindFieldQuality }): Promise<unknown>;
   /** The field's statistics (`windfield stats`). */
   fieldStats(spectrum?: Partial<Scene['field']['spectrum']>): Promise<unknown>;
-  /** The small-scale wind at (x, y, z) m and t s. */
+  /** The small-scale field at lattice coordinates (x, y, z, t), quadrilinearly: velocity in lattice units. */
   sample(x: number, y: number, z: number, t: number): Promise<unknown>;
+  /** The GPU stepper's own σ (m) and mass of every blob, slot order; null while the worker steps. */
+  inspectStepper(): Promise<{ sigma: Float32Array; mass: Float32Array } | null>;
+  /** The median time (ms) of one GPU step of the current gas, finished on the GPU; null while the worker steps. */
+  timeGpuStep(options?: { repeats?: number }): Promise<number | null>;
   /** The engine's health: its memory (bytes), the blob count, blobs whose centre is not finite. */
   health(): Promise<{ wasmBytes: number; blobs: number; nonFinite: number }>;
 }

@@ -286,7 +286,7 @@ impl SceneSimulation {
             .map_err(js_error)
     }
 
-    /// The blob list of DESIGN §4 for the current state (JSON).
+    /// The blob list (docs/FORMATS.md) for the current state (JSON).
     #[wasm_bindgen(js_name = blobList)]
     pub fn blob_list(&self) -> Result<String, JsError> {
         serde_json::to_string(&self.inner.blob_list()).map_err(js_error)
@@ -425,7 +425,7 @@ impl SceneSimulation {
     }
 }
 
-/// A reference still in progress: the CPU renderer of DESIGN §4, a band of rows at a time so a
+/// A reference still in progress: the CPU renderer of the rendering model (docs/FORMATS.md), a band of rows at a time so a
 /// worker can report progress (`render::BandedRender`).
 #[wasm_bindgen]
 pub struct ReferenceRender {
@@ -435,7 +435,7 @@ pub struct ReferenceRender {
 
 #[wasm_bindgen]
 impl ReferenceRender {
-    /// `blob_list_json`: a blob list (DESIGN §4); `width`/`height` of 0 keep the list's size.
+    /// `blob_list_json`: a blob list (docs/FORMATS.md); `width`/`height` of 0 keep the list's size.
     #[wasm_bindgen(constructor)]
     pub fn new(blob_list_json: &str, width: u32, height: u32) -> Result<ReferenceRender, JsError> {
         let value: serde_json::Value = parse(blob_list_json, "blob list")?;

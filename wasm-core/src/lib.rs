@@ -9,7 +9,7 @@
 //!                       spectral synthesis (noise, Eq. 7 filter, inverse FFT), statistics
 //! gas/      §4, §6      the scene format, the wind u = u_l + u_s (Eq. 3), emitters and initial
 //!                       blob sets, the blob gas (Eqs. 12–16), the simulation, and the blob list
-//!                       it hands over (DESIGN §3, §4)
+//!                       it hands over (docs/FORMATS.md: the scene format, the blob list)
 //! render/   §5, App. B  the CPU reference renderer of a blob list
 //! frame/                the browser's GPU frame: blobs packed for the shaders, the exact
 //!                       march's level of detail and shadow grid, the real-time view's twin

@@ -1,4 +1,4 @@
-//! The `windfield` command line as a user meets it (DESIGN §7): a still at the scene's
+//! The `windfield` command line as a user meets it (docs/FORMATS.md, the command line): a still at the scene's
 //! `render.time`, the summary line of every command that writes, the project's own message for
 //! negative numbers, budgets that refuse a hostile scene before it allocates (under a 3 GB
 //! address-space limit, where an allocation failure would abort), no silent NaN, and

@@ -1,4 +1,4 @@
-//! The synthesised field against the paper's formulas (DESIGN §6), fixed seeds throughout.
+//! The synthesised field against the paper's formulas (docs/FORMATS.md, statistics), fixed seeds throughout.
 
 use rustfft::num_complex::Complex64;
 use windfield::field::lattice::wave_number;
@@ -132,7 +132,7 @@ fn kolmogorov_slope_over_the_inertial_range_averaged_over_seeds() {
     );
 }
 
-/// The statistics of DESIGN §6 on a lattice whose extents are not powers of two (48 = 2⁴·3),
+/// The statistics of docs/FORMATS.md on a lattice whose extents are not powers of two (48 = 2⁴·3),
 /// averaged over seeds: slope, energy, divergence, components, mean and temporal spread.
 #[test]
 fn statistics_on_a_48x48x48x16_lattice_averaged_over_seeds() {

@@ -1,4 +1,4 @@
-//! The reference renderer against a brute-force quadrature of DESIGN §4, the closed-form
+//! The reference renderer against a brute-force quadrature of the rendering model (docs/FORMATS.md), the closed-form
 //! transparency of one blob, and the brute-force (no tree) blob search.
 
 use glam::DVec3;
@@ -7,7 +7,7 @@ use windfield::gas::blob_list::{BlobList, Encoding};
 use windfield::render::{psnr, RenderOptions, Renderer, TRUNCATION};
 use windfield::{Scene, Simulation};
 
-/// DESIGN §4 by direct quadrature in f64: every blob untruncated, midpoint steps along the
+/// the rendering model (docs/FORMATS.md) by direct quadrature in f64: every blob untruncated, midpoint steps along the
 /// primary ray, shadow transmittance by its own midpoint march towards each light.
 fn twin(list: &BlobList) -> Vec<f64> {
     let (w, h) = (list.image.width, list.image.height);

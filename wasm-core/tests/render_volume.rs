@@ -1,5 +1,5 @@
 //! The real-time view's volumes (`frame::volume` and `frame::light_volume`, the twins of the
-//! browser's GPU passes) against the exact model of DESIGN §4 on a preset's plume: the density
+//! browser's GPU passes) against the exact rendering model (docs/FORMATS.md) on a preset's plume: the density
 //! volume holds the blobs' mass, and the light volume's shadow columns match the reference
 //! renderer's exact columns ∫ρ ds towards the light at points inside the gas.
 

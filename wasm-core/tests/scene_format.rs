@@ -1,4 +1,4 @@
-//! The scene format (DESIGN §3): strict parsing with path-naming errors, defaults, versions,
+//! The scene format (docs/FORMATS.md): strict parsing with path-naming errors, defaults, versions,
 //! and the shipped JSON Schema.
 
 use windfield::gas::scene::{json_schema, Scene};

@@ -1,4 +1,4 @@
-// <wind-field>: an embeddable player (DESIGN §5). This module is only the loader: it defines
+// <wind-field>: an embeddable player (docs/FORMATS.md, the browser API). This module is only the loader: it defines
 // the element, its poster, play button and attributes, and nothing heavy. The player's code
 // (the engine worker with the WASM core, three.js and the views, `player.js`) is imported when
 // the first element nears the viewport (`loading="lazy"`, the default) or at once

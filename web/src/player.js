@@ -1,5 +1,5 @@
 // A player: one scene running in its own engine worker, drawn into one canvas, with the
-// scripting API of DESIGN §5. The playground page and every <wind-field> element each own one,
+// browser API (docs/FORMATS.md). The playground page and every <wind-field> element each own one,
 // and use it through its methods only: its view, its engine and its state are its own.
 
 import { Engine } from './engine/client.js';
@@ -15,7 +15,7 @@ import { GpuStepper, gpuStepperUnsupported, MAX_GPU_LATTICE } from './stepper/gp
 import { SLICE_PLANES, SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
 
-/** The views (DESIGN §5's capture modes). */
+/** The views (the capture modes of docs/FORMATS.md). */
 export const MODES = ['points', 'raymarch', 'exact'];
 /** The qualities of the marched views (the exact march's `EXACT_QUALITY`, the volume's `VOLUME_QUALITY`). */
 export const QUALITIES = Object.keys(EXACT_QUALITY);
@@ -39,7 +39,7 @@ function sceneText(scene) {
   }
 }
 
-/** Whether two cameras (DESIGN §4's form) are the same. */
+/** Whether two cameras (the blob list's form, docs/FORMATS.md) are the same. */
 function sameCamera(a, b) {
   if (!a || !b || a.fov_y_deg !== b.fov_y_deg) return false;
   return ['position', 'target', 'up'].every((k) => a[k].every((v, i) => v === b[k][i]));
@@ -373,7 +373,7 @@ export class Player {
     this.hooks.onFrame?.(frame);
   }
 
-  /** The blob list of the current state for the current view (DESIGN §4); the GPU's centres read back first. */
+  /** The blob list of the current state for the current view (docs/FORMATS.md, the blob list); the GPU's centres read back first. */
   async exportBlobs({ width, height } = this.#view.size()) {
     await this.#syncCentres();
     return this.#engine.request('blobList', { camera: this.#view.cameraSettings(), image: { width, height } });
@@ -548,6 +548,14 @@ export class Player {
   }
 
   /**
+   * The median time (ms) of one GPU step of the current gas (`repeats` passes, finished on the
+   * GPU; the gas is not moved), or null while the worker steps it. For benchmarks.
+   */
+  timeGpuStep({ repeats = 5 } = {}) {
+    return this.exclusive(async () => (this.#stepper.active === 'gpu' ? this.#stepper.gpu.timeStep(repeats) : null));
+  }
+
+  /**
    * The WASM reference still of the current view at `width × height`; a PNG data URL. The
    * engine renders the blob list of its current state from this camera: only the PNG crosses.
    */
@@ -565,7 +573,7 @@ export class Player {
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
   async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.#state.mode } = {}) {
-    // One step a frame: the budget of DESIGN §7 holds before anything is recorded.
+    // One step a frame: the run budget (docs/FORMATS.md, the command line) holds before anything is recorded.
     await this.#engine.request('checkSteps', { steps: frames });
     if (this.recording) throw new Error('a recording is under way already');
     // One scene, one size: the scene may not change while the video is made.
@@ -689,16 +697,15 @@ export class Player {
 
   /**
    * Chooses what steps the gas: 'cpu' (the worker's core, the reference), 'gpu' (the GPU
-   * stepper; rejects where it cannot, saying why) or 'auto' (the default: the GPU where it can,
-   * else the worker). Resolves with what steps it now ('cpu' or 'gpu').
+   * stepper) or 'auto' (the default). 'gpu' and 'auto' step on the GPU where it can, else in the
+   * worker, with `stats().stepperReason` saying why. Resolves with what steps it now ('cpu' or
+   * 'gpu'); rejects only for another kind.
    */
   async setStepper(kind) {
     if (!['cpu', 'gpu', 'auto'].includes(kind)) throw new Error(`setStepper: the stepper must be 'cpu', 'gpu' or 'auto' (got ${kind})`);
     return this.exclusive(async () => {
-      if (kind === 'gpu') {
-        const reason = this.#gpuUnavailable();
-        if (reason) throw new Error(`setStepper: the GPU cannot step this gas here: ${reason}`);
-      }
+      // Where the GPU cannot step the gas, 'gpu' falls back to the worker as 'auto' does, and
+      // `stats().stepperReason` says why.
       this.#stepper.choice = kind;
       await this.#engage();
       await this.advance(0);
@@ -806,6 +813,17 @@ export class Player {
     this.#state.playing = Boolean(on);
   }
 
+  /** Stops playing; resolves once the steps already in flight are shown, so `stats()` holds still. */
+  pause() {
+    this.setPlaying(false);
+    return this.exclusive(async () => {});
+  }
+
+  /** What the gas is to be stepped by: 'auto', 'gpu' or 'cpu' (`setStepper`). */
+  get stepperChoice() {
+    return this.#stepper.choice;
+  }
+
   /** The view shown: one of MODES. */
   get mode() {
     return this.#state.mode;
@@ -855,13 +873,13 @@ export class Player {
     this.#stirrer.enabled = Boolean(on);
   }
 
-  /** DESIGN §5's methods, bound to this player. */
+  /** The methods of the browser API (docs/FORMATS.md), bound to this player. */
   api(ready) {
     return {
       ready,
       getScene: () => structuredClone(this.#state.scene),
       setScene: (scene) => this.load(scene),
-      pause: () => this.setPlaying(false),
+      pause: () => this.pause(),
       setView: (mode) => this.setView(mode),
       play: () => this.setPlaying(true),
       step: (n = 1) => this.step(n),
@@ -875,6 +893,7 @@ export class Player {
       inspectVolume: (options) => this.inspectVolume(options),
       inspectStepper: () => this.inspectStepper(),
       timeFrames: (options) => this.timeFrames(options),
+      timeGpuStep: (options) => this.timeGpuStep(options),
     };
   }
 

@@ -10,7 +10,7 @@
 //! - [`fft4`], [`real_fft`]: the 4-D inverse transform (complex along t, z, y; real along x).
 //! - [`synthesis`]: the staged synthesis from û to the field, in the field's own memory.
 //! - [`turbulent_field`]: the synthesised field, its parameters and its quadrilinear sampling.
-//! - [`statistics`]: the field measured against the paper's formulas (DESIGN §6).
+//! - [`statistics`]: the field measured against the paper's formulas (docs/FORMATS.md, statistics).
 //! - [`npy`]: NumPy `.npy` files, how the command line reads and writes fields.
 //!
 //! Nothing here knows of scenes, blobs or renderers.

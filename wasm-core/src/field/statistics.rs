@@ -1,6 +1,6 @@
 //! Measured statistics of a field against the paper's formulas: the shell-averaged energy
 //! spectrum and its inertial-range slope (Eq. 9), the kinetic energy (Eq. 8, as the lattice sum
-//! of DESIGN §2), the spectral divergence (Eq. 2), the energy per component (isotropy, Eq. 7),
+//! of the field in docs/FORMATS.md), the spectral divergence (Eq. 2), the energy per component (isotropy, Eq. 7),
 //! the mean (zero), and the temporal spread per shell (Eq. 11).
 
 use crate::field::fft4::{planner, transform_columns};

@@ -1,5 +1,5 @@
 //! The DFT û of the small-scale velocity (paper §3.3): white noise filtered so that every mode
-//! has the cross-spectral density of paper Eq. 7 (DESIGN §2), one spatial column — one wave
+//! has the cross-spectral density of paper Eq. 7 (docs/FORMATS.md, the field), one spatial column — one wave
 //! vector k, every temporal wave number ω — at a time.
 //!
 //! Per mode (k, ω): `û = a(k, ω) (X₁ e₁ + X₂ e₂)`, with X₁, X₂ independent complex Gaussians

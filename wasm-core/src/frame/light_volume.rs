@@ -1,4 +1,4 @@
-//! The real-time view's light volume (DESIGN §1), computed here exactly as the browser's
+//! The real-time view's light volume (docs/ARCHITECTURE.md), computed here exactly as the browser's
 //! light pass computes it (`web/src/views/volume/light-pass.js`), from the density volume of
 //! [`super::volume`].
 //!

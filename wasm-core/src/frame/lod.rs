@@ -12,7 +12,7 @@
 //! - σ² = Σ m_j (σ_j² + |c_j − c|²/3) / m (the trace of the second moment about c, shared
 //!   equally between the axes);
 //! - Ω = Σ m_j Ω_j / m and (1 − Ω) Q = Σ m_j (1 − Ω_j) Q_j / m: the density-weighted source of
-//!   DESIGN §4 is unchanged wherever the blobs overlap.
+//!   the rendering model (docs/FORMATS.md) is unchanged wherever the blobs overlap.
 //!
 //! The first three moments of the density are kept; the error is of order (offset/σ)³ relative,
 //! and `tests/render_lod.rs` bounds it on rendered images against the exact list.

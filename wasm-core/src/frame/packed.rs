@@ -1,6 +1,6 @@
 //! The frame the browser's views draw from: every blob packed into eight 32-bit words, sorted
 //! into classes of σ, with the bounds of the gas. One whole buffer crosses from the engine
-//! worker to the page per frame (DESIGN §1); the page uploads it to the GPU unchanged.
+//! worker to the page per frame (docs/ARCHITECTURE.md); the page uploads it to the GPU unchanged.
 //!
 //! Words per blob ([`WORDS_PER_BLOB`]), little-endian as typed arrays see them:
 //!
@@ -13,7 +13,7 @@
 //! | 6 | albedo Ω b, emitted source (1 − Ω) Q r (halves) |
 //! | 7 | emitted source (1 − Ω) Q g, b (halves) |
 //!
-//! A blob without an albedo of its own carries the medium's; the source term of DESIGN §4 is
+//! A blob without an albedo of its own carries the medium's; the source term of the rendering model (docs/FORMATS.md) is
 //! ρ [Ω L + (1 − Ω) Q], so the packed (1 − Ω) Q is what a view adds to Ω L. Blobs without mass
 //! are left out.
 //!

@@ -1,9 +1,9 @@
-//! The real-time view's volumes (DESIGN §1), computed here exactly as the browser's shaders
+//! The real-time view's volumes (docs/ARCHITECTURE.md), computed here exactly as the browser's shaders
 //! compute them (`web/src/views/volume/`), so that tests can hold the GPU to this twin and this
 //! twin to the reference renderer.
 //!
 //! **Density.** The gas's bounds are covered by cubic voxels of side h. Each voxel stores ρ
-//! (Eq. 13), ρΩ and ρ(1 − Ω)Q (the two parts of DESIGN §4's density-weighted source), built two
+//! (Eq. 13), ρΩ and ρ(1 − Ω)Q (the two parts of the rendering model's density-weighted source, docs/FORMATS.md), built two
 //! ways so that the cost does not grow with the blob count faster than a few voxels a blob:
 //!
 //! - A blob narrower than [`DIRECT_LIMIT`] voxels is *splatted directly*: its share of voxel

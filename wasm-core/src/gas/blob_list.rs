@@ -1,4 +1,4 @@
-//! The blob list (DESIGN §4): what a renderer takes, from the CLI and the browser alike.
+//! The blob list (docs/FORMATS.md): what a renderer takes, from the CLI and the browser alike.
 //! Camera, image, medium, lights, shadows, background and opaque objects, then the blobs.
 //! Units: metres; colours linear RGB; extinction κ_t in m² per unit mass.
 //!
@@ -248,7 +248,7 @@ pub struct BlobRecord {
     pub mass0: Option<f32>,
 }
 
-/// The render input of DESIGN §4: the fields of [`RenderSettings`] plus the blobs.
+/// The render input (the blob list of docs/FORMATS.md): the fields of [`RenderSettings`] plus the blobs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BlobList {

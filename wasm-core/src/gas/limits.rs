@@ -1,4 +1,4 @@
-//! The bounds of the two formats (the scene, DESIGN §3, and the blob list, DESIGN §4): largest
+//! The bounds of the two formats (the scene and the blob list of docs/FORMATS.md): largest
 //! coordinates, list lengths and the memory guards, checked before anything is built
 //! ([`super::validate`]) and stated in the JSON Schema ([`super::scene::json_schema`]).
 //!
@@ -35,7 +35,7 @@ pub const MAX_PATH_KEYS: usize = 10_000;
 
 /// Longest simulated time (s) a run may ask for: `render.time`, the CLI's `--seconds`.
 pub const MAX_SECONDS: f64 = 1e5;
-/// Most fixed steps one run may take (DESIGN §7): more is refused before it starts.
+/// Most fixed steps one run may take (docs/FORMATS.md, the command line): more is refused before it starts.
 pub const MAX_STEPS: u64 = 1_000_000;
 
 /// Largest image side in pixels.

@@ -3,8 +3,8 @@
 //!
 //! The formats, read strictly and checked in one walk:
 //!
-//! - [`scene`]: the scene format (DESIGN §3), its types, defaults and JSON Schema.
-//! - [`blob_list`]: the blob list (DESIGN §4), the one moment a renderer draws. It lives here,
+//! - [`scene`]: the scene format (docs/FORMATS.md), its types, defaults and JSON Schema.
+//! - [`blob_list`]: the blob list (docs/FORMATS.md), the one moment a renderer draws. It lives here,
 //!   beside the scene, because it is the scene's `render` section plus the blobs the gas made:
 //!   the two formats share their view settings, their bounds and their validation, and the
 //!   renderers downstream read it without knowing of scenes.

@@ -1,4 +1,4 @@
-//! Reading the two formats from JSON: the scene (DESIGN §3) and the blob list (DESIGN §4).
+//! Reading the two formats from JSON: the scene and the blob list (docs/FORMATS.md).
 //!
 //! Reading is strict: serde refuses unknown keys and wrong types, naming the JSON path; an old
 //! scene version is migrated first; then the one validation walk ([`super::validate`]) checks

@@ -1,4 +1,4 @@
-//! The scene format, version 1 (DESIGN §3): seed, field settings with the world mapping, wind
+//! The scene format, version 1 (docs/FORMATS.md): seed, field settings with the world mapping, wind
 //! primitives, emitters, gas constants, simulation and render settings.
 //!
 //! This module holds the format's types, their defaults and its JSON Schema. Reading is

@@ -1,5 +1,5 @@
 //! The animation system of paper §6: a scene's field, wind and gas advanced in fixed steps,
-//! and the blob list (DESIGN §4) a renderer takes.
+//! and the blob list (docs/FORMATS.md) a renderer takes.
 
 use crate::error::ParamError;
 use crate::field::TurbulentField;

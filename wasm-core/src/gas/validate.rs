@@ -1,5 +1,5 @@
 //! The one validation walk of each format: [`Scene::validate`] visits every value of a scene
-//! (DESIGN §3) and [`BlobList::validate`] every value of a blob list (DESIGN §4), the two
+//! (docs/FORMATS.md, the scene format) and [`BlobList::validate`] every value of a blob list (docs/FORMATS.md), the two
 //! sharing the walk over a view's camera, image, medium, lights and objects. The per-value
 //! checks are [`crate::check`]'s; the bounds are [`super::limits`]'. An error names the value
 //! by its JSON path and says what is allowed; the walk stops at the first.
@@ -55,7 +55,7 @@ impl Scene {
         }
         view(&self.render, "render.", MAX_OBJECTS)?;
         if let Some(t) = self.render.time {
-            // A still at `render.time` is a run like any other (DESIGN §7).
+            // A still at `render.time` is a run like any other (docs/FORMATS.md, the command line).
             self.simulation.budgeted_steps(t)?;
         }
         Ok(())
@@ -102,7 +102,7 @@ fn lengths(scene: &Scene) -> Result<(), ParamError> {
 }
 
 /// The field's parameters (lattice, spectrum, seed: the field's own check) and its world
-/// mapping (DESIGN §2).
+/// mapping (docs/FORMATS.md, the field).
 fn field(scene: &Scene) -> Result<(), ParamError> {
     scene.field_params().validate()?;
     let f = &scene.field;
@@ -302,7 +302,7 @@ fn shape_budgets(scene: &Scene) -> Result<(), ParamError> {
     let (mut steps, mut blob_steps) = (0.0, 0.0);
     for shape in &scene.shapes {
         if let Some(t) = shape.reverse_from {
-            // The run a reversed set keeps is a run like any other (DESIGN §7).
+            // The run a reversed set keeps is a run like any other (docs/FORMATS.md, the command line).
             let kept = scene.simulation.budgeted_steps(t)? as f64 + 1.0;
             let per_step = match scene.gas.split_sigma {
                 Some(_) => shape.blob_count().max(scene.gas.max_blobs),

@@ -1,7 +1,7 @@
 //! The wind u = u_l + u_s (paper Eq. 3): large-scale primitives superposed on the small-scale
 //! field, in world units (m, s, m/s).
 //!
-//! World mapping (DESIGN §2): one spatial period of the field spans `period` metres per axis and
+//! World mapping (docs/FORMATS.md, the field): one spatial period of the field spans `period` metres per axis and
 //! one temporal period `time_period` seconds, so the lattice coordinate of x is x·n/L and world
 //! velocity is `amplitude · u_field · L / time_period` per axis.
 //!

@@ -1,4 +1,4 @@
-//! A Gaussian blob along a ray (paper Appendix B, Eqs. 28–29, DESIGN §4).
+//! A Gaussian blob along a ray (paper Appendix B, Eqs. 28–29; docs/FORMATS.md).
 //!
 //! ρ(x) = m / ((2π)^{3/2} σ³) · exp(−|x − c|²/(2σ²)). Along x(s) = O + sD (|D| = 1) with
 //! s* = (c − O)·D and r² = |c − O|² − s*², the integral over [a, b] is

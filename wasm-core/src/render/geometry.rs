@@ -1,5 +1,5 @@
 //! Pinhole camera rays and the opaque objects that stand in for the paper's conventional ray
-//! tracer C_N (DESIGN §4).
+//! tracer C_N (the rendering model of docs/FORMATS.md).
 
 use crate::gas::blob_list::{Camera, Object};
 use glam::Vec3;

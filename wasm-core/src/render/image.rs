@@ -1,4 +1,4 @@
-//! Linear RGB images, their 8-bit encodings (DESIGN §4: `linear` or the sRGB curve), PNG
+//! Linear RGB images, their 8-bit encodings (docs/FORMATS.md: `linear` or the sRGB curve), PNG
 //! files, and the PSNR the tests compare with.
 
 use crate::gas::blob_list::Encoding;

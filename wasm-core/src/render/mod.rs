@@ -1,6 +1,6 @@
 //! The CPU reference renderer: the single-scattering model of paper §5 and Appendix B, with
 //! shadows and a bounding-volume hierarchy, producing exactly the image a blob list stands for
-//! (DESIGN §4) in the limit of fine steps.
+//! (the rendering model of docs/FORMATS.md) in the limit of fine steps.
 //!
 //! A primary ray is cut into intervals at the entry and exit points of the truncated blobs it
 //! meets (Figure 2). Each interval is subdivided into steps no longer than

@@ -1,4 +1,4 @@
-// The <wind-field> element's scripting methods (DESIGN §5; a feature of the element, after
+// The <wind-field> element's scripting methods (docs/FORMATS.md, the browser API; a feature of the element, after
 // model-viewer's features/): the player's API, each call waiting for the scene to be ready
 // (`ready`) and rejecting with a clear Error if it fails or the element is not in a document.
 // `play()` and `pause()` are the controls' (`controls.js`).

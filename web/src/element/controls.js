@@ -20,9 +20,9 @@ export const ControlsMixin = (Base) => class extends Base {
       this.play();
       this.load();
     });
-    p.toggle.addEventListener('click', () => (this[$wantsPlaying]() ? this.pause() : this.play()));
+    p.toggle.addEventListener('click', () => (this[$wantsPlaying]() ? this.pause().catch(() => {}) : this.play()));
     p.step.addEventListener('click', () => {
-      this.pause();
+      this.pause().catch(() => {});
       this.step(1).catch(() => {});
     });
     p.view.addEventListener('click', () => { this.view = this.view === 'points' ? 'raymarch' : 'points'; });
@@ -40,10 +40,11 @@ export const ControlsMixin = (Base) => class extends Base {
     else if (name === 'autoplay' && after !== null && this[$player] && !reducedMotion()) this.play();
   }
 
+  /** Stops playing; resolves once the steps already in flight are shown. */
   pause() {
     this.#playing = false;
-    this[$player]?.setPlaying(false);
     this[$updateControls]();
+    return this[$player]?.pause() ?? Promise.resolve();
   }
 
   play() {

@@ -151,7 +151,7 @@ export function createHandlers(core, progress, memory = () => 0) {
       return { result: { wasmBytes: memory(), blobs: s.count(), nonFinite } };
     },
     checkSteps: ({ steps }) => ({ result: sim().checkSteps(steps) ?? null }),
-    // The blob list for the page (DESIGN §4: `exportBlobs`).
+    // The blob list for the page (docs/FORMATS.md: `exportBlobs`).
     blobList: ({ camera, image }) => ({ result: session.blobList(camera, image) }),
     // The reference still of the current state from `camera` at `width × height`: the blob list
     // stays in the worker, only the PNG crosses.

@@ -214,7 +214,7 @@ export class Session {
   }
 
   /**
-   * The blob list (DESIGN §4) of the current state seen from `camera` at `image`'s size, either
+   * The blob list (docs/FORMATS.md) of the current state seen from `camera` at `image`'s size, either
    * kept from the scene if absent.
    */
   blobList(camera, image) {

@@ -156,7 +156,7 @@ resize();
 const ready = regenerate();
 requestAnimationFrame(frame);
 
-/** Scripting handle for tests and the console (the playground has DESIGN §5's full API). */
+/** Scripting handle for tests and the console (the playground has the full browser API of docs/FORMATS.md). */
 window.windfield = {
   ready,
   getField: () => structuredClone(state.field),

@@ -1,4 +1,4 @@
-// Field parameters as the core takes them (DESIGN §2–3): lattice size, spectrum, seed.
+// Field parameters as the core takes them (docs/FORMATS.md: the field and the scene format): lattice size, spectrum, seed.
 // Pure functions, shared by the field explorer, the classroom and the unit tests. The lattice's
 // limits are the core's (the contract's).
 

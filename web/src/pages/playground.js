@@ -144,6 +144,16 @@ function simulationFolder(gui) {
   sim.add(settings, 'speed', 0, 4, 0.05).name('time speed');
   sim.add(settings, 'mode', MODES).name('view');
   sim.add(settings, 'quality', QUALITIES).name('quality');
+  const stepping = {
+    get stepper() { return player.stepperChoice; },
+    set stepper(kind) {
+      player.setStepper(kind)
+        .then((now) => { if (kind === 'gpu' && now !== 'gpu') showMessage(`The worker steps the gas: ${player.snapshot().stepperReason}.`); })
+        .catch((e) => showMessage(`Could not change what steps the gas: ${e.message}`))
+        .finally(() => updateStatus(true));
+    },
+  };
+  sim.add(stepping, 'stepper', { 'auto (GPU where it can)': 'auto', GPU: 'gpu', 'worker (CPU)': 'cpu' }).name('gas stepped by');
   const resolution = { scale: 'auto' };
   sim.add(resolution, 'scale', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution')
     .onChange((v) => player.setResolution(v));

@@ -3,7 +3,7 @@
 // medium. Every change goes through `apply(draft)`, which validates and loads the edited copy;
 // the folders are then rebuilt from the scene that loaded (or the last good one).
 
-/** New items, one per kind: valid as they stand (DESIGN §3, §4). */
+/** New items, one per kind: valid as they stand (docs/FORMATS.md: the scene format, the blob list). */
 export const TEMPLATES = {
   wind: {
     uniform: { type: 'uniform', velocity: [0.3, 0, 0] },

@@ -1,9 +1,9 @@
 // The GPU stepper: the gas's centres advected on the GPU (paper §4, Eq. 14) through the wind the
 // core freezes for each step, while the core in the worker keeps the rest of the gas (births,
 // σ, mass, removal, the cap: `gas::slots`). Per step only the newborns, the emptied slots and the
-// frozen wind cross to the GPU; the views draw the packed state where it is; the centres come
-// back only on demand (`readCentres`: a still, an export, a recording, or stepping in the
-// worker again).
+// frozen wind cross to the GPU; the views draw the packed state where it is (a recording too);
+// the centres come back only on demand (`readCentres`: a reference still, a blob export, the
+// exact view, or stepping in the worker again).
 //
 // WebGL2 with float render targets (EXT_color_buffer_float) and three draw buffers is enough:
 // every pass is a per-texel map. Where these are missing the worker steps the gas.
@@ -224,6 +224,31 @@ export class GpuStepper {
     // into its class themselves.
     info.set([-1, 0, this.highWater, reach], INFO_HEADER);
     return { texture, count: this.highWater, live: this.count, info, spheres: this.spheres, time: this.time };
+  }
+
+  /**
+   * The median time (ms) of one step pass over every slot in use, run `repeats` times on the
+   * current state with the last step's wind and finished on the GPU; the state is left as it
+   * was (the results go to the spare buffer, never swapped in). For benchmarks.
+   */
+  timeStep(repeats = 5) {
+    const renderer = this.renderer;
+    // The last row in use, read back: the pass has finished every slot before it.
+    const row = Math.max(Math.ceil(this.highWater / BLOBS_PER_ROW) - 1, 0);
+    const texels = new Float32Array(4 * BLOBS_PER_ROW);
+    const times = [];
+    const u = this.stepPass.material.uniforms;
+    u.centres.value = this.state.now.textures[0];
+    u.masses.value = this.state.now.textures[1];
+    u.ownVelocities.value = this.state.fixed.textures[0];
+    for (let i = 0; i <= repeats; i++) {
+      const t0 = performance.now();
+      this.stepPass.draw(renderer, this.state.next);
+      renderer.readRenderTargetPixels(this.state.next, 0, row, BLOBS_PER_ROW, 1, texels);
+      if (i > 0) times.push(performance.now() - t0);
+    }
+    renderer.setRenderTarget(null);
+    return times.sort((a, b) => a - b)[Math.floor(times.length / 2)];
   }
 
   /** Attachment `k` of the moving state, every slot in use (RGBA per slot), read back (a stall). */

@@ -1,7 +1,7 @@
 // GLSL: the wind u = u_l + u_s (paper Eq. 3) frozen at one time, read from a wind table the core
 // writes (`gas::wind::WindFrame::write_gpu_table`; layout in the generated contract) and the
 // small-scale field's raw lattice: quadrilinear and periodic in (x, y, z, t) on the lattice
-// (§3; DESIGN's world mapping: lattice point q = (x − offset)·cells per metre, velocity times
+// (§3; the world mapping of docs/FORMATS.md: lattice point q = (x − offset)·cells per metre, velocity times
 // the scale), then each large-scale primitive (uniform, source or sink, vortex, repulsor, each
 // with its exponential decay). `tests/gpu_steps.rs` in the core holds this same arithmetic,
 // written out in Rust, to the core's own wind.

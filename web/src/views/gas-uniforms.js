@@ -23,7 +23,7 @@ export function gasUniforms() {
   };
 }
 
-/** Sets the lights (at most VIEW_LIGHTS) and the medium (extinction, phase) of DESIGN §4. */
+/** Sets the lights (at most VIEW_LIGHTS) and the medium (extinction, phase) of the rendering model (docs/FORMATS.md). */
 export function setLights(u, lights, medium) {
   const k = Array.isArray(medium.extinction) ? medium.extinction : [medium.extinction, medium.extinction, medium.extinction];
   u.kappa.value.fromArray(k);

@@ -1,4 +1,4 @@
-// The opaque objects' material: Lambert shading shadowed by the gas, as DESIGN §4 defines it —
+// The opaque objects' material: Lambert shading shadowed by the gas, as the rendering model (docs/FORMATS.md) defines it —
 // colour ⊙ Σ_k max(0, n·l_k) S_k L_k, with S_k from whichever gas view is drawn: the exact
 // march's shadow grid or the real-time view's light volume (the shared gas uniforms say which),
 // so objects and gas always see the same frame.

@@ -1,15 +1,21 @@
 // The points view (paper §6: the animator sees the blobs) drawn as gas: one soft sprite per
 // blob, read from the packed frame on the GPU. A sprite is the blob's column seen face on: its
 // optical depth at distance r from the centre is κ_t m/(2πσ²) · exp(−r²/2σ²) (the line
-// integral of Eq. 13 through the blob), its opacity 1 − exp(−that), its colour the light the
-// blob scatters plus its emitted source (1 − Ω)Q. Without shadows every sprite would scatter
-// the lights' full strength and a dense plume would burn out to white; the scattered part is
-// compressed as x / (1 + x) instead, a stand-in for the self-shadowing the marches compute.
-// Sprites are composited in emission order, without sorting: a preview, not the image; the
-// real-time view and the stills are.
+// integral of Eq. 13 through the blob), its colour the light the blob scatters plus its emitted
+// source (1 − Ω)Q. Without shadows every sprite would scatter the lights' full strength and a
+// dense plume would burn out to white; the scattered part is compressed as x / (1 + x) instead,
+// a stand-in for the self-shadowing the marches compute.
+//
+// The sprites' optical depths τ and depth-weighted colours τc are summed in a float target
+// (order-independent, so a million faint blobs add up where an 8-bit blend would drop each of
+// them), fragments behind the objects left out by the opaque pass's depth. A full-screen pass
+// then lays the gas over the objects and the background: opacity 1 − exp(−Στ) (Beer–Lambert
+// through the summed columns), colour Στc / Στ. A preview, not the image: the real-time view
+// and the stills are.
 
 import * as THREE from 'three';
 import { VIEW_LIGHTS } from '../generated/contract.js';
+import { ScreenPass } from './screen-pass.js';
 import { BLOB_GLSL } from './shaders/blob-record.js';
 import { LIGHTS_GLSL } from './shaders/lights.js';
 
@@ -53,6 +59,8 @@ void main() {
 
 const fragmentShader = /* glsl */ `
 precision highp float;
+uniform sampler2D opaqueDepth;
+uniform vec2 viewSize;
 in vec3 vColor;
 in float vDepth;
 in float vReach;
@@ -61,8 +69,27 @@ void main() {
   vec2 p = (gl_PointCoord * 2.0 - 1.0) * vReach;
   float r2 = dot(p, p);
   if (r2 > vReach * vReach) discard;
-  float alpha = 1.0 - exp(-vDepth * exp(-0.5 * r2));
-  outColor = vec4(linearToOutputTexel(vec4(vColor, 1.0)).rgb * alpha, alpha);
+  if (gl_FragCoord.z > texture(opaqueDepth, gl_FragCoord.xy / viewSize).x) discard;
+  float tau = vDepth * exp(-0.5 * r2);
+  outColor = vec4(vColor * tau, tau);
+}
+`;
+
+/** The gas (summed τc, τ) over the opaque pass's colour, or the background where it drew nothing. */
+const compositeShader = /* glsl */ `
+precision highp float;
+uniform sampler2D gasSums;
+uniform sampler2D opaqueColor;
+uniform vec3 background;
+in vec2 vUv;
+out vec4 outColor;
+void main() {
+  vec4 sums = texture(gasSums, vUv);
+  vec4 opaque = texture(opaqueColor, vUv);
+  vec3 under = mix(background, opaque.rgb, opaque.a);
+  float alpha = 1.0 - exp(-sums.a);
+  vec3 gas = sums.a > 0.0 ? sums.rgb / sums.a : vec3(0.0);
+  outColor = linearToOutputTexel(vec4(gas * alpha + under * (1.0 - alpha), 1.0));
 }
 `;
 
@@ -78,16 +105,26 @@ export class PointsLayer {
       vertexShader,
       fragmentShader,
       transparent: true,
+      depthTest: false,
       depthWrite: false,
       blending: THREE.CustomBlending,
       blendSrc: THREE.OneFactor,
-      blendDst: THREE.OneMinusSrcAlphaFactor,
+      blendDst: THREE.OneFactor,
       blendSrcAlpha: THREE.OneFactor,
-      blendDstAlpha: THREE.OneMinusSrcAlphaFactor,
-      uniforms: { ...gas, blobTex: { value: null }, pixelsPerUnit: { value: 500 } },
+      blendDstAlpha: THREE.OneFactor,
+      uniforms: {
+        ...gas, blobTex: { value: null }, pixelsPerUnit: { value: 500 },
+        opaqueDepth: { value: null }, viewSize: { value: new THREE.Vector2(1, 1) },
+      },
     });
     this.points = new THREE.Points(this.geometry, this.material);
     this.points.frustumCulled = false;
+    this.scene = new THREE.Scene().add(this.points);
+    this.composite = new ScreenPass(compositeShader, {
+      gasSums: { value: null }, opaqueColor: { value: null }, background: { value: new THREE.Color() },
+    });
+    /** The summed (τc, τ) of the sprites, the view's size. */
+    this.sums = null;
   }
 
   /** Shows the blobs of the blob texture. */
@@ -98,5 +135,39 @@ export class PointsLayer {
 
   setViewport(heightPx, fovYDeg) {
     this.material.uniforms.pixelsPerUnit.value = heightPx / (2 * Math.tan((fovYDeg * Math.PI) / 360));
+  }
+
+  /**
+   * Draws the sprites seen by `camera` over `opaque` (the opaque pass's target: the objects'
+   * colour, transparent where none, and depth) and `background` (linear RGB) into the
+   * renderer's current target (the canvas).
+   */
+  render(renderer, camera, opaque, background) {
+    const output = renderer.getRenderTarget();
+    const { width, height } = opaque;
+    if (!this.sums || this.sums.width !== width || this.sums.height !== height) {
+      this.sums?.dispose();
+      const type = renderer.extensions.has('EXT_float_blend') ? THREE.FloatType : THREE.HalfFloatType;
+      this.sums = new THREE.WebGLRenderTarget(width, height, { type, depthBuffer: false });
+    }
+    const u = this.material.uniforms;
+    u.opaqueDepth.value = opaque.depthTexture;
+    u.viewSize.value.set(width, height);
+    renderer.setRenderTarget(this.sums);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear(true, false, false);
+    renderer.render(this.scene, camera);
+    renderer.setRenderTarget(output);
+    const c = this.composite.material.uniforms;
+    c.gasSums.value = this.sums.texture;
+    c.opaqueColor.value = opaque.texture;
+    c.background.value.setRGB(...background, THREE.LinearSRGBColorSpace);
+    this.composite.render(renderer);
+  }
+
+  /** Lets go of the target (a lost context); it is made again at the next draw. */
+  contextLost() {
+    this.sums?.dispose();
+    this.sums = null;
   }
 }

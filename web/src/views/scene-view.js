@@ -1,5 +1,5 @@
 // The 3-D view: perspective camera with orbit controls, opaque objects drawn by three.js, and
-// the gas drawn in one of three ways (DESIGN §5): `points` (a sprite a blob), `raymarch` (the
+// the gas drawn in one of three ways (docs/FORMATS.md, the browser API): `points` (a sprite a blob), `raymarch` (the
 // real-time volume view) or `exact` (the per-chord march), the marches composited over the
 // objects with correct depth. Every view reads the frame's blobs from one texture.
 //
@@ -59,7 +59,6 @@ export class SceneView {
     this.exact = new ExactMarchLayer(this.gas);
     this.volume = new VolumeLayer(this.gas, this.blobs);
     this.points = new PointsLayer(this.gas, this.blobs);
-    this.scene.add(this.points.points);
     this.target = null;
     /** The render settings applied last (the object, with or without stand-ins, and its content). */
     this.settings = null;
@@ -113,6 +112,7 @@ export class SceneView {
     this.exact.contextLost();
     this.blobs.contextLost();
     this.windSlice.contextLost();
+    this.points.contextLost();
     this.target?.dispose();
     releaseGeometries(this.scene, this.overlay);
     this.onContextLost?.();
@@ -152,7 +152,7 @@ export class SceneView {
     this.limits.set(camera, objects);
   }
 
-  /** The current camera in DESIGN §4's form. */
+  /** The current camera in the blob list's form (docs/FORMATS.md). */
   cameraSettings() {
     return {
       position: this.camera.position.toArray(),
@@ -247,6 +247,17 @@ export class SceneView {
     return { width: this.canvas.width, height: this.canvas.height };
   }
 
+  /** The objects alone, colour and depth, into the opaque target (transparent where none). */
+  #opaquePass() {
+    const background = this.scene.background;
+    this.scene.background = null;
+    this.renderer.setRenderTarget(this.target);
+    this.renderer.setClearColor(0x000000, 0);
+    this.renderer.render(this.scene, this.camera);
+    this.renderer.setRenderTarget(null);
+    this.scene.background = background;
+  }
+
   /**
    * Draws one frame in `mode` ('points', 'raymarch' or 'exact'; `quality` for `raymarch`);
    * nothing while the context is lost.
@@ -256,25 +267,21 @@ export class SceneView {
     const gas = this.gas;
     if (mode === 'points') {
       gas.shadowSource.value = 0;
-      this.points.points.visible = true;
-      this.renderer.render(this.scene, this.camera);
+      // The objects into the opaque target (their depth hides the sprites behind them), then the
+      // sprites over them and the background.
+      this.#opaquePass();
+      this.points.render(this.renderer, this.camera, this.target, this.background);
     } else {
       const layer = mode === 'exact' ? this.exact : this.volume;
       gas.shadowSource.value = mode === 'exact' ? 1 : 2;
       // The volumes first: the objects read their shadows from the light volume.
       if (mode === 'raymarch') this.volume.prepare(this.renderer, quality, this.volumeScale);
-      this.points.points.visible = false;
-      this.renderer.setRenderTarget(this.target);
-      this.scene.background = null;
-      this.renderer.setClearColor(0x000000, 0);
-      this.renderer.render(this.scene, this.camera);
-      this.renderer.setRenderTarget(null);
+      this.#opaquePass();
       const hasMeshes = this.objects.children.length + this.spheres.children.length > 0;
       layer.setOpaque(hasMeshes ? this.target : null, this.camera.near, this.camera.far);
       const size = this.size();
       layer.setView(this.viewBasis(), size.width, size.height, this.background);
       layer.render(this.renderer);
-      this.scene.background = new THREE.Color().setRGB(...this.background, THREE.LinearSRGBColorSpace);
     }
     this.guides.setVisible(this.showGuides);
     if (this.showGuides) {

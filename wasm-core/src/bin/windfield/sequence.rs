@@ -1,5 +1,5 @@
 //! `windfield render SCENE --frames A..B --fps F --out PATTERN [--shard I/N] [--force]`
-//! (DESIGN §7): one PNG per frame k in the half-open range A..B, the scene at t = k/F, written
+//! (docs/FORMATS.md, the command line): one PNG per frame k in the half-open range A..B, the scene at t = k/F, written
 //! to PATTERN with its one `%0Nd` replaced by k.
 //!
 //! A shard (`--shard I/N`) renders the frames with k mod N = I: it simulates once, from t = 0 to

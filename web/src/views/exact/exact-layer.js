@@ -1,4 +1,4 @@
-// The exact GPU march (DESIGN §5 `exact`) of the blob list (DESIGN §4) in a fragment shader.
+// The exact GPU march (the `exact` view, docs/FORMATS.md) of the blob list in a fragment shader.
 // Each pixel gathers the chords of the blobs in its screen tile, then steps along the ray as the
 // CPU reference does: steps of STEP_FRACTION of the smallest σ met, the exact Gaussian line integral of
 // every chord over each step (erf), the density-weighted source Ω L + (1 − Ω) Q, front-to-back

@@ -1,4 +1,4 @@
-// GLSL: the lights and the medium every gas-aware shader shares (DESIGN §4), over the uniforms
+// GLSL: the lights and the medium every gas-aware shader shares (the rendering model, docs/FORMATS.md), over the uniforms
 // of `views/gas-uniforms.js`: at most VIEW_LIGHTS lights, κ_t, the phase function, and the
 // output encoding.
 
@@ -16,7 +16,7 @@ uniform int phaseType;                 // 0 isotropic, 1 Henyey-Greenstein
 uniform float phaseG;
 uniform bool srgb;
 
-// p(cos θ), cos θ = D·l (DESIGN §4: isotropic p ≡ 1).
+// p(cos θ), cos θ = D·l (docs/FORMATS.md: isotropic p ≡ 1).
 float phase(float c) {
   if (phaseType == 0) return 1.0;
   float g = phaseG;

@@ -8,7 +8,7 @@ import { BRICK_GLSL } from './occupancy-pass.js';
 export const MAX_MARCH_STEPS = 1024;
 
 /**
- * The march: front-to-back compositing of the voxel density (DESIGN §4 on the volume). Samples
+ * The march: front-to-back compositing of the voxel density (the rendering model of docs/FORMATS.md on the volume). Samples
  * sit at s0 + (k + j)·ds; where a brick holds no gas the march goes on at the first such sample
  * past the brick, so it takes the same samples wherever there is gas as a march without leaps.
  */

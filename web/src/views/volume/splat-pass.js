@@ -3,7 +3,7 @@
 // atlas, renormalised over the footprint so the mass is kept, exactly as `frame::volume::splat`
 // in the core does. One point sprite per (blob, slice): the sprite covers the footprint's rows
 // and columns in that slice's tile; its fragments are voxels. Additive blending into one or two
-// float targets: [ρ, ρΩ] and [ρ(1 − Ω)Q, 0] (DESIGN §4's density-weighted source). Blobs are
+// float targets: [ρ, ρΩ] and [ρ(1 − Ω)Q, 0] (the density-weighted source of docs/FORMATS.md). Blobs are
 // drawn σ class by class (`frameDescription` in `scene-view.js`), each class with as many slices
 // per blob as its widest needs; wider blobs are culled here and go through the particle mesh
 // (`mesh-pass.js`).

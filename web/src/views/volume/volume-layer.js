@@ -1,4 +1,4 @@
-// The real-time volume view (DESIGN §1, §5 `raymarch`): the frame's blobs splatted on the GPU
+// The real-time volume view (docs/ARCHITECTURE.md; the `raymarch` view of docs/FORMATS.md): the frame's blobs splatted on the GPU
 // into a density volume, a light volume of shadow columns computed from it, and a ray march of
 // the volume with jittered steps that leap over empty bricks, composited over the opaque pass by
 // depth. Its cost per frame grows with pixels and with the voxels the gas fills, not with the
