@@ -8,6 +8,7 @@ import { readFileSync } from 'node:fs';
 import { collectErrors } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
+import { VIEWS } from '../web/src/views/modes.js';
 
 /** The small plume (3,000 blobs, one point light, shadows) over a sphere: cheap to step and draw. */
 const smallPlume = JSON.parse(readFileSync(new URL('../tests/fixtures/small-plume.json', import.meta.url), 'utf8'));
@@ -15,7 +16,6 @@ const sphere = { type: 'sphere', center: [0.25, 0.5, -0.3], radius: 0.2, color: 
 const scene = { ...smallPlume, render: { ...smallPlume.render, objects: [sphere] } };
 const QUALITY = 'draft';
 const SIZE = { width: 160, height: 120, quality: QUALITY };
-const MODES = ['points', 'raymarch', 'exact'];
 
 /**
  * Opens the playground on `scene` stepped by `stepper` ('cpu': the worker, so that the same
@@ -54,8 +54,27 @@ function volumeSums(page) {
   }, QUALITY);
 }
 
+/**
+ * Loses the page's #canvas context (WEBGL_lose_context), waits 50 ms and restores it; settles
+ * once the restored event has come.
+ */
+function loseAndRestore(page) {
+  return page.evaluate(async () => {
+    const canvas = document.querySelector('#canvas');
+    const ext = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
+    const event = (name) => new Promise((resolve) => canvas.addEventListener(name, resolve, { once: true }));
+    const lost = event('webglcontextlost');
+    ext.loseContext();
+    await lost;
+    await new Promise((r) => setTimeout(r, 50));
+    const restored = event('webglcontextrestored');
+    ext.restoreContext();
+    await restored;
+  });
+}
+
 /** A small capture in each of `modes`, PNG data URLs by mode. */
-function captures(page, modes = MODES) {
+function captures(page, modes = VIEWS) {
   return page.evaluate(async ({ ms, size }) => {
     const out = {};
     for (const mode of ms) out[mode] = await window.windfield.captureGPU({ ...size, mode });
@@ -120,7 +139,7 @@ test('after loseContext and restoreContext the 3-D view draws the same gas', asy
 
   expectVolumes(await volumeSums(page), sums, 'after the restore');
   const after = await captures(page);
-  for (const mode of MODES) {
+  for (const mode of VIEWS) {
     // The same frame drawn the same way: SwiftShader (and any GPU) draws it bit for bit again.
     const db = psnr(rgb(before[mode]), rgb(after[mode]));
     expect.soft(db, `${mode} capture after the restore against before (PSNR ${db} dB)`).toBe(Infinity);
@@ -177,18 +196,7 @@ test('the gas the GPU steps comes back after a lost context: the worker steps it
   const before = await page.evaluate(() => window.windfield.stats());
   expect(before.stepper).toBe('gpu');
   const sums = await volumeSums(page);
-  await page.evaluate(async () => {
-    const canvas = document.querySelector('#canvas');
-    const ext = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
-    const event = (name) => new Promise((resolve) => canvas.addEventListener(name, resolve, { once: true }));
-    const lost = event('webglcontextlost');
-    ext.loseContext();
-    await lost;
-    await new Promise((r) => setTimeout(r, 50));
-    const restored = event('webglcontextrestored');
-    ext.restoreContext();
-    await restored;
-  });
+  await loseAndRestore(page);
   await expect.poll(() => page.evaluate(() => window.windfield.stats().stepper)).toBe('gpu');
   // No gas lost: the same blobs at the same time, and volumes that hold the same mass.
   await page.evaluate(() => window.windfield.step(0));
@@ -212,19 +220,8 @@ test('the field explorer draws its slice again after a restore', async ({ page }
   const shot = () => page.evaluate(() => document.querySelector('#canvas').toDataURL('image/png'));
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const before = await shot();
-  await page.evaluate(async () => {
-    const canvas = document.querySelector('#canvas');
-    const ext = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
-    const event = (name) => new Promise((resolve) => canvas.addEventListener(name, resolve, { once: true }));
-    const lost = event('webglcontextlost');
-    ext.loseContext();
-    await lost;
-    await new Promise((r) => setTimeout(r, 50));
-    const restored = event('webglcontextrestored');
-    ext.restoreContext();
-    await restored;
-    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
-  });
+  await loseAndRestore(page);
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const db = psnr(rgb(before), rgb(await shot()));
   expect.soft(db, `the slice after the restore against before (PSNR ${db} dB)`).toBe(Infinity);
   expect.soft(stale).toEqual([]);

@@ -1,5 +1,6 @@
 // Hostile links and real faults: every request answers, a scene that stops the engine is not
-// reloaded into a loop, budgets hold before any work, zero-size views do not hang, and the pages
+// reloaded into a loop, budgets hold before any work, zero-size views do not hang, slow frames
+// do not starve a call, and the pages
 // and the standalone player run under a strict Content Security Policy.
 import { test, expect } from '@playwright/test';
 import { readFileSync } from 'node:fs';
@@ -115,6 +116,25 @@ test('a 1×1 window neither hangs nor freezes the page', async ({ page }) => {
   await page.setViewportSize({ width: 1100, height: 720 });
   const shot = await page.evaluate(() => window.windfield.captureGPU({ mode: 'points', width: 64, height: 48 }));
   expect(shot).toMatch(/^data:image\/png/);
+});
+
+test('frames slower than the display do not starve a call: each runs after at most the frame in flight', async ({ page }) => {
+  // `?profile` waits for the GPU after every pass: each frame of the playing default scene
+  // takes longer than the display's interval, so the next animation frame is always due when
+  // one ends. A call that waits for its turn must still get it.
+  await open(page, './?profile');
+  await page.waitForFunction(() => window.windfield.stats().frames >= 3);
+  const drawnDuring = await page.evaluate(async () => {
+    const w = window.windfield;
+    const out = [];
+    for (const call of [() => w.setStepper('cpu'), () => w.step(1), () => w.setStepper('auto'), () => w.step(1)]) {
+      const before = w.stats().frames;
+      await call();
+      out.push(w.stats().frames - before);
+    }
+    return out;
+  });
+  for (const n of drawnDuring) expect(n).toBeLessThanOrEqual(1);
 });
 
 /** A tiny scene (no field, a few blobs) as a data URL, for many players at once. */

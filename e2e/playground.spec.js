@@ -9,6 +9,7 @@ import { cliPath } from '../tests/support/core.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 import { encodeScene } from '../web/src/state/url-codec.js';
+import { VIEWS } from '../web/src/views/modes.js';
 
 /**
  * A small plume (3,000 blobs of σ0 = 3 cm from a disk at the origin): cheap to step and draw,
@@ -93,7 +94,7 @@ test("a playing scene, paused, shows the worker's state: step(n) then takes exac
 test('every GPU view draws something', async ({ page }) => {
   await open(page);
   await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(120); });
-  for (const mode of ['points', 'raymarch', 'exact']) {
+  for (const mode of VIEWS) {
     const url = await page.evaluate((m) => window.windfield.captureGPU({ mode: m, width: 160, height: 120 }), mode);
     expect(url.startsWith('data:image/png;base64,')).toBe(true);
     const { rgb } = decodePng(dataUrlBytes(url));

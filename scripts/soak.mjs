@@ -9,6 +9,7 @@
 //   npm run soak -- --minutes 30 [--blobs N]
 import { readFileSync } from 'node:fs';
 import { root, withSite } from './site.mjs';
+import { VIEWS } from '../web/src/views/modes.js';
 
 const arg = (name, fallback) => {
   const i = process.argv.indexOf(`--${name}`);
@@ -16,7 +17,6 @@ const arg = (name, fallback) => {
 };
 const minutes = arg('minutes', 30);
 const blobs = arg('blobs', 100_000);
-const VIEWS = ['points', 'raymarch', 'exact'];
 const SAMPLE_MS = 10_000;
 
 const scene = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));

@@ -23,6 +23,14 @@ test('the declarations type a consumer of the element and of window.windfield', 
   }
 });
 
+test('the declared view names are the ones the player and the element accept', async () => {
+  const { VIEWS } = await import('../web/src/views/modes.js');
+  const types = readFileSync(join(root, 'types/index.d.ts'), 'utf8');
+  const union = types.match(/export type WindFieldView = ([^;]+);/);
+  assert.ok(union, 'types/index.d.ts declares WindFieldView');
+  assert.deepEqual(union[1].split('|').map((s) => s.trim().replace(/'/g, '')), VIEWS);
+});
+
 /** The relative files a module imports (statically, dynamically, or as `new URL(…, import.meta.url)`). */
 function imports(file) {
   const text = readFileSync(file, 'utf8');

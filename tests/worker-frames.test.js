@@ -6,6 +6,8 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadCore, root } from './support/core.js';
 import { createHandlers } from '../web/src/engine/handlers.js';
+import { frameDescription } from '../web/src/views/scene-view.js';
+import { cutClasses, orderKey } from '../web/src/views/volume/grid.js';
 import { BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, SHADOW_GRID_HEADER, SPHERE_FLOATS, WORDS_PER_BLOB } from '../web/src/generated/contract.js';
 
 const core = await loadCore();
@@ -50,6 +52,35 @@ test('frames are whole typed arrays, and the packed blobs are the blob list', as
   }
   for (const b of list.blobs) assert.ok(packed.has(key(b.center, b.sigma, b.mass)), 'a blob of the list is missing from the frame');
   assertWholeBuffers('reset', await handlers.reset({}));
+});
+
+test('a class cut at a width: every narrower blob in its narrow part, every other in its wide part, little drawn twice', async () => {
+  const handlers = createHandlers(core, () => {});
+  await handlers.load({ id: 1, scene: JSON.stringify(scene) });
+  const { result: frame } = handlers.advance({ steps: 60 });
+  const info = frameDescription(frame.info);
+  const sigmas = new Float32Array(frame.blobs.buffer);
+  const sigma = (i) => sigmas[WORDS_PER_BLOB * i + 3];
+  const inside = (parts, i) => parts.some((c) => i >= c.offset && i < c.offset + c.count);
+  for (const c of info.classes.filter((c) => c.count > 100)) {
+    // Limits inside the class, at its edges and past it.
+    for (const share of [-0.5, 0, 0.01, 0.3, 0.5, 0.9, 1, 1.5]) {
+      const limit = c.sigmaLow * (1 + share * (Math.SQRT2 - 1));
+      const { narrow, wide } = cutClasses([c], frame.blobs, limit);
+      // Drawn by both: only blobs in the class's step (one of SUBCLASSES) that holds the limit.
+      const steps = [orderKey(limit * (1 - 1e-5)), orderKey(limit * (1 + 1e-5))];
+      for (let i = c.offset; i < c.offset + c.count; i++) {
+        if (sigma(i) < limit) assert.ok(inside(narrow, i), `σ ${sigma(i)} below ${limit} splatted`);
+        else assert.ok(inside(wide, i), `σ ${sigma(i)} at least ${limit} through the mesh`);
+        const key = orderKey(sigma(i));
+        if (inside(narrow, i) && inside(wide, i)) assert.ok(key >= steps[0] && key <= steps[1], `σ ${sigma(i)} drawn twice at ${limit}`);
+      }
+    }
+  }
+  // Without the words (the GPU stepper's state) a class goes whole into both.
+  const whole = cutClasses(info.classes, null, info.sigmaMin * 1.2);
+  assert.deepEqual(whole.narrow, info.classes);
+  assert.deepEqual(whole.wide, info.classes);
 });
 
 test('the exact march\'s frame is whole typed arrays too', async () => {

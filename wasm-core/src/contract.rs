@@ -9,7 +9,8 @@ use crate::field::lattice::{MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
 use crate::frame::gpu_steps::BLOB_FLOATS;
 use crate::frame::light_volume::VIEW_LIGHTS;
 use crate::frame::packed::{
-    BLOBS_PER_ROW, CLASS_BIAS, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB,
+    BLOBS_PER_ROW, CLASS_BIAS, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS, SUBCLASS_BITS,
+    WORDS_PER_BLOB,
 };
 use crate::frame::shadow_grid::SHADOW_GRID_HEADER;
 use crate::frame::views::SPHERE_FLOATS;
@@ -62,6 +63,8 @@ pub fn sections() -> Vec<Section> {
             "Blobs per row of the blob texture; the exact march's index and shadow textures are as many texels wide."),
         shared!(CLASS_BIAS in "frame::packed":
             "σ class k starts at σ = √2^(k − CLASS_BIAS) m."),
+        shared!(SUBCLASS_BITS in "frame::packed":
+            "Within a class the blobs are ordered by σ² to this many bits of its mantissa."),
         shared!(FOOTPRINT in "frame::packed":
             "A blob's footprint in the real-time view and the frame's bounds reach this many σ from its centre."),
         shared!(INFO_HEADER in "frame::packed":

@@ -27,10 +27,11 @@ import { DEFAULT_RENDER_TIME } from './generated/contract.js';
 import { ApiMixin } from './element/api.js';
 import { ControlsMixin } from './element/controls.js';
 import {
-  $api, $hideStatus, $parts, $player, $sceneUrl, $showMessage, $showStatus, $updateControls, $wantsPlaying, VIEWS,
+  $api, $hideStatus, $parts, $player, $sceneUrl, $showMessage, $showStatus, $updateControls, $wantsPlaying,
 } from './element/internals.js';
 import { LoadingMixin } from './element/loading.js';
 import { attachParts } from './element/shadow.js';
+import { VIEWS } from './views/modes.js';
 
 /**
  * Where presets live: `scenes/` beside the standalone `embed.js`; for a copy bundled into a

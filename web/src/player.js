@@ -11,12 +11,11 @@ import { moved } from './views/guides-layer.js';
 import { waitForGpu } from './views/gpu-sync.js';
 import { PointerStir } from './views/pointer-stir.js';
 import { SceneView } from './views/scene-view.js';
+import { VIEWS } from './views/modes.js';
 import { GpuStepper, gpuStepperUnsupported, MAX_GPU_LATTICE } from './stepper/gpu-stepper.js';
 import { SLICE_PLANES, SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
 
-/** The views (the capture modes of docs/FORMATS.md). */
-export const MODES = ['points', 'raymarch', 'exact'];
 /** The qualities of the marched views (the exact march's `EXACT_QUALITY`, the volume's `VOLUME_QUALITY`). */
 export const QUALITIES = Object.keys(EXACT_QUALITY);
 /** The wind slice's planes (`slicePlane`): 'off', 'xy', 'xz', 'yz'. */
@@ -83,6 +82,8 @@ export class Player {
    * choice allows it (or null), the GPU stepper once made, and the field version its lattice is.
    */
   #stepper = { choice: 'auto', active: 'cpu', reason: null, gpu: null, fieldVersion: -1 };
+  /** Calls waiting for their turn in `exclusive`: the loop starts no frame while there are any. */
+  #waiting = 0;
 
   /**
    * @param {HTMLCanvasElement} canvas
@@ -427,7 +428,10 @@ export class Player {
     if (!this.running) return;
     const dt = Math.min((now - this.lastTime) / 1000, 0.1);
     this.lastTime = now;
-    if (this.#state.scene && !this.busy && this.#state.visible && !this.halted && !this.contextLost) {
+    // A call waiting for `exclusive` goes first: frames that take longer than the display's
+    // interval would otherwise take the turn each time (it waits on a timer, the loop on the
+    // next animation frame, which is already due).
+    if (this.#state.scene && !this.busy && !this.#waiting && this.#state.visible && !this.halted && !this.contextLost) {
       let steps = 0;
       if (this.#state.playing) {
         this.accumulated += dt * this.#state.speed;
@@ -456,7 +460,12 @@ export class Player {
 
   /** Runs `fn` when no frame is in flight, the step asked for ahead shown first. */
   async exclusive(fn) {
-    while (this.busy) await new Promise((r) => setTimeout(r, 5));
+    this.#waiting += 1;
+    try {
+      while (this.busy) await new Promise((r) => setTimeout(r, 5));
+    } finally {
+      this.#waiting -= 1;
+    }
     this.busy = true;
     try {
       await this.#settle();
@@ -824,14 +833,14 @@ export class Player {
     return this.#stepper.choice;
   }
 
-  /** The view shown: one of MODES. */
+  /** The view shown: one of VIEWS. */
   get mode() {
     return this.#state.mode;
   }
 
-  /** Shows the view `mode` (one of MODES); throws for any other. */
+  /** Shows the view `mode` (one of VIEWS); throws for any other. */
   setView(mode) {
-    if (!MODES.includes(mode)) throw new Error(`setView: the view must be one of ${MODES.join(', ')} (got ${mode})`);
+    if (!VIEWS.includes(mode)) throw new Error(`setView: the view must be one of ${VIEWS.join(', ')} (got ${mode})`);
     this.#state.mode = mode;
     this.resize();
   }

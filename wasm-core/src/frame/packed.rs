@@ -22,6 +22,11 @@
 //! draws only the blobs it needs (`frame::volume`: the particle mesh deposits a blob of class
 //! k into mesh classes k and k + 1). The classes are fixed in metres, not relative to the frame,
 //! so a blob keeps its class from frame to frame.
+//!
+//! Within a class the blobs are ordered by [`order_key`]: σ² to its binary exponent and the top
+//! [`SUBCLASS_BITS`] bits of its mantissa (a counting sort, [`SUBCLASSES`] steps a class), so
+//! that a view can cut a class at a width (the direct splat's limit) by a binary search over the
+//! words and draw only the part that needs it.
 
 use crate::gas::blob_list::BlobList;
 use crate::gas::blobs::Blobs;
@@ -50,6 +55,11 @@ pub const CLASS_BIAS: i32 = 48;
 /// footprint (its weights are renormalised over it, so no mass is lost).
 pub const FOOTPRINT: f32 = 3.0;
 
+/// Bits of σ²'s mantissa that order the blobs within a class ([`order_key`]).
+pub const SUBCLASS_BITS: u32 = 4;
+/// Steps of σ within a class: σ² from σ_k² (1 + j / SUBCLASSES) to σ_k² (1 + (j + 1) / SUBCLASSES).
+pub const SUBCLASSES: usize = 1 << SUBCLASS_BITS;
+
 /// σ_k = √2^(k − CLASS_BIAS), the lower bound of class k (m).
 pub fn class_sigma(k: usize) -> f32 {
     2f32.powf((k as i32 - CLASS_BIAS) as f32 / 2.0)
@@ -59,6 +69,14 @@ pub fn class_sigma(k: usize) -> f32 {
 pub fn class_of(sigma: f32) -> usize {
     let exponent = ((sigma * sigma).to_bits() >> 23) as i32 - 127;
     (exponent + CLASS_BIAS).clamp(0, SIGMA_CLASSES as i32 - 1) as usize
+}
+
+/// Where a blob of σ (m) goes in the packed order: its class × [`SUBCLASSES`] plus the top
+/// [`SUBCLASS_BITS`] bits of σ²'s mantissa. Within classes 1 to 62 it grows with σ; in the
+/// first and last classes (open below and above) it only groups.
+pub fn order_key(sigma: f32) -> usize {
+    let sub = ((sigma * sigma).to_bits() >> (23 - SUBCLASS_BITS)) as usize & (SUBCLASSES - 1);
+    class_of(sigma) * SUBCLASSES + sub
 }
 
 /// One σ class of a packed frame.
@@ -172,15 +190,15 @@ impl PackedFrame {
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         let mut sigma_min = f32::INFINITY;
-        let mut counts = [0usize; SIGMA_CLASSES];
+        let mut counts = [0usize; SIGMA_CLASSES * SUBCLASSES];
         let mut widest = [0.0f32; SIGMA_CLASSES];
         for i in 0..source.len() {
             let (center, sigma, mass) = source.extent(i);
             if !kept(sigma, mass) {
                 continue;
             }
+            counts[order_key(sigma)] += 1;
             let k = class_of(sigma);
-            counts[k] += 1;
             widest[k] = widest[k].max(sigma);
             sigma_min = sigma_min.min(sigma);
             let r = Vec3::splat(FOOTPRINT * sigma);
@@ -201,7 +219,7 @@ impl PackedFrame {
             if !kept(sigma, mass) {
                 continue;
             }
-            let k = class_of(sigma);
+            let k = order_key(sigma);
             let w = &mut words[WORDS_PER_BLOB * next[k]..WORDS_PER_BLOB * (next[k] + 1)];
             next[k] += 1;
             let (albedo, emission) = source.colours(i);
@@ -232,26 +250,30 @@ impl PackedFrame {
         }
     }
 
-    /// The non-empty classes of the blob counts and widest σ per class, and each class's
-    /// first blob.
+    /// The non-empty classes of the blob counts per [`order_key`] and widest σ per class, and
+    /// each key's first blob.
     fn classes(
-        counts: &[usize; SIGMA_CLASSES],
+        counts: &[usize; SIGMA_CLASSES * SUBCLASSES],
         widest: &[f32; SIGMA_CLASSES],
-    ) -> (Vec<SigmaClass>, [usize; SIGMA_CLASSES]) {
-        let mut first = [0usize; SIGMA_CLASSES];
+    ) -> (Vec<SigmaClass>, [usize; SIGMA_CLASSES * SUBCLASSES]) {
+        let mut first = [0usize; SIGMA_CLASSES * SUBCLASSES];
         let mut classes = Vec::new();
         let mut offset = 0;
-        for k in 0..SIGMA_CLASSES {
-            first[k] = offset;
-            if counts[k] > 0 {
+        for (k, &sigma_max) in widest.iter().enumerate() {
+            let keys = k * SUBCLASSES..(k + 1) * SUBCLASSES;
+            let count: usize = counts[keys.clone()].iter().sum();
+            if count > 0 {
                 classes.push(SigmaClass {
                     index: k,
                     offset,
-                    count: counts[k],
-                    sigma_max: widest[k],
+                    count,
+                    sigma_max,
                 });
             }
-            offset += counts[k];
+            for key in keys {
+                first[key] = offset;
+                offset += counts[key];
+            }
         }
         (classes, first)
     }
@@ -406,6 +428,41 @@ mod tests {
         // σ = 0.1: σ² = 2^-6.6, class 41; σ = 0.2: 2^-4.6, class 43.
         assert_eq!(info[9], 2.0);
         assert_eq!(&info[10..], &[41.0, 0.0, 1.0, 0.1, 43.0, 1.0, 1.0, 0.2]);
+    }
+
+    #[test]
+    fn a_class_is_ordered_by_width_so_a_view_can_cut_it() {
+        // Widths spread over classes 33 to 35, in no order: within each class the packed σ come
+        // in order of their key, and the key never falls as σ grows.
+        let blobs: Vec<RenderBlob> = (0..500)
+            .map(|i| {
+                blob(
+                    i as f32,
+                    0.005 * (1.0 + ((i * 7919) % 500) as f32 / 250.0),
+                    1.0,
+                )
+            })
+            .collect();
+        let f = PackedFrame::pack(blobs.len(), |i| blobs[i]);
+        assert_eq!(f.count, 500);
+        for c in &f.classes {
+            let keys: Vec<usize> = (c.offset..c.offset + c.count)
+                .map(|i| order_key(f.blob(i).sigma))
+                .collect();
+            assert!(keys.windows(2).all(|w| w[0] <= w[1]), "class {}", c.index);
+            assert!(keys.iter().all(|&k| k / SUBCLASSES == c.index));
+        }
+        let mut sigmas: Vec<f32> = blobs.iter().map(|b| b.sigma).collect();
+        sigmas.sort_by(f32::total_cmp);
+        assert!(sigmas
+            .windows(2)
+            .all(|w| order_key(w[0]) <= order_key(w[1])));
+        // Sixteen steps a class: σ² = σ_k² (1 + j/16) starts step j.
+        let k = 40;
+        for j in 0..SUBCLASSES {
+            let sigma = (class_sigma(k).powi(2) * (1.0 + j as f32 / 16.0)).sqrt() * (1.0 + 1e-6);
+            assert_eq!(order_key(sigma), k * SUBCLASSES + j);
+        }
     }
 
     #[test]

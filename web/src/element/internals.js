@@ -1,9 +1,6 @@
 // What the <wind-field> element's skeleton (`../embed.js`) and its features (this folder) share
 // of each other: symbol-keyed members, so that none of it is part of the element's public API.
 
-/** The views the `view` attribute names (the first is the default). */
-export const VIEWS = ['raymarch', 'points', 'exact'];
-
 /** The shadow DOM's parts ({canvas, poster, bar, status, play, controls, message, toggle, step, view}). */
 export const $parts = Symbol('parts');
 /** The Player once mounted (`loading.js`), else null. */

@@ -15,6 +15,9 @@ export const BLOBS_PER_ROW = 1024;
 /** σ class k starts at σ = √2^(k − CLASS_BIAS) m. (`frame::packed::CLASS_BIAS`) */
 export const CLASS_BIAS = 48;
 
+/** Within a class the blobs are ordered by σ² to this many bits of its mantissa. (`frame::packed::SUBCLASS_BITS`) */
+export const SUBCLASS_BITS = 4;
+
 /** A blob's footprint in the real-time view and the frame's bounds reach this many σ from its centre. (`frame::packed::FOOTPRINT`) */
 export const FOOTPRINT = 3;
 

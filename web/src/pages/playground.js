@@ -3,7 +3,8 @@
 // exposes `window.windfield`.
 
 import GUI from 'lil-gui';
-import { MODES, Player, QUALITIES, SLICE_PLANES } from '../player.js';
+import { Player, QUALITIES, SLICE_PLANES } from '../player.js';
+import { VIEWS } from '../views/modes.js';
 import { decodeScene, encodeScene } from '../state/url-codec.js';
 import { showMessage, showProgress } from './page-ui.js';
 import { sceneEditor } from './scene-editor.js';
@@ -48,7 +49,7 @@ const player = new Player($('#canvas'), {
   },
 });
 const initialView = query.get('view');
-player.setView(MODES.includes(initialView) ? initialView : 'raymarch');
+player.setView(VIEWS.includes(initialView) ? initialView : VIEWS[0]);
 if (QUALITIES.includes(query.get('quality'))) player.setQuality(query.get('quality'));
 player.setGuides(true);
 
@@ -142,7 +143,7 @@ function simulationFolder(gui) {
     set quality(v) { player.setQuality(v); },
   };
   sim.add(settings, 'speed', 0, 4, 0.05).name('time speed');
-  sim.add(settings, 'mode', MODES).name('view');
+  sim.add(settings, 'mode', VIEWS).name('view');
   sim.add(settings, 'quality', QUALITIES).name('quality');
   const stepping = {
     get stepper() { return player.stepperChoice; },

@@ -27,6 +27,14 @@ export class BlobTexture {
   }
 
   /**
+   * The words of the blobs shown, in the core's packed order (`frame::packed`), or null when
+   * another pass's texture is shown (its state is on the GPU only).
+   */
+  get words() {
+    return this.#shown ? null : this.#own.image.data;
+  }
+
+  /**
    * Shows `texture`, an RGBA32UI texture in the same layout that another pass keeps on the GPU
    * (the GPU stepper's packed state), holding `count` blobs (empty ones with mass 0).
    */

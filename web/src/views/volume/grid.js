@@ -3,12 +3,15 @@
 // Pure functions: the page fits the grid to each frame's bounds and the quality's budget. The
 // numbers it shares with the core (`frame::volume`, `frame::packed`) come from the contract.
 
-import { BLUR_NARROW, BLUR_REACH, CLASS_BIAS, MAX_BLUR_RADIUS } from '../../generated/contract.js';
+import { BLUR_NARROW, BLUR_REACH, CLASS_BIAS, MAX_BLUR_RADIUS, SUBCLASS_BITS, WORDS_PER_BLOB } from '../../generated/contract.js';
 
 /** σ_k, the lower bound of σ class k (m; `frame::packed::class_sigma`). */
 export function classSigma(k) {
   return 2 ** ((k - CLASS_BIAS) / 2);
 }
+
+/** The last σ class (open above), as the first is open below. */
+const LAST_CLASS = 63;
 
 const squared = new Float32Array(1);
 const squaredBits = new Uint32Array(squared.buffer);
@@ -19,7 +22,56 @@ const squaredBits = new Uint32Array(squared.buffer);
 export function classOf(sigma) {
   squared[0] = sigma * sigma;
   const exponent = ((squaredBits[0] >>> 23) & 255) - 127;
-  return Math.min(Math.max(exponent + CLASS_BIAS, 0), 63);
+  return Math.min(Math.max(exponent + CLASS_BIAS, 0), LAST_CLASS);
+}
+
+/** Steps of σ within a class (`frame::packed::SUBCLASSES`). */
+const SUBCLASSES = 2 ** SUBCLASS_BITS;
+
+/**
+ * Where a blob of σ (m) goes in the packed order (`frame::packed::order_key`): its class ×
+ * SUBCLASSES plus the top SUBCLASS_BITS bits of σ²'s mantissa (single precision).
+ */
+export function orderKey(sigma) {
+  squared[0] = sigma * sigma;
+  return classOf(sigma) * SUBCLASSES + ((squaredBits[0] >>> (23 - SUBCLASS_BITS)) & (SUBCLASSES - 1));
+}
+
+const sigmaOf = new Float32Array(1);
+const sigmaBits = new Uint32Array(sigmaOf.buffer);
+/** The first blob of `cls` ({offset, count}) in `words` whose order key passes `test`, by bisection. */
+function firstWhere(words, cls, test) {
+  let [lo, hi] = [cls.offset, cls.offset + cls.count];
+  while (lo < hi) {
+    const mid = (lo + hi) >>> 1;
+    sigmaBits[0] = words[WORDS_PER_BLOB * mid + 3];
+    if (test(orderKey(sigmaOf[0]))) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+/**
+ * The classes of a packed frame cut at the width `limit` (m): `narrow`, each class's blobs that
+ * may be narrower than `limit`, and `wide`, those that may be as wide or wider ({...class,
+ * offset, count}; empty parts left out). The packed order (`orderKey`) lets a class be cut by
+ * bisection over `words`; a cut errs on the side of drawing a blob in both parts (the passes
+ * test each blob's width), never in neither. Without `words` (the GPU stepper's state), a mixed
+ * class, or the open first and last classes, a class goes whole into both.
+ */
+export function cutClasses(classes, words, limit) {
+  const narrow = [];
+  const wide = [];
+  const low = orderKey(limit * (1 - 1e-5));
+  const high = orderKey(limit * (1 + 1e-5));
+  for (const c of classes) {
+    const sorted = words && !c.mixed && c.index > 0 && c.index < LAST_CLASS;
+    const end = sorted ? firstWhere(words, c, (key) => key > high) : c.offset + c.count;
+    const start = sorted ? firstWhere(words, c, (key) => key >= low) : c.offset;
+    if (end > c.offset) narrow.push({ ...c, count: end - c.offset });
+    if (start < c.offset + c.count) wide.push({ ...c, offset: start, count: c.offset + c.count - start });
+  }
+  return { narrow, wide };
 }
 
 /**

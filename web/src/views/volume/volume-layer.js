@@ -12,13 +12,14 @@
 // the next `prepare` makes them again and rebuilds the volumes from the frame it holds.
 
 import * as THREE from 'three';
+import { DIRECT_LIMIT } from '../../generated/contract.js';
 import { waitForGpu } from '../gpu-sync.js';
 import { MarchQuad } from '../march-quad.js';
 import { releaseGeometries } from '../context-loss.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
 import { VOLUME_SHADOW_GLSL } from '../shaders/volume-shadow.js';
-import { atlasLayout, fitGrid, halved, minVoxelFor } from './grid.js';
+import { atlasLayout, cutClasses, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
 import { MARCH_GLSL } from './march-glsl.js';
@@ -303,9 +304,12 @@ export class VolumeLayer extends MarchQuad {
     this.own.stepScale.value = q.step;
     this.marchPixels = q.marchPixels;
     const clock = this.#clock(renderer);
-    this.splat.render(renderer, this.atlas, info.classes, grid.h);
+    // Each pass draws the part of each σ class that it may need: blobs narrower than
+    // DIRECT_LIMIT voxels are splatted, the others go through the mesh.
+    const cut = cutClasses(info.classes, this.blobs.words, DIRECT_LIMIT * grid.h);
+    this.splat.render(renderer, this.atlas, cut.narrow, grid.h);
     const splat = clock();
-    const { deposit, blur } = this.mesh.render(renderer, info, grid.h, this.atlas, ...this.scratch, clock);
+    const { deposit, blur } = this.mesh.render(renderer, { ...info, classes: cut.wide }, grid.h, this.atlas, ...this.scratch, clock);
     this.copier.copy(this.atlas.textures[0], this.density.texture, grid.dims, layout.cols);
     if (info.emissive) this.copier.copy(this.atlas.textures[1], this.source.texture, grid.dims, layout.cols);
     const copy = clock();
