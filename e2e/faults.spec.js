@@ -1,7 +1,7 @@
 // Hostile links and real faults: every request answers, a scene that stops the engine is not
 // reloaded into a loop, budgets hold before any work, zero-size views do not hang, slow frames
-// do not starve a call, and the pages
-// and the standalone player run under a strict Content Security Policy.
+// do not starve a call, and the pages and the standalone player run under a strict Content
+// Security Policy.
 import { test, expect } from '@playwright/test';
 import { readFileSync } from 'node:fs';
 import { collectErrors } from './helpers.js';

@@ -197,8 +197,9 @@ impl PackedFrame {
             if !kept(sigma, mass) {
                 continue;
             }
-            counts[order_key(sigma)] += 1;
-            let k = class_of(sigma);
+            let key = order_key(sigma);
+            counts[key] += 1;
+            let k = key / SUBCLASSES;
             widest[k] = widest[k].max(sigma);
             sigma_min = sigma_min.min(sigma);
             let r = Vec3::splat(FOOTPRINT * sigma);

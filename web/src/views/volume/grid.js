@@ -15,13 +15,18 @@ const LAST_CLASS = 63;
 
 const squared = new Float32Array(1);
 const squaredBits = new Uint32Array(squared.buffer);
+/** The bits of σ² in single precision, as the core squares σ. */
+function squareBits(sigma) {
+  squared[0] = sigma * sigma;
+  return squaredBits[0];
+}
+
 /**
  * The σ class of σ (m): the binary exponent of σ² (single precision) plus CLASS_BIAS, clamped
  * to classes 0–63, as the core counts them (`frame::packed::class_of`).
  */
 export function classOf(sigma) {
-  squared[0] = sigma * sigma;
-  const exponent = ((squaredBits[0] >>> 23) & 255) - 127;
+  const exponent = ((squareBits(sigma) >>> 23) & 255) - 127;
   return Math.min(Math.max(exponent + CLASS_BIAS, 0), LAST_CLASS);
 }
 
@@ -33,19 +38,15 @@ const SUBCLASSES = 2 ** SUBCLASS_BITS;
  * SUBCLASSES plus the top SUBCLASS_BITS bits of σ²'s mantissa (single precision).
  */
 export function orderKey(sigma) {
-  squared[0] = sigma * sigma;
-  return classOf(sigma) * SUBCLASSES + ((squaredBits[0] >>> (23 - SUBCLASS_BITS)) & (SUBCLASSES - 1));
+  return classOf(sigma) * SUBCLASSES + ((squareBits(sigma) >>> (23 - SUBCLASS_BITS)) & (SUBCLASSES - 1));
 }
 
-const sigmaOf = new Float32Array(1);
-const sigmaBits = new Uint32Array(sigmaOf.buffer);
-/** The first blob of `cls` ({offset, count}) in `words` whose order key passes `test`, by bisection. */
-function firstWhere(words, cls, test) {
+/** The first blob of `cls` ({offset, count}) whose order key passes `test`, by bisection over the packed words' floats. */
+function firstWhere(floats, cls, test) {
   let [lo, hi] = [cls.offset, cls.offset + cls.count];
   while (lo < hi) {
     const mid = (lo + hi) >>> 1;
-    sigmaBits[0] = words[WORDS_PER_BLOB * mid + 3];
-    if (test(orderKey(sigmaOf[0]))) hi = mid;
+    if (test(orderKey(floats[WORDS_PER_BLOB * mid + 3]))) hi = mid;
     else lo = mid + 1;
   }
   return lo;
@@ -64,10 +65,11 @@ export function cutClasses(classes, words, limit) {
   const wide = [];
   const low = orderKey(limit * (1 - 1e-5));
   const high = orderKey(limit * (1 + 1e-5));
+  const floats = words && new Float32Array(words.buffer, words.byteOffset, words.length);
   for (const c of classes) {
-    const sorted = words && !c.mixed && c.index > 0 && c.index < LAST_CLASS;
-    const end = sorted ? firstWhere(words, c, (key) => key > high) : c.offset + c.count;
-    const start = sorted ? firstWhere(words, c, (key) => key >= low) : c.offset;
+    const sorted = floats && !c.mixed && c.index > 0 && c.index < LAST_CLASS;
+    const end = sorted ? firstWhere(floats, c, (key) => key > high) : c.offset + c.count;
+    const start = sorted ? firstWhere(floats, c, (key) => key >= low) : c.offset;
     if (end > c.offset) narrow.push({ ...c, count: end - c.offset });
     if (start < c.offset + c.count) wide.push({ ...c, offset: start, count: c.offset + c.count - start });
   }
