@@ -132,7 +132,8 @@ export class SplatPass {
     classes = classes.filter((c) => c.sigmaLow < DIRECT_LIMIT * h);
     classes.forEach((cls, i) => {
       const points = this.#draw(i);
-      const slices = Math.floor((2 * FOOTPRINT * Math.min(cls.sigmaMax, DIRECT_LIMIT * h)) / h) + 2;
+      // A footprint w = 2·FOOTPRINT·σ/h voxels long meets at most ⌈w⌉ + 1 slices.
+      const slices = Math.ceil((2 * FOOTPRINT * Math.min(cls.sigmaMax, DIRECT_LIMIT * h)) / h) + 1;
       points.visible = true;
       points.material.uniforms.classOffset.value = cls.offset;
       points.material.uniforms.slices.value = slices;

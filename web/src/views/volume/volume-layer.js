@@ -24,7 +24,7 @@ import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
 import { MARCH_GLSL } from './march-glsl.js';
 import { marchSize, MarchUpsample, SPLIT_OUTPUTS_GLSL } from './march-upsample.js';
-import { MeshPass } from './mesh-pass.js';
+import { MESH_ATTACHMENTS, MeshPass } from './mesh-pass.js';
 import { brickDims, OccupancyPass } from './occupancy-pass.js';
 import { SliceCopy } from './slice-copy.js';
 import { SplatPass } from './splat-pass.js';
@@ -157,7 +157,7 @@ export class VolumeLayer extends MarchQuad {
     /** Made on the first build (it needs the context). */
     this.copier = null;
     /**
-     * The splat's atlas and the mesh's two scratch atlases, the light pass's atlas, the bricks'
+     * The splat's atlas, the mesh's atlas and its scratch atlas, the light pass's atlas, the bricks'
      * atlas; the 3-D targets: density, emitted source, light columns.
      */
     this.atlas = null;
@@ -225,7 +225,8 @@ export class VolumeLayer extends MarchQuad {
     const max3d = renderer.getContext().getParameter(renderer.getContext().MAX_3D_TEXTURE_SIZE);
     const count = emissive ? 2 : 1;
     this.atlas = atlasTarget(this.atlas, layouts.density, type, count, maxSize);
-    this.scratch = this.scratch.map((t) => atlasTarget(t, layouts.density, type, count, maxSize));
+    // The mesh's atlas holds two classes in progress, its scratch one.
+    this.scratch = this.scratch.map((t, i) => atlasTarget(t, layouts.density, type, i === 0 ? MESH_ATTACHMENTS : count, maxSize));
     this.lightAtlas = atlasTarget(this.lightAtlas, layouts.light, THREE.FloatType, 1, maxSize);
     this.bricks = atlasTarget(this.bricks, layouts.bricks, type, 1, maxSize);
     this.density = volumeTarget(this.density, grid.dims, type, max3d);
