@@ -27,7 +27,7 @@ import { marchSize, MarchUpsample, SPLIT_OUTPUTS_GLSL } from './march-upsample.j
 import { MESH_ATTACHMENTS, MeshPass } from './mesh-pass.js';
 import { brickDims, OccupancyPass } from './occupancy-pass.js';
 import { SliceCopy } from './slice-copy.js';
-import { SplatPass } from './splat-pass.js';
+import { SPLAT_LAYERS, SplatPass } from './splat-pass.js';
 
 /**
  * Per quality: the voxel budget of the density grid, the smallest voxel in units of the
@@ -196,7 +196,7 @@ export class VolumeLayer extends MarchQuad {
     this.copier = null;
     for (const t of [this.atlas, ...this.scratch, this.lightAtlas, this.bricks, this.density, this.source, this.columns]) t?.dispose();
     this.upsample.target?.dispose();
-    releaseGeometries(this.scene, this.splat.scene, this.mesh.depositScene, this.mesh.blur.scene, this.light.scene, this.occupancyPass.scene, this.upsample.scene);
+    releaseGeometries(this.scene, this.splat.scene, this.splat.layers.scene, this.mesh.depositScene, this.mesh.blur.scene, this.light.scene, this.occupancyPass.scene, this.upsample.scene);
   }
 
   /**
@@ -225,8 +225,8 @@ export class VolumeLayer extends MarchQuad {
     const max3d = renderer.getContext().getParameter(renderer.getContext().MAX_3D_TEXTURE_SIZE);
     const count = emissive ? 2 : 1;
     this.atlas = atlasTarget(this.atlas, layouts.density, type, count, maxSize);
-    // The mesh's atlas holds two classes in progress, its scratch one.
-    this.scratch = this.scratch.map((t, i) => atlasTarget(t, layouts.density, type, i === 0 ? MESH_ATTACHMENTS : count, maxSize));
+    // The mesh's atlas (the splat's layers before it) holds two classes in progress, its scratch one.
+    this.scratch = this.scratch.map((t, i) => atlasTarget(t, layouts.density, type, i === 0 ? Math.max(MESH_ATTACHMENTS, SPLAT_LAYERS) : count, maxSize));
     this.lightAtlas = atlasTarget(this.lightAtlas, layouts.light, THREE.FloatType, 1, maxSize);
     this.bricks = atlasTarget(this.bricks, layouts.bricks, type, 1, maxSize);
     this.density = volumeTarget(this.density, grid.dims, type, max3d);
@@ -308,7 +308,7 @@ export class VolumeLayer extends MarchQuad {
     // Each pass draws the part of each σ class that it may need: blobs narrower than
     // DIRECT_LIMIT voxels are splatted, the others go through the mesh.
     const cut = cutClasses(info.classes, this.blobs.words, DIRECT_LIMIT * grid.h);
-    this.splat.render(renderer, this.atlas, cut.narrow, grid.h);
+    this.splat.render(renderer, this.atlas, cut.narrow, grid.h, { emissive: info.emissive, layers: this.scratch[0] });
     const splat = clock();
     const { deposit, blur } = this.mesh.render(renderer, { ...info, classes: cut.wide }, grid.h, this.atlas, ...this.scratch, clock);
     this.copier.copy(this.atlas.textures[0], this.density.texture, grid.dims, layout.cols);
