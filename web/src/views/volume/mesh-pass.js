@@ -20,7 +20,7 @@ import { BLOB_GLSL } from '../shaders/blob-record.js';
 import { VOXEL_GRID_GLSL } from '../shaders/voxel-grid.js';
 import { ATLAS_PASS_GLSL } from './glsl.js';
 import { blurKernel, classOf, classSigma } from './grid.js';
-import { ADDITIVE, additivePoints } from './point-draws.js';
+import { ADDITIVE, additivePoints, setDefine } from './point-draws.js';
 
 /**
  * The fragment outputs of a draw into `count` colour attachments, and `emit(density, source)`,
@@ -220,11 +220,7 @@ export class MeshPass {
       this.depositScene.add(points);
       this.deposits.push(points);
     }
-    const { material } = this.deposits[i];
-    if (Boolean(material.defines.EMISSIVE) !== this.emissive) {
-      material.defines = this.emissive ? { EMISSIVE: 1 } : {};
-      material.needsUpdate = true;
-    }
+    setDefine(this.deposits[i].material, 'EMISSIVE', this.emissive);
     return this.deposits[i];
   }
 

@@ -29,3 +29,10 @@ export function additivePoints(vertexShader, fragmentShader, uniforms) {
   points.frustumCulled = false;
   return points;
 }
+
+/** Compiles `material` with the GLSL define `name` set or not (three.js keeps each program). */
+export function setDefine(material, name, on) {
+  if (Boolean(material.defines[name]) === on) return;
+  material.defines = on ? { [name]: 1 } : {};
+  material.needsUpdate = true;
+}

@@ -17,7 +17,7 @@ import { DIRECT_LIMIT, FOOTPRINT } from '../../generated/contract.js';
 import { BLOB_GLSL } from '../shaders/blob-record.js';
 import { ERF_GLSL } from '../shaders/erf.js';
 import { VOXEL_GRID_GLSL } from '../shaders/voxel-grid.js';
-import { additivePoints } from './point-draws.js';
+import { additivePoints, setDefine } from './point-draws.js';
 import { ScreenPass } from '../screen-pass.js';
 import { ATLAS_PASS_GLSL } from './glsl.js';
 
@@ -176,11 +176,7 @@ export class SplatPass {
       this.scene.add(points);
       this.draws.push(points);
     }
-    const { material } = this.draws[i];
-    if (Boolean(material.defines.LAYERS) !== layered) {
-      material.defines = layered ? { LAYERS: 1 } : {};
-      material.needsUpdate = true;
-    }
+    setDefine(this.draws[i].material, 'LAYERS', layered);
     return this.draws[i];
   }
 
