@@ -10,8 +10,8 @@ export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 log() { printf '[build-wasm] %s\n' "$*"; }
 
 target_dir="${CARGO_TARGET_DIR:-target}"
-raw="$target_dir/wasm32-unknown-unknown/release/windfield.wasm"
-stamp="$target_dir/wasm32-unknown-unknown/release/windfield.wasm-opt.stamp"
+raw="$target_dir/wasm32-unknown-unknown/wasm/windfield.wasm"
+stamp="$target_dir/wasm32-unknown-unknown/wasm/windfield.wasm-opt.stamp"
 out="$root/web/pkg/windfield_bg.wasm"
 
 # cargo runs quietly (warnings and errors still show); one line says when it has work to do.
@@ -20,7 +20,7 @@ if [[ ! -f "$raw" ]]; then
 elif [[ -n "$(find src Cargo.toml Cargo.lock .cargo -newer "$raw" -print -quit 2>/dev/null)" ]]; then
   log "recompiling the core for wasm32 (about a minute on 2 cores)"
 fi
-cargo build --quiet --lib --release --target wasm32-unknown-unknown --no-default-features
+cargo build --quiet --lib --profile wasm --target wasm32-unknown-unknown --no-default-features
 if [[ -f "$stamp" && -f "$out" && "$stamp" -nt "$raw" ]] && cmp -s "$stamp" "$out"; then
   exit 0
 fi

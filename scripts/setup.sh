@@ -73,7 +73,7 @@ if [ "$have" != "$pinned" ]; then
     cargo install wasm-bindgen-cli --version "$pinned" --no-default-features --bin wasm-bindgen
   log "building the wasm core alongside it (both done in about 2.5 minutes on 2 cores)"
   start_job "the wasm core" "$logs/wasm-core.log" \
-    bash -c 'cd wasm-core && exec cargo build --lib --release --target wasm32-unknown-unknown --no-default-features'
+    bash -c 'cd wasm-core && exec cargo build --lib --profile wasm --target wasm32-unknown-unknown --no-default-features'
 fi
 
 if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
