@@ -1,7 +1,7 @@
 // Accessibility: axe-core finds no serious or critical violation on any page, with its players
 // and panels loaded (the playground also with its panel collapsed, as on a phone); the
 // canvases carry text alternatives naming their scenes.
-import { test, expect } from '@playwright/test';
+import { test, expect } from './helpers.js';
 import AxeBuilder from '@axe-core/playwright';
 
 /** The page's serious and critical violations, one line each (rule, impact, the first targets). */

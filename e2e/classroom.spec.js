@@ -2,12 +2,11 @@
 // reports for the same field; the Figure 1 demo conserves mass, shows the square at fixed times
 // and replays its first seconds; the side-by-side players run three variants; PNG, WebM and
 // blob-list exports are valid files.
-import { test, expect } from '@playwright/test';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { collectErrors } from './helpers.js';
+import { expect, test, collectErrors } from './helpers.js';
 import { cliPath } from '../tests/support/core.js';
 import { decodePng } from '../tests/support/png.js';
 

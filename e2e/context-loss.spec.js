@@ -3,9 +3,8 @@
 // the picture it drew before the loss (the view rebuilds its raw WebGL objects and volumes); a
 // context the browser took for newer ones comes back when asked; the field explorer's slice is
 // drawn again. Nothing of the lost context is touched after the restore (Chrome would warn).
-import { test, expect } from '@playwright/test';
 import { readFileSync } from 'node:fs';
-import { collectErrors } from './helpers.js';
+import { expect, test, collectErrors } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 import { VIEWS } from '../web/src/views/modes.js';
@@ -226,4 +225,52 @@ test('the field explorer draws its slice again after a restore', async ({ page }
   expect.soft(db, `the slice after the restore against before (PSNR ${db} dB)`).toBe(Infinity);
   expect.soft(stale).toEqual([]);
   expect.soft(errors).toEqual([]);
+});
+
+test('an edit before a lost context is replayed at its step: count and mass after the restore are those before', async ({ page }) => {
+  test.setTimeout(90_000);
+  const errors = collectErrors(page);
+  await open(page, 0, 'gpu');
+  const total = (list) => list.blobs.reduce((m, b) => m + b.mass, 0);
+  const before = await page.evaluate(async () => {
+    const w = window.windfield;
+    await w.step(120);
+    const edited = w.getScene();
+    edited.emitters[0].rate *= 4;
+    await w.editScene(edited);
+    await w.step(60);
+    return { stats: w.stats(), list: await w.exportBlobs({ width: 32, height: 24 }) };
+  });
+  expect(before.stats.stepper).toBe('gpu');
+  await loseAndRestore(page);
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().stepper)).toBe('gpu');
+  const after = await page.evaluate(async () => ({ stats: window.windfield.stats(), list: await window.windfield.exportBlobs({ width: 32, height: 24 }) }));
+  expect(after.stats.time).toBe(before.stats.time);
+  expect(after.list.blobs.length).toBe(before.list.blobs.length);
+  expect(Math.abs(total(after.list) - total(before.list))).toBeLessThan(1e-6 * total(before.list));
+  expect(errors).toEqual([]);
+});
+
+test('a context lost for good while the GPU steps: the worker takes the gas and the player goes on', async ({ page }) => {
+  test.setTimeout(60_000);
+  await open(page, 40, 'gpu');
+  const r = await page.evaluate(async () => {
+    const w = window.windfield;
+    const before = { ...w.stats(), list: await w.exportBlobs({ width: 32, height: 24 }) };
+    const canvas = document.querySelector('#canvas');
+    const lost = new Promise((resolve) => canvas.addEventListener('webglcontextlost', resolve, { once: true }));
+    canvas.getContext('webgl2').getExtension('WEBGL_lose_context').loseContext();
+    await lost;
+    const health = await w.health();
+    const list = await w.exportBlobs({ width: 32, height: 24 });
+    const stepper = await w.setStepper('cpu');
+    await w.step(10);
+    return { before, health, count: list.blobs.length, stepper, after: w.stats() };
+  });
+  expect(r.health.blobs).toBe(r.count);
+  expect(r.health.nonFinite).toBe(0);
+  expect(r.count).toBe(r.before.list.blobs.length);
+  expect(r.stepper).toBe('cpu');
+  expect(r.after.time).toBeCloseTo(r.before.time + 10 * scene.simulation.dt, 6);
+  await expect(page.locator('#message')).toContainText('the worker steps the gas');
 });

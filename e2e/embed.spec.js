@@ -2,9 +2,8 @@
 // dist/embed.js is a small loader that fetches the player's code only when a player nears the
 // viewport (once for all of them); without autoplay a player shows its scene at poster-time
 // with a play button; ready/error events; attributes mirrored as properties and live changes.
-import { test, expect } from '@playwright/test';
 import { gzipSync } from 'node:zlib';
-import { canvasLuminance, collectErrors } from './helpers.js';
+import { expect, test, canvasLuminance, collectErrors } from './helpers.js';
 
 /** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
 async function bare(page, name, body) {

@@ -1,6 +1,5 @@
 // The field explorer (field.html): loads with no errors, generates a field in the worker, shows it, animates it.
-import { test, expect } from '@playwright/test';
-import { canvasLuminance, collectErrors } from './helpers.js';
+import { expect, test, canvasLuminance, collectErrors } from './helpers.js';
 
 test('loads without errors and shows a generated field', async ({ page }) => {
   const errors = collectErrors(page);

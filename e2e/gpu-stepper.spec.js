@@ -2,7 +2,7 @@
 // of a turbulent plume agree in their statistics (paths diverge through chaos, statistics must
 // not); the real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still
 // of its read-back blobs; without float render targets the worker steps, and says so.
-import { test, expect } from '@playwright/test';
+import { test, expect } from './helpers.js';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';

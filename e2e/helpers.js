@@ -1,4 +1,26 @@
-// Shared e2e helpers: console-error capture, canvas pixel statistics and the panel's folders.
+// Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics and the
+// panel's folders.
+
+import { test as base, expect } from '@playwright/test';
+
+/**
+ * The tests' `test`: every page opens in the full version, as on a machine with a GPU (these
+ * tests run on SwiftShader, which would get the lighter version: `web/src/player/machine.js`);
+ * `e2e/any-machine.spec.js` tests the lighter version itself with Playwright's own `test`.
+ */
+export const test = base.extend({
+  page: async ({ page }, use) => {
+    await page.addInitScript(() => {
+      try {
+        sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true }));
+      } catch {
+        // A page without storage (about:blank): nothing to choose there.
+      }
+    });
+    await use(page);
+  },
+});
+export { expect };
 
 /** Collects console errors and uncaught page errors into an array. */
 export function collectErrors(page) {
@@ -59,4 +81,29 @@ export async function setNumber(f, name, value) {
   const input = f.locator('.lil-controller', { has: f.page().locator(`.lil-name:text-is("${name}")`) }).locator('input').first();
   await input.fill(String(value));
   await input.press('Enter');
+}
+
+/**
+ * The world point (m) under the view's pixel (px, py) (CSS pixels from the canvas's top left)
+ * on the plane through the camera's target facing it, for a canvas of `width × height`.
+ */
+export function worldAt(camera, width, height, px, py) {
+  const sub = (a, b) => a.map((v, i) => v - b[i]);
+  const norm = (a) => a.map((v) => v / Math.hypot(...a));
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const forward = norm(sub(camera.target, camera.position));
+  const right = norm(cross(forward, camera.up));
+  const up = cross(right, forward);
+  const d = Math.hypot(...sub(camera.target, camera.position));
+  const half = d * Math.tan((camera.fov_y_deg * Math.PI) / 360);
+  const u = ((px - width / 2) / (height / 2)) * half;
+  const v = -((py - height / 2) / (height / 2)) * half;
+  return camera.target.map((t, i) => t + u * right[i] + v * up[i]);
+}
+
+/** Distance (m) from `p` to the segment from `a` to `b`. */
+export function toSegment(p, a, b) {
+  const ab = b.map((v, i) => v - a[i]);
+  const s = Math.min(Math.max(p.reduce((sum, v, i) => sum + (v - a[i]) * ab[i], 0) / ab.reduce((sum, v) => sum + v * v, 0), 0), 1);
+  return Math.hypot(...p.map((v, i) => v - (a[i] + s * ab[i])));
 }

@@ -1,8 +1,7 @@
 // Large and non-power-of-two lattices in the browser: a 64⁴ field (2^24 points) is synthesised
 // in the worker with progress by stage; a 48³ × 16 one works as any other; a newer scene
 // cancels a field synthesis in flight.
-import { test, expect } from '@playwright/test';
-import { collectErrors } from './helpers.js';
+import { expect, test, collectErrors } from './helpers.js';
 
 /** Records every label the page's progress bar shows, from now on. */
 async function recordProgress(page) {

@@ -1,9 +1,8 @@
 // What a newcomer meets: the playground opens on smoke, the picker loads every preset, edits keep
 // the gas, the pointer stirs it, the camera stays above the floor, the status line tells the
 // truth, notices stay, and no page overflows on a phone.
-import { test, expect } from '@playwright/test';
 import { readFileSync } from 'node:fs';
-import { canvasLuminance, collectErrors, openFolder, setNumber } from './helpers.js';
+import { expect, test, canvasLuminance, collectErrors, openFolder, setNumber, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
 const presetFile = (name) => JSON.parse(readFileSync(new URL(`public/scenes/${name}.json`, root), 'utf8'));
@@ -104,31 +103,6 @@ test('an edit of a wind primitive and of an emitter keeps the blob count and the
   expect(afterPanel.blobs).toBe(out.before.blobs);
   expect(afterPanel.time).toBe(out.before.time);
 });
-
-/**
- * The world point (m) under the view's pixel (px, py) (CSS pixels from the canvas's top left)
- * on the plane through the camera's target facing it, for a canvas of `width × height`.
- */
-function worldAt(camera, width, height, px, py) {
-  const sub = (a, b) => a.map((v, i) => v - b[i]);
-  const norm = (a) => a.map((v) => v / Math.hypot(...a));
-  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-  const forward = norm(sub(camera.target, camera.position));
-  const right = norm(cross(forward, camera.up));
-  const up = cross(right, forward);
-  const d = Math.hypot(...sub(camera.target, camera.position));
-  const half = d * Math.tan((camera.fov_y_deg * Math.PI) / 360);
-  const u = ((px - width / 2) / (height / 2)) * half;
-  const v = -((py - height / 2) / (height / 2)) * half;
-  return camera.target.map((t, i) => t + u * right[i] + v * up[i]);
-}
-
-/** Distance (m) from `p` to the segment from `a` to `b`. */
-function toSegment(p, a, b) {
-  const ab = b.map((v, i) => v - a[i]);
-  const s = Math.min(Math.max(p.reduce((sum, v, i) => sum + (v - a[i]) * ab[i], 0) / ab.reduce((sum, v) => sum + v * v, 0), 0), 1);
-  return Math.hypot(...p.map((v, i) => v - (a[i] + s * ab[i])));
-}
 
 test('a pointer stir moves blobs near it more than blobs far from it', async ({ page }) => {
   await open(page);

@@ -1,10 +1,9 @@
 // The playground (index.html): `window.windfield` (docs/FORMATS.md, the browser API), the scene in the URL, fallbacks.
-import { test, expect } from '@playwright/test';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { canvasLuminance, collectErrors, openFolder, setNumber } from './helpers.js';
+import { expect, test, canvasLuminance, collectErrors, openFolder, setNumber } from './helpers.js';
 import { cliPath } from '../tests/support/core.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';

@@ -1,9 +1,8 @@
 // The paper's scenes (§6) as presets: each loads from `?preset=NAME` without errors, reaches its
 // blob count, and its real-time view and exact march match the WASM reference still of the same
 // blob list (≥ 30 dB). Meshes (mug, teapot) are drawn as the stand-ins the still uses.
-import { test, expect } from '@playwright/test';
 import { readFileSync, writeFileSync } from 'node:fs';
-import { collectErrors } from './helpers.js';
+import { expect, test, collectErrors } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 

@@ -1,8 +1,7 @@
 // The real-time volume view (docs/ARCHITECTURE.md; the `raymarch` view of docs/FORMATS.md): its GPU volumes equal the core's twin
 // (`frame::volume`) and hold the blobs' mass; a 100,000-blob plume matches the CPU reference.
-import { test, expect } from '@playwright/test';
 import { readFileSync, writeFileSync } from 'node:fs';
-import { collectErrors } from './helpers.js';
+import { expect, test, collectErrors } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 

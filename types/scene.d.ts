@@ -259,7 +259,7 @@ export interface Scene {
    *
    * @maxItems 256
    */
-  shapes?: ShapeSettings[];
+  shapes: ShapeSettings[];
   simulation: SimulationSettings;
   /**
    * Scene format version (currently 1).

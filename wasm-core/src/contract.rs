@@ -16,6 +16,7 @@ use crate::frame::shadow_grid::SHADOW_GRID_HEADER;
 use crate::frame::views::SPHERE_FLOATS;
 use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
 use crate::gas::blob_list::DEFAULT_RENDER_TIME;
+use crate::gas::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
 use crate::gas::wind::{
     REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
 };
@@ -113,6 +114,9 @@ pub fn sections() -> Vec<Section> {
         shared!(MAX_POINTS in "field::lattice": "Most lattice points in all (nx · ny · nz · nt)."),
         shared!(DEFAULT_RENDER_TIME in "gas::blob_list":
             "The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one."),
+        shared!(MAX_IMAGE_SIDE in "gas::limits":
+            "Widest and tallest image (pixels) a still, a capture or an export may be."),
+        shared!(MAX_STEPS in "gas::limits": "Most fixed steps one run may take (a step call, a recording)."),
     ];
     vec![
         Section {

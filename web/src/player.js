@@ -3,7 +3,11 @@
 // and use it through its methods only: its view, its engine and its state are its own.
 
 import { Engine } from './engine/client.js';
+import { removedError } from './engine/removed.js';
 import { FramePace } from './player/frame-pace.js';
+import { describeRenderer, LIGHT, lightenedWords, SLOW_FPS, userChoices } from './player/machine.js';
+import { boolean, nonFinite, number, oneOf, shown, wholeNumber } from './player/arguments.js';
+import { MAX_IMAGE_SIDE, MAX_STEPS } from './generated/contract.js';
 import { recordWebM } from './player/recorder.js';
 import { ResolutionGovernor, startScale } from './player/resolution.js';
 import { EXACT_QUALITY, exactFrameRequest } from './views/exact/exact-frame.js';
@@ -22,8 +26,17 @@ export const QUALITIES = Object.keys(EXACT_QUALITY);
 export { SLICE_PLANES };
 /** A scene that has run this many steps without the engine failing is one to go back to. */
 const GOOD_AFTER_STEPS = 120;
-/** Most fixed steps taken in one animation frame. */
-const MAX_STEPS_PER_FRAME = 4;
+/**
+ * Most fixed steps taken in one animation frame: by the GPU stepper (each is a pass over every
+ * blob on the GPU, drawn with the frame), and by the worker, which steps while the frame is
+ * drawn and may catch up a slow frame's worth of simulated time.
+ */
+const MAX_GPU_STEPS_PER_FRAME = 4;
+const MAX_WORKER_STEPS_PER_FRAME = 30;
+/** Longest time (s) one frame may account for: a slower frame lets the simulation fall behind. */
+const MAX_FRAME_SECONDS = 0.5;
+/** The settings a player starts with on a machine that draws the full version. */
+const FULL = Object.freeze({ view: 'raymarch', quality: 'standard', resolution: 'auto', stepper: 'auto', blobCap: null });
 
 /** How long (ms) a lost GPU context may stay lost before the player reports it. */
 const CONTEXT_GRACE_MS = 3000;
@@ -31,6 +44,9 @@ const CONTEXT_GRACE_MS = 3000;
 /** A scene as the JSON text the worker takes; a clear Error for what cannot be a scene. */
 function sceneText(scene) {
   if (!scene || typeof scene !== 'object' || Array.isArray(scene)) throw new Error('a scene must be an object (a parsed scene JSON)');
+  // JSON would write these as null, and the core would then name the wrong fault.
+  const bad = nonFinite(scene);
+  if (bad) throw new Error(`${bad.path}: must be a finite number (got ${shown(bad.value)})`);
   try {
     return JSON.stringify(scene);
   } catch (err) {
@@ -84,23 +100,43 @@ export class Player {
   #stepper = { choice: 'auto', active: 'cpu', reason: null, gpu: null, fieldVersion: -1 };
   /** Calls waiting for their turn in `exclusive`: the loop starts no frame while there are any. */
   #waiting = 0;
+  /**
+   * Where each of `FULL`'s settings comes from: 'full' (the full version's), 'light' (the lighter
+   * version's, `player/machine.js`) or 'chosen' (by the page, the user or a script; never lightened).
+   */
+  #from = { view: 'full', quality: 'full', resolution: 'full', stepper: 'full', blobCap: 'full' };
+  /** The machine that draws: {renderer, software} (`describeRenderer`). */
+  #machine;
+  /** Why the lighter version is shown ('software': WebGL drawn on the CPU; 'slow': measured so), or null. */
+  #lighter = null;
+  /** The user's own settings this player started with (`player/machine.js`, `userChoices`). */
+  #choices = {};
+  /** Calls waiting their turn in `exclusive`, woken at once when the player ends. */
+  #sleepers = new Set();
 
   /**
    * @param {HTMLCanvasElement} canvas
    * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
    *          onFrame?: (frame: object) => void, onScene?: (scene: object) => void,
    *          onFault?: (message: string) => void, requestTimeoutMs?: number,
-   *          playing?: boolean, profile?: boolean}} hooks (`onFault`: the player cannot go on
-   *   as it is, e.g. its GPU context was lost for good or its scene stops the engine; `profile`:
-   *   time the volume view's passes on the GPU, reported by `stats().passes`; slower, for
-   *   benchmarks)
+   *          playing?: boolean, profile?: boolean, adapt?: boolean, choices?: object,
+   *          onLighter?: (lighter: {reason: string, gaveUp: string[], renderer: string}) => void}} hooks
+   *   (`onFault`: the player cannot go on as it is, e.g. its GPU context was lost for good or its
+   *   scene stops the engine; `profile`: time the volume view's passes on the GPU, reported by
+   *   `stats().passes`; slower, for benchmarks; `adapt` (true unless false): a machine that draws
+   *   in software, or is measured slow, gets the lighter version, and `onLighter` hears of it;
+   *   `choices`: the user's own settings, standing over the lighter version (by default this
+   *   session's, `userChoices()`))
    */
   constructor(canvas, hooks = {}) {
     this.hooks = hooks;
-    this.#state = { scene: null, playing: hooks.playing ?? true, mode: 'raymarch', quality: 'standard', speed: 1, visible: true };
+    this.#state = {
+      scene: null, playing: hooks.playing ?? true, mode: FULL.view, quality: FULL.quality, speed: 1, visible: true,
+      pageVisible: document.visibilityState !== 'hidden', blobCap: FULL.blobCap,
+    };
     this.stats = {
       blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1,
-      frames: 0, limitedBy: 'paused',
+      frames: 0, limitedBy: 'paused', sceneBlobCap: null,
     };
     /**
      * Holds the frame rate by scaling the canvas's internal resolution and the real-time
@@ -118,6 +154,14 @@ export class Player {
     this.accumulated = 0;
     this.#view = new SceneView(canvas);
     this.#view.volume.profile = Boolean(hooks.profile);
+    this.#machine = describeRenderer(this.#view.renderer.getContext());
+    const choices = hooks.choices ?? userChoices();
+    this.#choices = choices;
+    for (const name of Object.keys(FULL)) if (Object.hasOwn(choices, name)) this.#choose(name, choices[name]);
+    if (hooks.adapt !== false && !choices.full && this.#machine.software) this.#lighten('software');
+    /** Stops stepping and drawing while the page is hidden (another tab, a minimised window). */
+    this.onVisibility = () => { this.#state.pageVisible = document.visibilityState !== 'hidden'; };
+    document.addEventListener('visibilitychange', this.onVisibility);
     /** Failures of the engine per scene (its normalised JSON text), and the last scene that ran well (its text). */
     this.failures = new Map();
     this.lastGood = null;
@@ -129,7 +173,7 @@ export class Player {
     this.recording = false;
     this.#engine = new Engine({
       onError: (m) => hooks.onMessage?.(m),
-      onRestart: (reason) => this.#recover(reason),
+      onRestart: (reason, how) => this.#recover(reason, how),
     }, { timeoutMs: hooks.requestTimeoutMs });
     /** Whether the view's GPU context is lost (drawing waits for it to come back). */
     this.contextLost = false;
@@ -137,31 +181,39 @@ export class Player {
     this.#view.onContextLost = () => {
       this.contextLost = true;
       // The GPU's state goes with the context: let go of its objects now (deleting them is a
-      // no-op while lost), a new stepper takes the gas again after the restore.
+      // no-op while lost), and the worker runs the gas again to where it was (its edits and
+      // stirs at the steps they came at) and steps it from now on; a new GPU stepper takes it
+      // back after the restore.
       this.#stepper.gpu?.dispose();
       this.#stepper.gpu = null;
+      if (this.#stepper.active === 'gpu') {
+        this.hooks.onMessage?.('The view lost its GPU context: the worker steps the gas until it is back.');
+        this.exclusive(() => this.#restep()).catch((e) => this.hooks.onMessage?.(e.message));
+      }
       clearTimeout(this.contextTimer);
       this.contextTimer = setTimeout(() => this.#fault('the view lost its GPU context and the browser did not give it back (too many 3-D views open at once, or the GPU was reset)'), CONTEXT_GRACE_MS);
     };
     this.#view.onContextRestored = () => {
       clearTimeout(this.contextTimer);
       this.contextLost = false;
-      if (this.#stepper.active === 'gpu') {
-        // The GPU's state went with the context: the worker steps the scene again to where it
-        // was, and hands it back to the GPU.
-        this.exclusive(() => this.#restep()).catch((e) => this.hooks.onMessage?.(e.message));
-        return;
-      }
       if (this.lastFrame) this.#view.setFrame(this.lastFrame);
       this.invalidate();
+      // The worker holds the gas since the loss: the GPU takes it back where it can.
+      this.exclusive(async () => {
+        await this.#engage();
+        if (this.#stepper.active === 'gpu') await this.advance(0);
+      }).catch((e) => this.hooks.onMessage?.(e.message));
     };
     this.lastTime = performance.now();
+    /** When the last frame's work began (rAF ms), and the most frames a second to draw (`setMaxFps`). */
+    this.lastStart = -Infinity;
+    this.maxFps = Infinity;
     /** Whether something changed the picture since the last frame (the camera moved, …). */
     this.dirty = true;
     this.#view.controls.addEventListener('change', () => { this.dirty = true; });
     /** Dragging stirs the gas instead of orbiting while stirring is on (off at first). */
-    this.#stirrer = new PointerStir(this.#view, (position, velocity, radius) => {
-      if (this.#state.scene) this.stir(position, velocity, radius).catch(() => {});
+    this.#stirrer = new PointerStir(this.#view, (position, displacement, radius) => {
+      if (this.#state.scene) this.stir(position, displacement, radius).catch(() => {});
     });
     this.running = true;
     this.resize();
@@ -173,13 +225,19 @@ export class Player {
    * the engine fail before, in which case it goes back to the last scene that ran well, or stops
    * with a message; a scene never sends the engine into a loop of restarts.
    */
-  #recover(reason) {
+  #recover(reason, { recycled = false } = {}) {
     const json = this.#sceneJson;
     if (!json) return;
-    const failures = (this.failures.get(json) ?? 0) + 1;
-    this.failures.set(json, failures);
     // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
     const reload = (text) => this.exclusive(() => this.#load(text)).catch((e) => this.hooks.onMessage?.(e.message));
+    if (recycled) {
+      // The engine was restarted to give back memory, not because this scene failed.
+      this.hooks.onMessage?.(`The engine was restarted to give back memory (${reason}); the scene starts again.`);
+      reload(json);
+      return;
+    }
+    const failures = (this.failures.get(json) ?? 0) + 1;
+    this.failures.set(json, failures);
     if (failures === 1) {
       reload(json);
     } else if (this.lastGood && this.lastGood !== json) {
@@ -200,7 +258,8 @@ export class Player {
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
     if (this.recording) throw recordingRefuses('load the scene');
-    return this.#load(sceneText(scene));
+    const text = sceneText(scene);
+    return this.exclusive(() => this.#load(text));
   }
 
   /**
@@ -210,12 +269,13 @@ export class Player {
   async #load(text) {
     if (this.recording) throw recordingRefuses('load the scene');
     await this.#settle();
-    const info = await this.#engine.request('load', { scene: text }, {
+    const info = await this.#engine.request('load', { scene: text, blobCap: this.#state.blobCap }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
     this.hooks.onProgress?.(1, 'done');
     this.halted = null;
     this.stepsSinceLoad = 0;
+    this.stats.sceneBlobCap = info.blobCap;
     const scene = this.#adopt(info.sceneJson);
     this.stats.fieldMs = info.fieldMs;
     this.#view.setCamera(scene.render.camera, scene.render.objects);
@@ -246,12 +306,21 @@ export class Player {
   async edit(scene) {
     if (this.recording) throw recordingRefuses('change the scene');
     const text = sceneText(scene);
+    return this.exclusive(() => this.#edit(text));
+  }
+
+  /** Applies the scene JSON `text` to the running simulation (see `edit`). */
+  async #edit(text) {
+    if (this.recording) throw recordingRefuses('change the scene');
     await this.#settle();
-    // A scene the GPU cannot step comes back to the worker before the edit.
-    if (this.#stepper.active === 'gpu' && sceneKeepsGpuAway(scene)) await this.#toCpu();
-    const info = await this.#engine.request('edit', { scene: text }, {
+    // A scene the GPU cannot step comes back to the worker before the edit (and so does the gas
+    // when the stepper's choice changed to the worker).
+    const scene = JSON.parse(text);
+    if (this.#stepper.active === 'gpu' && (sceneKeepsGpuAway(scene) || this.#stepper.choice === 'cpu')) await this.#toCpu();
+    const info = await this.#engine.request('edit', { scene: text, blobCap: this.#state.blobCap }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
+    this.stats.sceneBlobCap = info.blobCap;
     const camera = this.#state.scene?.render.camera;
     const next = this.#adopt(info.sceneJson);
     const { render } = next;
@@ -281,11 +350,11 @@ export class Player {
   }
 
   /**
-   * Stirs the gas from the next step on: a wind of `velocity` (m/s) at `position` (m) that falls
-   * off as exp(−distance/`radius`), until the next call; `radius` 0 stops it.
+   * Stirs the gas: the pointer moved by `displacement` (m) to `position` (m); the next steps move
+   * the gas near it as far, falling off as exp(−distance/`radius`) (m).
    */
-  stir(position, velocity, radius) {
-    return this.#engine.request('stir', { position, velocity, radius });
+  stir(position, displacement, radius) {
+    return this.#engine.request('stir', { position, displacement, radius });
   }
 
   /** Loads the scene JSON at `url` (its text goes to the engine as it is). */
@@ -294,7 +363,7 @@ export class Player {
     if (!response.ok) throw new Error(`could not load ${url} (${response.status})`);
     const text = await response.text();
     try {
-      return await this.#load(text);
+      return await this.exclusive(() => this.#load(text));
     } catch (err) {
       if (/not valid JSON/.test(err.message)) throw new Error(`${url} is not a scene (JSON expected)`);
       throw err;
@@ -354,7 +423,9 @@ export class Player {
   async #show(result, steps, t0) {
     let frame = result;
     if (result.gpu) {
-      if (this.#stepper.active !== 'gpu') throw new Error('the GPU no longer steps this gas');
+      // Steps the GPU was to take after its copy of the gas was lost: the worker's run again
+      // (`#restep`) has them already.
+      if (this.#stepper.active !== 'gpu') return;
       await this.#gpuSteps(result);
       if (!this.#stepper.gpu) return;
       frame = { ...this.#gpuFrame(), stepMs: result.stepMs, packMs: 0, crossed: crossedBytes(result) };
@@ -376,12 +447,14 @@ export class Player {
 
   /** The blob list of the current state for the current view (docs/FORMATS.md, the blob list); the GPU's centres read back first. */
   async exportBlobs({ width, height } = this.#view.size()) {
+    wholeNumber('exportBlobs: width', width, 1, MAX_IMAGE_SIDE);
+    wholeNumber('exportBlobs: height', height, 1, MAX_IMAGE_SIDE);
     await this.#syncCentres();
     return this.#engine.request('blobList', { camera: this.#view.cameraSettings(), image: { width, height } });
   }
 
   async draw(size = this.#view.size()) {
-    if (!this.lastFrame || !this.#state.scene || this.contextLost) return;
+    if (!this.running || !this.lastFrame || !this.#state.scene || this.contextLost) return;
     this.dirty = false;
     this.#view.setRenderSettings(this.#state.scene.render);
     this.#view.guides.update(this.#state.scene);
@@ -403,8 +476,10 @@ export class Player {
 
   /** Sizes the canvas's drawing buffer to its box times the resolution scale. */
   resize() {
+    if (!this.running) return;
     const c = this.#view.canvas;
-    const scale = this.#state.mode === 'points' ? 1 : this.resolution.scale;
+    // The points view is cheap: it keeps full resolution unless the resolution is fixed.
+    const scale = this.#state.mode === 'points' && this.resolution.mode === 'auto' ? 1 : this.resolution.scale;
     this.stats.scale = scale;
     this.#view.volumeScale = scale;
     const width = Math.max(Math.round(c.clientWidth * scale), 1);
@@ -419,25 +494,50 @@ export class Player {
     this.dirty = true;
   }
 
-  /** Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace (not in the points view). */
+  /**
+   * Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace (not in
+   * the points view). A machine whose view keeps up fewer than `SLOW_FPS` frames a second at the
+   * lowest resolution gets the lighter version (unless the page turned adapting off).
+   */
   #drawn(start, end) {
-    if (this.pace.drawn(start, end, { playing: this.#state.playing, scaled: this.#state.mode !== 'points' })) this.resize();
+    const playing = this.#state.playing;
+    if (this.pace.drawn(start, end, { playing, scaled: this.#state.mode !== 'points' })) this.resize();
+    const r = this.resolution;
+    const slow = this.pace.pace > 0 && this.pace.pace < SLOW_FPS && r.mode === 'auto' && r.scale <= r.min;
+    if (slow && playing && this.stats.frames >= 15 && this.hooks.adapt !== false && !this.#lighter && !this.#choices.full) this.#lighten('slow');
+  }
+
+  /**
+   * Most steps the next frame may take: the GPU stepper's few, or as many as the worker takes in
+   * about a frame's time (it steps while the frame is drawn), so that a slow view does not slow
+   * the simulated time down when the steps are cheap.
+   */
+  #stepsPerFrame() {
+    if (this.#stepper.active === 'gpu') return MAX_GPU_STEPS_PER_FRAME;
+    const frameMs = Math.max(this.pace.frameMs, 1000 / 60);
+    const stepMs = Math.max(this.stats.stepMs, 0.1);
+    return Math.max(1, Math.min(MAX_WORKER_STEPS_PER_FRAME, Math.floor(frameMs / stepMs)));
   }
 
   loop(now) {
     if (!this.running) return;
-    const dt = Math.min((now - this.lastTime) / 1000, 0.1);
+    const dt = Math.min((now - this.lastTime) / 1000, MAX_FRAME_SECONDS);
     this.lastTime = now;
     // A call waiting for `exclusive` goes first: frames that take longer than the display's
     // interval would otherwise take the turn each time (it waits on a timer, the loop on the
     // next animation frame, which is already due).
-    if (this.#state.scene && !this.busy && !this.#waiting && this.#state.visible && !this.halted && !this.contextLost) {
+    const shown = this.#state.visible && this.#state.pageVisible;
+    const due = now - this.lastStart >= 1000 / this.maxFps;
+    if (this.#state.scene && !this.busy && !this.#waiting && shown && due && !this.halted && !this.contextLost) {
       let steps = 0;
       if (this.#state.playing) {
         this.accumulated += dt * this.#state.speed;
         const h = this.#state.scene.simulation.dt;
-        steps = Math.min(Math.floor(this.accumulated / h), MAX_STEPS_PER_FRAME);
+        const most = this.#stepsPerFrame();
+        steps = Math.min(Math.floor(this.accumulated / h), most);
         this.accumulated -= steps * h;
+        // Time the steps could not keep up with is let go, not owed.
+        this.accumulated = Math.min(this.accumulated, most * h);
       }
       // Paused with a step in flight: show it.
       const work = steps > 0 ? () => this.#play(steps)
@@ -446,6 +546,7 @@ export class Player {
       this.pace.tick(now);
       if (work) {
         this.busy = true;
+        this.lastStart = now;
         const start = performance.now();
         work()
           .then(() => this.#drawn(start, performance.now()))
@@ -458,14 +559,28 @@ export class Player {
     requestAnimationFrame((t) => this.loop(t));
   }
 
+  /** A wait of 5 ms, cut short when the player ends (`dispose`). */
+  #nap() {
+    return new Promise((resolve) => {
+      const wake = () => {
+        clearTimeout(timer);
+        this.#sleepers.delete(wake);
+        resolve();
+      };
+      const timer = setTimeout(wake, 5);
+      this.#sleepers.add(wake);
+    });
+  }
+
   /** Runs `fn` when no frame is in flight, the step asked for ahead shown first. */
   async exclusive(fn) {
     this.#waiting += 1;
     try {
-      while (this.busy) await new Promise((r) => setTimeout(r, 5));
+      while (this.busy && this.running) await this.#nap();
     } finally {
       this.#waiting -= 1;
     }
+    if (!this.running) throw removedError();
     this.busy = true;
     try {
       await this.#settle();
@@ -498,6 +613,14 @@ export class Player {
 
   /** Renders the current view offscreen at `width × height`; a PNG data URL. */
   captureGPU({ mode = 'raymarch', width = 640, height = 480, standIns = false, quality = this.#state.quality } = {}) {
+    oneOf('captureGPU: mode', mode, VIEWS);
+    oneOf('captureGPU: quality', quality, QUALITIES);
+    boolean('captureGPU: standIns', standIns);
+    const gl = this.#view.renderer.getContext();
+    // A lost context answers null: the image budget alone then.
+    const most = Math.min(MAX_IMAGE_SIDE, ...(gl.getParameter(gl.MAX_VIEWPORT_DIMS) ?? []));
+    wholeNumber('captureGPU: width', width, 1, most);
+    wholeNumber('captureGPU: height', height, 1, most);
     return this.offscreen({ mode, quality, standIns, width, height }, async () => {
       await this.draw({ width, height });
       return this.#view.canvas.toDataURL('image/png');
@@ -569,12 +692,19 @@ export class Player {
    * engine renders the blob list of its current state from this camera: only the PNG crosses.
    */
   async renderReference({ width = 320, height = 240 } = {}) {
+    return bytesToDataUrl(await this.referencePng({ width, height }));
+  }
+
+  /** The WASM reference still of the current view at `width × height` (see `renderReference`): the PNG's bytes. */
+  async referencePng({ width = 320, height = 240 } = {}) {
+    wholeNumber('renderReference: width', width, 1, MAX_IMAGE_SIDE);
+    wholeNumber('renderReference: height', height, 1, MAX_IMAGE_SIDE);
     await this.#syncCentres();
     const out = await this.#engine.request('reference', { camera: this.#view.cameraSettings(), width, height }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, 'Rendering reference still'),
     });
     this.hooks.onProgress?.(1, 'done');
-    return bytesToDataUrl(out.png);
+    return out.png;
   }
 
   /**
@@ -582,6 +712,11 @@ export class Player {
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
   async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.#state.mode } = {}) {
+    wholeNumber('recordWebM: frames', frames, 1, MAX_STEPS);
+    wholeNumber('recordWebM: width', width, 2, 4096);
+    wholeNumber('recordWebM: height', height, 2, 4096);
+    number('recordWebM: fps', fps, 0, 240);
+    oneOf('recordWebM: mode', mode, VIEWS);
     // One step a frame: the run budget (docs/FORMATS.md, the command line) holds before anything is recorded.
     await this.#engine.request('checkSteps', { steps: frames });
     if (this.recording) throw new Error('a recording is under way already');
@@ -642,8 +777,106 @@ export class Player {
 
   /** Fixes the view's resolution (a scale in (0, 1]) or lets it hold the frame rate ('auto'). */
   setResolution(scale) {
-    this.resolution.set(scale);
-    this.resize();
+    if (scale !== 'auto' && !(Number.isFinite(Number(scale)) && Number(scale) > 0 && Number(scale) <= 1)) {
+      throw new Error(`setResolution: the resolution must be 'auto' or a scale in (0, 1] (got ${scale})`);
+    }
+    this.#choose('resolution', scale);
+  }
+
+  /** The resolution's setting: 'auto' or a fixed scale. */
+  get resolutionSetting() {
+    return this.resolution.mode === 'auto' ? 'auto' : this.resolution.scale;
+  }
+
+  /**
+   * Runs the scene with at most `cap` live blobs (the lighter version of a heavier scene,
+   * `engine/lighten.js`), or as it is (`null`); the running gas keeps going under the new cap.
+   */
+  setBlobCap(cap) {
+    if (cap !== null && !(Number.isInteger(cap) && cap >= 1)) throw new Error(`setBlobCap: the cap must be a whole number of at least 1, or null (got ${cap})`);
+    this.#choose('blobCap', cap);
+    return this.#recap();
+  }
+
+  /** The blob cap the scene runs under (null: its own `gas.max_blobs`). */
+  get blobCap() {
+    return this.#state.blobCap;
+  }
+
+  /** Sets `name` (one of FULL's settings) to `value` as chosen: the lighter version leaves it alone. */
+  #choose(name, value) {
+    this.#from[name] = 'chosen';
+    this.#apply(name, value);
+  }
+
+  /** Applies `value` to the setting `name` (one of FULL's), whoever chose it. */
+  #apply(name, value) {
+    if (name === 'view') {
+      this.#state.mode = value;
+      this.resize();
+    } else if (name === 'quality') {
+      this.#state.quality = value;
+      this.invalidate();
+    } else if (name === 'resolution') {
+      this.resolution.set(value);
+      this.resize();
+    } else if (name === 'stepper') {
+      this.#stepper.choice = value;
+    } else if (name === 'blobCap') {
+      this.#state.blobCap = value;
+    }
+  }
+
+  /**
+   * Shows the lighter version (`LIGHT`) for every setting nobody chose, because of `reason`
+   * ('software' or 'slow'); a scene running already goes on under the lighter settings.
+   */
+  #lighten(reason) {
+    if (this.#lighter) return;
+    this.#lighter = reason;
+    for (const [name, value] of Object.entries(LIGHT)) {
+      if (this.#from[name] === 'full') {
+        this.#from[name] = 'light';
+        this.#apply(name, value);
+      }
+    }
+    // After the constructor (the page's handle on this player is set by then).
+    const lighter = { reason, gaveUp: this.#gaveUp(), renderer: this.#machine.renderer };
+    queueMicrotask(() => this.hooks.onLighter?.(lighter));
+    if (this.#state.scene) this.#relight().catch((e) => this.hooks.onMessage?.(e.message));
+  }
+
+  /**
+   * The full version: every setting the lighter version set goes back to the full version's
+   * (the user's own choices stay). Resolves once the scene runs so.
+   */
+  showFull() {
+    this.#choices = { ...this.#choices, full: true };
+    for (const [name, from] of Object.entries(this.#from)) {
+      if (from === 'light') {
+        this.#from[name] = 'full';
+        this.#apply(name, FULL[name]);
+      }
+    }
+    this.#lighter = null;
+    return this.#state.scene ? this.#relight() : Promise.resolve();
+  }
+
+  /** After the lighter version came or went: the stepper and the blob cap as they now are. */
+  #relight() {
+    return this.exclusive(async () => {
+      if (this.#sceneJson) await this.#edit(this.#sceneJson);
+    });
+  }
+
+  /** The running scene under the blob cap as it now is. */
+  #recap() {
+    return this.#state.scene ? this.exclusive(() => this.#edit(this.#sceneJson)) : Promise.resolve();
+  }
+
+  /** What the lighter version gave up, in words (empty when it is not shown). */
+  #gaveUp() {
+    return this.#lighter ? lightenedWords(Object.keys(this.#from).filter((name) => this.#from[name] === 'light')) : [];
   }
 
   /** Picks the wind primitive or emitter (`{list, index}`) the drag handle moves, or none. */
@@ -673,7 +906,9 @@ export class Player {
   }
 
   /** `n` fixed steps when no frame is in flight. */
-  step(n = 1) {
+  async step(n = 1) {
+    wholeNumber('step: n', n, 0, MAX_STEPS);
+    if (this.recording) throw recordingRefuses('take steps');
     return this.exclusive(() => this.advance(n));
   }
 
@@ -684,12 +919,20 @@ export class Player {
       ...this.stats,
       stepper: st.active,
       ...(st.reason && { stepperReason: st.reason }),
+      renderer: this.#machine.renderer,
+      software: this.#machine.software,
+      lighter: this.#lighter ? { reason: this.#lighter, gaveUp: this.#gaveUp() } : null,
       ...(this.#view.volume.timings && { passes: { ...this.#view.volume.timings } }),
     };
   }
 
   /** The field's statistics against `spectrum` (its own when absent), measured in the worker. */
-  fieldStats(spectrum) {
+  async fieldStats(spectrum) {
+    if (spectrum !== undefined && (spectrum === null || typeof spectrum !== 'object' || Array.isArray(spectrum))) {
+      throw new Error(`fieldStats: the spectrum must be an object like a scene's field.spectrum (got ${shown(spectrum)})`);
+    }
+    const bad = spectrum && nonFinite(spectrum, 'spectrum');
+    if (bad) throw new Error(`fieldStats: ${bad.path} must be a finite number (got ${shown(bad.value)})`);
     return this.#engine.request('fieldStats', { spectrum });
   }
 
@@ -715,7 +958,7 @@ export class Player {
     return this.exclusive(async () => {
       // Where the GPU cannot step the gas, 'gpu' falls back to the worker as 'auto' does, and
       // `stats().stepperReason` says why.
-      this.#stepper.choice = kind;
+      this.#choose('stepper', kind);
       await this.#engage();
       await this.advance(0);
       return this.#stepper.active;
@@ -761,6 +1004,11 @@ export class Player {
   async #toCpu() {
     const st = this.#stepper;
     if (st.active !== 'gpu') return;
+    // Without its context the GPU's copy is gone: the worker runs the gas again instead.
+    if (!st.gpu) {
+      await this.#restep();
+      return;
+    }
     const centres = st.gpu.readCentres();
     st.active = 'cpu';
     await this.#engine.request('takeCentres', { centres, keepOnGpu: false }, { transfer: [centres.buffer] });
@@ -769,6 +1017,10 @@ export class Player {
   /** Gives the worker the GPU's centres as they are now (for a still, an export, a check). */
   async #syncCentres() {
     if (this.#stepper.active !== 'gpu') return;
+    if (!this.#stepper.gpu) {
+      await this.#restep();
+      return;
+    }
     const centres = this.#stepper.gpu.readCentres();
     await this.#engine.request('takeCentres', { centres, keepOnGpu: true }, { transfer: [centres.buffer] });
   }
@@ -799,11 +1051,18 @@ export class Player {
     this.#view.setFrame(this.lastFrame);
   }
 
-  /** After a lost context came back: the worker steps the scene again to where it was, and the GPU takes it. */
+  /**
+   * The GPU's copy of the gas was lost: the worker runs the scene again to where it was (every
+   * edit and stir at the step it came at) and steps it from now on; the GPU takes it back when
+   * it can (`#engage`).
+   */
   async #restep() {
     const t0 = performance.now();
     this.#stepper.active = 'cpu';
-    await this.#show(await this.#engine.request('restep'), 0, t0);
+    await this.#show(await this.#engine.request('restep', {}, {
+      onProgress: (p) => this.hooks.onProgress?.(p.progress, 'Running the scene again'),
+    }), 0, t0);
+    this.hooks.onProgress?.(1, 'done');
     await this.#engage();
     if (this.#stepper.active === 'gpu') await this.advance(0);
   }
@@ -841,8 +1100,7 @@ export class Player {
   /** Shows the view `mode` (one of VIEWS); throws for any other. */
   setView(mode) {
     if (!VIEWS.includes(mode)) throw new Error(`setView: the view must be one of ${VIEWS.join(', ')} (got ${mode})`);
-    this.#state.mode = mode;
-    this.resize();
+    this.#choose('view', mode);
   }
 
   /** The marched views' quality: one of QUALITIES. */
@@ -853,8 +1111,7 @@ export class Player {
   /** Draws the marched views at `quality` (one of QUALITIES); throws for any other. */
   setQuality(quality) {
     if (!QUALITIES.includes(quality)) throw new Error(`setQuality: the quality must be one of ${QUALITIES.join(', ')} (got ${quality})`);
-    this.#state.quality = quality;
-    this.invalidate();
+    this.#choose('quality', quality);
   }
 
   /** Simulated seconds per second while playing. */
@@ -866,6 +1123,18 @@ export class Player {
   setSpeed(speed) {
     if (!(Number.isFinite(speed) && speed >= 0)) throw new Error(`setSpeed: the speed must be a number of 0 or more (got ${speed})`);
     this.#state.speed = speed;
+  }
+
+  /**
+   * Draws at most `fps` frames a second (a number in [0.1, 240], or Infinity: as the display
+   * allows); the simulated time keeps up as far as the steps allow. To save power, or to see how
+   * the player does on a slow machine.
+   */
+  setMaxFps(fps) {
+    if (!(fps === Infinity || (Number.isFinite(fps) && fps >= 0.1 && fps <= 240))) {
+      throw new Error(`setMaxFps: the frame rate must be between 0.1 and 240 frames a second, or Infinity (got ${fps})`);
+    }
+    this.maxFps = fps;
   }
 
   /** Whether the view is on screen: a hidden player neither steps nor draws. */
@@ -906,9 +1175,24 @@ export class Player {
     };
   }
 
+  /**
+   * Ends the player: every call in flight or waiting rejects with an AbortError ("the player was
+   * removed from the page"), the worker ends, and the GPU's objects and context are let go.
+   */
   dispose() {
+    if (!this.running) return;
     this.running = false;
-    this.#engine.terminate();
-    this.#view.renderer.dispose();
+    clearTimeout(this.contextTimer);
+    document.removeEventListener('visibilitychange', this.onVisibility);
+    this.#stirrer.enabled = false;
+    this.#engine.terminate(removedError());
+    for (const wake of [...this.#sleepers]) wake();
+    // The GPU's objects go in a task of their own: the callers hear of the end first (letting
+    // go of a context may wait for the GPU to finish what it was drawing).
+    setTimeout(() => {
+      this.#stepper.gpu?.dispose();
+      this.#stepper.gpu = null;
+      this.#view.dispose();
+    });
   }
 }

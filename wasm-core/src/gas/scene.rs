@@ -50,7 +50,7 @@ pub struct Scene {
     #[schemars(length(max = MAX_EMITTERS))]
     pub emitters: Vec<Emitter>,
     /// Initial blob sets born at time 0, optionally played in reverse (the morph of §6).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default)]
     #[schemars(length(max = MAX_SHAPES))]
     pub shapes: Vec<Shape>,
     #[serde(default)]

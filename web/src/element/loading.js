@@ -5,6 +5,7 @@
 // scene the attributes name, loaded one after another and simulated to `poster-time` unless
 // playing; `ready`, `loaded`, and the `ready` and `error` events.
 
+import { removedError } from '../engine/removed.js';
 import {
   $api, $failed, $hideStatus, $parts, $player, $run, $sceneUrl, $showMessage, $showStatus, $updateControls,
   $wantsPlaying, $whenReady,
@@ -57,6 +58,8 @@ export const LoadingMixin = (Base) => class extends Base {
   #queue = Promise.resolve();
   #failed = false;
   #noticeTimer = 0;
+  /** The removal's end of the player, waiting to see whether the element comes back (a move). */
+  #teardownTimer = 0;
 
   constructor() {
     super();
@@ -72,15 +75,33 @@ export const LoadingMixin = (Base) => class extends Base {
 
   connectedCallback() {
     super.connectedCallback();
+    // Put back in the same task it was taken out in (a move): the player goes on as it was.
+    clearTimeout(this.#teardownTimer);
     this.#updatePoster();
     if (this[$player] || this.#starting) return;
     if (this.loading === 'eager') this.load();
     else approachObserver().observe(this);
   }
 
+  /**
+   * Taken out of the document: a move (`append` elsewhere, a framework's reorder) puts it back
+   * before the task ends and keeps the player running; otherwise the player ends (`#teardown`).
+   */
   disconnectedCallback() {
     super.disconnectedCallback();
     approach?.unobserve(this);
+    clearTimeout(this.#teardownTimer);
+    this.#teardownTimer = setTimeout(() => {
+      if (!this.isConnected) this.#teardown();
+    });
+  }
+
+  /**
+   * Removed for good: every call waiting or in flight rejects with an AbortError ("the player was
+   * removed from the page"), the worker ends and the GPU's objects and context are let go. Put
+   * back later, the element starts afresh.
+   */
+  #teardown() {
     for (const o of this.#observers) o.disconnect();
     this.#observers = [];
     this.#session += 1;
@@ -89,7 +110,8 @@ export const LoadingMixin = (Base) => class extends Base {
     this[$player] = null;
     this[$api] = null;
     this.#queue = Promise.resolve();
-    if (this.#ready.settled) this.#ready = deferred();
+    if (!this.#ready.settled) this.#ready.reject(removedError());
+    this.#ready = deferred();
     this.#failed = false;
   }
 
@@ -140,6 +162,12 @@ export const LoadingMixin = (Base) => class extends Base {
 
   #mount(Player) {
     const p = this[$parts];
+    // The engine's notices (a failed worker restarts with the scene) fade; a failed load's stay.
+    const notify = (text) => {
+      this[$showMessage](text);
+      clearTimeout(this.#noticeTimer);
+      this.#noticeTimer = setTimeout(() => { if (!this.#failed) p.message.hidden = true; }, NOTICE_MS);
+    };
     const player = new Player(p.canvas, {
       playing: false,
       onProgress: (progress, stage) => {
@@ -152,16 +180,17 @@ export const LoadingMixin = (Base) => class extends Base {
       },
       // The player cannot go on (its GPU context is gone, its scene stops the engine): an error.
       onFault: (message) => this.#fail(new Error(message)),
-      // The engine's notices (a failed worker restarts with the scene) fade; a failed load's stay.
-      onMessage: (text) => {
-        this[$showMessage](text);
-        clearTimeout(this.#noticeTimer);
-        this.#noticeTimer = setTimeout(() => { if (!this.#failed) p.message.hidden = true; }, NOTICE_MS);
-      },
+      onMessage: notify,
+      // A machine that draws in software (or slowly) gets the lighter version, and is told.
+      onLighter: ({ reason, gaveUp }) => notify(`${reason === 'software'
+        ? 'This browser draws 3-D in software'
+        : 'This machine draws 3-D slowly'}: showing a lighter version (${gaveUp.join(', ')}).`),
     });
     // Vertical swipes scroll the page; horizontal ones (and mice) orbit.
     p.canvas.style.touchAction = 'pan-y';
-    player.setView(this.view);
+    // The page's `view` is its author's choice; without it, the player's own (the lighter
+    // version's points on a machine that draws in software).
+    if (this.hasAttribute('view')) player.setView(this.view);
     player.setVisible(false);
     player.setStirring(this.stir);
     this[$player] = player;
@@ -223,7 +252,7 @@ export const LoadingMixin = (Base) => class extends Base {
       const ready = this.#ready.promise;
       await ready;
       if (ready !== this.#ready.promise) continue;
-      if (!this[$api]) throw new Error('<wind-field> was removed from its document');
+      if (!this[$api]) throw removedError();
       return this[$api];
     }
   }

@@ -2,8 +2,14 @@
 // time limit on every request, and a restart (with a visible message) if the worker dies,
 // traps, or stops answering.
 
+import { removedError } from './removed.js';
+
 /** A request with no reply and no progress for this long (ms) has lost its worker. */
 export const REQUEST_TIMEOUT_MS = 30_000;
+/** The range a request's time limit may be set in (ms): a second to an hour. */
+export const MIN_TIMEOUT_MS = 1000;
+export const MAX_TIMEOUT_MS = 3_600_000;
+
 
 export class Engine {
   #worker = null;
@@ -15,12 +21,14 @@ export class Engine {
   /**
    * @param {{onProgress?: (p: {progress: number, stage: string}) => void,
    *          onError?: (message: string) => void,
-   *          onRestart?: (reason: string) => void}} listeners
-   * @param {{timeoutMs?: number}} options how long a request may go without a reply or progress
+   *          onRestart?: (reason: string, how: {recycled: boolean}) => void}} listeners
+   * @param {{timeoutMs?: number}} options how long a request may go without a reply or
+   *   progress (ms; held within MIN_TIMEOUT_MS to MAX_TIMEOUT_MS, REQUEST_TIMEOUT_MS when it is
+   *   not a number)
    */
   constructor(listeners = {}, { timeoutMs = REQUEST_TIMEOUT_MS } = {}) {
     this.#listeners = listeners;
-    this.#timeoutMs = timeoutMs;
+    this.#timeoutMs = Number.isFinite(timeoutMs) ? Math.min(Math.max(timeoutMs, MIN_TIMEOUT_MS), MAX_TIMEOUT_MS) : REQUEST_TIMEOUT_MS;
     this.#start();
   }
 
@@ -58,6 +66,8 @@ export class Engine {
     this.#pending.delete(msg.id);
     if (msg.ok) pending.resolve(msg.result);
     else pending.reject(new Error(msg.error));
+    // Nothing else failed: a new worker gives back the memory the refused request took.
+    if (!msg.ok && msg.recycle) this.#fail(msg.recycle, true, { recycled: true });
   }
 
   /** (Re)starts request `id`'s clock: no word from the worker for the time limit fails it. */
@@ -69,19 +79,23 @@ export class Engine {
     }, this.#timeoutMs);
   }
 
-  /** Rejects everything in flight, reports the failure and (if `restart`) starts a new worker. */
-  #fail(message, restart = true) {
+  /**
+   * Rejects everything in flight, reports the failure and (if `restart`) starts a new worker;
+   * `recycled`: nothing failed, the worker was restarted to give back memory (not reported as
+   * an error).
+   */
+  #fail(message, restart = true, { recycled = false } = {}) {
     for (const p of this.#pending.values()) {
       clearTimeout(p.timer);
       p.reject(new Error(message));
     }
     this.#pending.clear();
-    this.#listeners.onError?.(restart ? `${message}; restarting the engine` : message);
+    if (!recycled) this.#listeners.onError?.(restart ? `${message}; restarting the engine` : message);
     this.#worker?.terminate();
     this.#worker = null;
     if (restart) {
       this.#start();
-      this.#listeners.onRestart?.(message);
+      this.#listeners.onRestart?.(message, { recycled });
     }
   }
 
@@ -106,9 +120,19 @@ export class Engine {
     });
   }
 
-  terminate() {
-    for (const p of this.#pending.values()) clearTimeout(p.timer);
+  /** Ends the worker; every request in flight rejects with `error` (by default `removedError()`). */
+  terminate(error = removedError()) {
+    for (const p of this.#pending.values()) {
+      clearTimeout(p.timer);
+      p.reject(error);
+    }
+    this.#pending.clear();
     this.#worker?.terminate();
     this.#worker = null;
+  }
+
+  /** Whether the worker runs (false once terminated). */
+  get running() {
+    return this.#worker !== null;
   }
 }

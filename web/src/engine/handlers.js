@@ -12,6 +12,9 @@ import { BLOBS_PER_ROW, SHADOW_GRID_HEADER, WORDS_PER_BLOB } from '../generated/
 import { Session } from './session.js';
 import { binBlobs, padRows } from './tiles.js';
 
+/** Fastest wind (m/s) a stir gives the gas, however far the pointer moved in one step. */
+const MAX_STIR_SPEED = 8;
+
 /** Steps taken between two looks at the clock in a long `advance`. */
 const STEP_CHUNK = 16;
 /** A long `advance` reports its progress this often (ms). */
@@ -96,19 +99,77 @@ function referenceStill(core, list, width, height, id, progress) {
 export function createHandlers(core, progress, memory = () => 0) {
   const session = new Session(core, progress);
   const sim = () => session.requireSim();
+  /**
+   * The pointer's motion not yet given to the gas: {position (m), displacement (m), radius (m)},
+   * or null. The next steps consume it (`stirred`), however long they are in coming.
+   */
+  let stir = null;
+  /**
+   * Runs `fn` (which takes `steps` steps) with the pending stir acting on those steps: a wind at
+   * the pointer of the pointer's displacement over the steps' duration (so the gas near it moves
+   * as far as the pointer did, at any frame rate), falling off as exp(−distance/radius). The stir
+   * is used up by them.
+   */
+  const stirred = (steps, fn) => {
+    if (!stir || !(steps > 0)) return fn();
+    const s = sim();
+    const seconds = steps * session.current.scene.simulation.dt;
+    const [dx, dy, dz] = stir.displacement;
+    const speed = Math.hypot(dx, dy, dz) / seconds;
+    const scale = speed > MAX_STIR_SPEED ? MAX_STIR_SPEED / speed : 1;
+    const velocity = new Float32Array([dx, dy, dz].map((d) => (d / seconds) * scale));
+    s.stir(new Float32Array(stir.position), velocity, stir.radius);
+    session.stirred({ position: [...stir.position], velocity: [...velocity], radius: stir.radius }, steps);
+    stir = null;
+    try {
+      return fn();
+    } finally {
+      s.stir(new Float32Array(3), new Float32Array(3), 0);
+    }
+  };
+  /** A scene's blob cap for the lighter version (`lighten.js`): a whole number ≥ 1, or none. */
+  const setCap = (blobCap) => {
+    if (blobCap !== undefined && blobCap !== null && !(Number.isInteger(blobCap) && blobCap >= 1)) {
+      throw new Error(`blobCap must be a whole number of at least 1, or null (got ${blobCap})`);
+    }
+    session.blobCap = blobCap ?? Infinity;
+  };
   return {
-    load: async ({ id, scene }) => ({ result: await session.load(id, scene) }),
-    edit: async ({ id, scene }) => ({ result: await session.edit(id, scene) }),
+    load: async ({ id, scene, blobCap }) => {
+      setCap(blobCap);
+      stir = null;
+      return { result: await session.load(id, scene) };
+    },
+    edit: async ({ id, scene, blobCap }) => {
+      setCap(blobCap);
+      return { result: await session.edit(id, scene) };
+    },
     reset: async ({ id }) => {
+      stir = null;
       await session.reset(id);
       return frame(sim());
     },
-    stir: ({ position, velocity, radius }) => {
-      // The pointer's wind: from the next step until the next stir (radius 0 stops it).
-      sim().stir(new Float32Array(position ?? [0, 0, 0]), new Float32Array(velocity ?? [0, 0, 0]), radius);
+    stir: ({ position, displacement, radius }) => {
+      // The pointer moved by `displacement` (m) to `position` with a reach of `radius` (m): the
+      // motion adds up until steps use it.
+      const vector = (v, name) => {
+        if (!(Array.isArray(v) && v.length === 3 && v.every((c) => Number.isFinite(c) && Math.abs(c) <= 1e6))) {
+          throw new Error(`stir: ${name} must be 3 finite numbers of at most 1e6`);
+        }
+        return v;
+      };
+      if (!(Number.isFinite(radius) && radius > 0 && radius <= 1e3)) throw new Error(`stir: radius must be between 0 and 1000 m (got ${radius})`);
+      sim();
+      const d = vector(displacement, 'displacement');
+      const before = stir?.displacement ?? [0, 0, 0];
+      stir = { position: vector(position, 'position'), displacement: before.map((b, k) => b + d[k]), radius };
       return { result: null };
     },
-    advance: ({ id, steps }) => advance(sim(), id, steps, progress),
+    advance: ({ id, steps }) => stirred(steps, () => {
+      const out = advance(sim(), id, steps, progress);
+      session.stepped(steps);
+      return out;
+    }),
     // The GPU stepper (`web/src/stepper/`): the gas's centres go to the GPU and come back on
     // demand; while they are there, each step hands over only the newborns, the emptied slots and
     // the frozen wind (`frame::gpu_steps` in the core).
@@ -127,7 +188,8 @@ export function createHandlers(core, progress, memory = () => 0) {
       s.checkSteps(steps);
       if (!s.centresOnGpu()) throw new Error('the gas is not on the GPU');
       const t0 = performance.now();
-      const out = s.stepForGpu(steps);
+      const out = stirred(steps, () => s.stepForGpu(steps));
+      session.stepped(steps);
       const result = { ...out, stepMs: steps > 0 ? (performance.now() - t0) / steps : 0, fieldVersion: session.fieldVersion, gpu: true };
       const arrays = ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'sigmaRange', 'spheres'];
       return { result, transfer: arrays.map((k) => out[k].buffer) };
@@ -136,11 +198,11 @@ export function createHandlers(core, progress, memory = () => 0) {
       sim().takeCentres(centres, Boolean(keepOnGpu));
       return { result: null };
     },
-    // The scene re-stepped here from its start to where it was (the GPU's state was lost).
+    // The scene run again here from its start to where it is, its edits and stirs at the steps
+    // they came at (the GPU's copy of the gas was lost): the worker holds the gas from now.
     restep: async ({ id }) => {
-      const steps = Math.round(sim().time() / session.current.scene.simulation.dt);
-      await session.reset(id);
-      return advance(sim(), id, steps, progress);
+      await session.replay(id);
+      return advance(sim(), id, 0, progress);
     },
     health: () => {
       // For long runs: the core's memory, the blob count, and blobs whose centre is not finite.

@@ -11,6 +11,8 @@
 // answered meanwhile (on the current scene), and a newer valid `load` or `edit` wanting other
 // field parameters supersedes it: the older one then rejects with "cancelled: ...".
 
+import { lightenScene, overCap } from './lighten.js';
+
 /** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
 const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
 
@@ -45,8 +47,25 @@ export class Session {
    */
   simField = null;
   fieldVersion = 0;
-  /** Its scene: the core's normalised JSON text, that parsed, and its field parameters ('' for none). */
+  /**
+   * Its scene: the core's normalised JSON text, that parsed, its field parameters ('' for none),
+   * and the JSON text the simulation runs (the lighter version's under a blob cap, `lighten.js`).
+   */
   current = null;
+  /** Most live blobs the simulation may run (`Infinity`: the scene's own `gas.max_blobs`). */
+  blobCap = Infinity;
+  /** Steps the simulation has taken since it started (its load, a restart). */
+  steps = 0;
+  /**
+   * How the running simulation began and what changed it since, so that it can be run again to
+   * where it is, exactly (`replay`: the GPU's copy of the gas was lost): the start {run, key},
+   * the JSON text and the field's key it started on; then, in order, each at the step it came
+   * at, `edit` {run, key (the field it took, or null: the one in use)}, `field` {key} (a new
+   * field swapped in) and `stir` {position, velocity, radius, steps} (the pointer's wind over
+   * that many steps).
+   */
+  #start0 = null;
+  #history = [];
   /**
    * The field parameters the newest valid `load` or `edit` wants ('' for none): a synthesis in
    * flight for other parameters gives way to it.
@@ -78,12 +97,21 @@ export class Session {
     return this.field;
   }
 
-  /** `text` validated and normalised by the core: {json, scene, key}. */
+  /**
+   * `text` validated and normalised by the core: {json, scene, key, run}, `run` the JSON text the
+   * simulation runs (the scene's own, or its lighter version under the blob cap).
+   */
   #read(text) {
     const json = this.core.validateScene(sceneText(text));
     const scene = JSON.parse(json);
     const key = scene.field.amplitude > 0 ? this.core.sceneFieldParams(json) : '';
-    return { json, scene, key };
+    const run = overCap(scene, this.blobCap) ? this.core.validateScene(JSON.stringify(lightenScene(scene, this.blobCap))) : json;
+    return { json, scene, key, run };
+  }
+
+  /** Whether the simulation runs a lighter version of its scene (fewer blobs). */
+  get lightened() {
+    return Boolean(this.current && this.current.run !== this.current.json);
   }
 
   /** Notes the field the simulation runs on now. */
@@ -95,8 +123,8 @@ export class Session {
   }
 
   /** A new simulation of `next` (from `#read`), on the current field when it has one. */
-  #simulationOf({ json, key }) {
-    return key ? this.core.SceneSimulation.withField(json, this.field) : new this.core.SceneSimulation(json);
+  #simulationOf({ run, key }) {
+    return key ? this.core.SceneSimulation.withField(run, this.field) : new this.core.SceneSimulation(run);
   }
 
   /**
@@ -157,8 +185,9 @@ export class Session {
     this.sim = sim;
     this.current = next;
     this.#runsOn(next.key ? this.field : null);
+    this.#began(next);
     this.progress(id, 1, 'done');
-    return { sceneJson: next.json, fieldMs: this.fieldMs, size: this.field ? Array.from(this.field.size()) : null };
+    return { sceneJson: next.json, fieldMs: this.fieldMs, size: this.field ? Array.from(this.field.size()) : null, ...this.#cap(next) };
   }
 
   /**
@@ -177,8 +206,11 @@ export class Session {
     }
     this.#wantedKey = next.key;
     this.#latestLoad = id;
-    const restarted = ready && next.key ? this.sim.editWithField(next.json, this.field) : this.sim.edit(next.json);
+    const withField = ready && next.key;
+    const restarted = withField ? this.sim.editWithField(next.run, this.field) : this.sim.edit(next.run);
     this.current = next;
+    if (restarted) this.#began({ run: next.run, key: withField ? next.key : this.#keyInUse() });
+    else this.#history.push({ kind: 'edit', step: this.steps, run: next.run, key: withField ? next.key : null });
     if (!next.key) this.#runsOn(null);
     else if (ready) this.#runsOn(this.field);
     if (!ready) {
@@ -186,11 +218,17 @@ export class Session {
         if (this.sim && this.current.key === next.key) {
           this.sim.setField(this.field);
           this.#runsOn(this.field);
+          this.#history.push({ kind: 'field', step: this.steps, key: next.key });
         }
         this.progress(id, 1, 'done');
       }, () => {});
     }
-    return { sceneJson: next.json, restarted, fieldPending: !ready, fieldMs: this.fieldMs };
+    return { sceneJson: next.json, restarted, fieldPending: !ready, fieldMs: this.fieldMs, ...this.#cap(next) };
+  }
+
+  /** The blob cap the simulation of `next` runs under: {blobCap (its max_blobs, or null for the scene's own)}. */
+  #cap(next) {
+    return { blobCap: next.run === next.json ? null : JSON.parse(next.run).gas.max_blobs };
   }
 
   /** Restarts the current scene at t = 0, on its own field (waiting for one being synthesised). */
@@ -202,6 +240,94 @@ export class Session {
     this.sim.free();
     this.sim = sim;
     this.#runsOn(scene.key ? this.field : null);
+    this.#began(scene);
+  }
+
+  /** The simulation (re)started from `start` ({run, key}) at step 0: its history begins. */
+  #began({ run, key }) {
+    this.steps = 0;
+    this.#start0 = { run, key };
+    this.#history = [];
+  }
+
+  /** The key of the field the simulation runs on now ('' for none). */
+  #keyInUse() {
+    return this.simField ? this.fieldKey : '';
+  }
+
+  /** The simulation took `n` steps. */
+  stepped(n) {
+    this.steps += n;
+  }
+
+  /** The pointer's wind `stir` ({position, velocity, radius}) acts on the next `steps` steps. */
+  stirred(stir, steps) {
+    this.#history.push({ kind: 'stir', step: this.steps, steps, ...stir });
+  }
+
+  /**
+   * Runs the simulation again from its start to the step it is at, with every edit, field and
+   * stir at the step it came at: the same state, bit for bit, as stepping it here all along
+   * (after the GPU stepped it and lost it). Fields no longer held are synthesised again (under
+   * request `id`, with progress); the running simulation is replaced by the replayed one.
+   */
+  async replay(id) {
+    this.requireSim();
+    const target = this.steps;
+    const made = new Map();
+    const fieldOf = async (key) => {
+      if (!key) return null;
+      if (key === this.fieldKey && this.field) return this.field;
+      if (!made.has(key)) {
+        const run = new this.core.FieldSynthesis(key);
+        try {
+          while (run.step()) await yieldToEvents();
+          made.set(key, run.finish());
+        } finally {
+          run.free();
+        }
+      }
+      return made.get(key);
+    };
+    try {
+      const start = this.#start0;
+      const first = await fieldOf(start.key);
+      const sim = first ? this.core.SceneSimulation.withField(start.run, first) : new this.core.SceneSimulation(start.run);
+      let at = 0;
+      const stepTo = async (step) => {
+        while (at < step) {
+          const n = Math.min(step - at, 64);
+          sim.step(n);
+          at += n;
+          this.progress(id, at / Math.max(target, 1), 'replaying the steps');
+          await yieldToEvents();
+        }
+      };
+      try {
+        for (const e of this.#history) {
+          await stepTo(e.step);
+          if (e.kind === 'edit') {
+            const field = await fieldOf(e.key);
+            if (field) sim.editWithField(e.run, field);
+            else sim.edit(e.run);
+          } else if (e.kind === 'field') {
+            sim.setField(await fieldOf(e.key));
+          } else if (e.kind === 'stir') {
+            sim.stir(new Float32Array(e.position), new Float32Array(e.velocity), e.radius);
+            await stepTo(e.step + e.steps);
+            sim.stir(new Float32Array(3), new Float32Array(3), 0);
+          }
+        }
+        await stepTo(target);
+      } catch (err) {
+        sim.free();
+        throw err;
+      }
+      this.sim.free();
+      this.sim = sim;
+    } finally {
+      for (const field of made.values()) if (field !== this.field) field.free();
+    }
   }
 
   /**

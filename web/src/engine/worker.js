@@ -4,8 +4,10 @@
 // Protocol (page → worker): { id, type, ...args }.
 // Replies (worker → page): { id, ok: true, result } | { id, ok: false, error },
 // progress while a request runs: { id, type: 'progress', progress, stage },
-// { type: 'fatal', error } if the core cannot start, and { type: 'crashed', error } if it traps
-// (a Rust panic or running out of memory leaves the instance unusable: the page restarts us).
+// { type: 'fatal', error } if the core cannot start, { type: 'crashed', error } if it traps
+// (a Rust panic or running out of memory leaves the instance unusable: the page restarts us),
+// and a refusal that grew the core's memory past REFUSAL_GROWTH says so (`recycle`: the page
+// then restarts us to give the memory back).
 // Requests that arrive before the core is ready wait for it, in order. A field synthesis yields
 // between its stages, so requests keep being answered meanwhile (on the current scene), and a
 // newer valid `load` supersedes one in flight, which then rejects with "cancelled: ...".
@@ -15,6 +17,13 @@ import init, * as core from '../../pkg/windfield.js';
 import { createHandlers } from './handlers.js';
 
 let memory = null;
+/**
+ * A refused request that grew the core's memory by more than this (bytes) has the worker
+ * restarted: WebAssembly memory is never given back, and a hostile scene's parse may have taken
+ * a lot of it before the refusal.
+ */
+const REFUSAL_GROWTH = 64 * 1024 * 1024;
+const memoryBytes = () => memory?.buffer.byteLength ?? 0;
 const ready = init().then((wasm) => { memory = wasm.memory; }, (err) => {
   self.postMessage({ type: 'fatal', error: `could not start the WASM core: ${err?.message ?? err}` });
   throw err;
@@ -22,7 +31,7 @@ const ready = init().then((wasm) => { memory = wasm.memory; }, (err) => {
 
 const handlers = createHandlers(core, (id, value, stage) => {
   self.postMessage({ id, type: 'progress', progress: value, stage });
-}, () => memory?.buffer.byteLength ?? 0);
+}, memoryBytes);
 
 self.onmessage = async (event) => {
   const msg = event.data;
@@ -35,12 +44,15 @@ self.onmessage = async (event) => {
     return;
   }
   const handler = Object.hasOwn(handlers, msg.type) ? handlers[msg.type] : null;
+  const before = memoryBytes();
   try {
     if (!handler) throw new Error(`unknown request "${String(msg.type)}"`);
     const { result, transfer = [] } = await handler(msg);
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {
-    self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err) });
+    const grown = memoryBytes() - before;
+    const recycle = grown > REFUSAL_GROWTH ? `a refused request took ${Math.round(grown / 2 ** 20)} MiB of the engine's memory` : undefined;
+    self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err), ...(recycle && { recycle }) });
     if (err instanceof WebAssembly.RuntimeError) {
       self.postMessage({ type: 'crashed', error: `the WASM core stopped (${err.message})` });
     }

@@ -94,3 +94,9 @@ export const MAX_POINTS = 16777216;
 
 /** The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one. (`gas::blob_list::DEFAULT_RENDER_TIME`) */
 export const DEFAULT_RENDER_TIME = 3;
+
+/** Widest and tallest image (pixels) a still, a capture or an export may be. (`gas::limits::MAX_IMAGE_SIDE`) */
+export const MAX_IMAGE_SIDE = 8192;
+
+/** Most fixed steps one run may take (a step call, a recording). (`gas::limits::MAX_STEPS`) */
+export const MAX_STEPS = 1000000;

@@ -4,6 +4,7 @@
 
 import GUI from 'lil-gui';
 import { Player, QUALITIES, SLICE_PLANES } from '../player.js';
+import { rememberChoice } from '../player/machine.js';
 import { VIEWS } from '../views/modes.js';
 import { decodeScene, encodeScene } from '../state/url-codec.js';
 import { showMessage, showProgress } from './page-ui.js';
@@ -11,6 +12,7 @@ import { sceneEditor } from './scene-editor.js';
 import { presetCatalog, PRESET_NAME, scenePicker } from './scene-picker.js';
 import { drawSliceLegend } from './slice-legend.js';
 import { statusText } from './status-line.js';
+import { DEFAULT_RENDER_TIME } from '../generated/contract.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
@@ -21,6 +23,8 @@ const smallScreen = window.matchMedia?.('(max-width: 800px), (max-height: 540px)
  * may go without answering a request before it is restarted; 30 unless given).
  */
 const query = new URLSearchParams(location.search);
+/** A number as a person writes it in decimal (no hex, no blanks, no units). */
+const DECIMAL = /^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$/i;
 /** The default scene's preset name. */
 const DEFAULT = 'default';
 /** How often the status line is rewritten (ms). */
@@ -34,24 +38,66 @@ const titleOf = (name) => presets.find((p) => p.name === name)?.title ?? name;
 const nameOfDefault = () => `the default scene (${titleOf(DEFAULT).toLowerCase()})`;
 
 let lastStatus = 0;
-const timeout = Number(query.get('timeout'));
+/** `?timeout=S`: seconds (1 to 3600) the engine may go without answering a request. */
+const timeout = query.has('timeout') ? Number(query.get('timeout')) : null;
+const timeoutOk = timeout === null || (Number.isFinite(timeout) && timeout >= 1 && timeout <= 3600);
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
-  ...(timeout > 0 && { requestTimeoutMs: 1000 * timeout }),
+  ...(timeout !== null && timeoutOk && { requestTimeoutMs: 1000 * timeout }),
   profile: query.has('profile'),
   onProgress: showProgress,
   onMessage: (text) => showMessage(text),
-  onFrame: () => updateStatus(),
+  onLighter: (lighter) => showLighterNotice(lighter),
+  onFrame: () => {
+    updateStatus();
+    // The poster goes once the view shows gas.
+    if (player.snapshot().blobs > 0) $('#poster').hidden = true;
+  },
   onScene: async (scene) => {
     $('#canvas').setAttribute('aria-label', `Gas in a turbulent wind: ${sceneName}, ${scene.emitters.length} emitter${scene.emitters.length === 1 ? '' : 's'}, ${scene.wind.length} wind primitive${scene.wind.length === 1 ? '' : 's'}`);
     history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
     controls?.refresh();
   },
 });
+if (!timeoutOk) showMessage(`The link's timeout was not used: it must be a number of seconds from 1 to 3600 (got ${query.get('timeout')}); the engine's limit stays 30 s.`);
+setPlaying(!reduceMotion);
+/** `?fps=N`: draw at most N frames a second (0.1 to 240). */
+if (query.has('fps')) {
+  try {
+    player.setMaxFps(Number(query.get('fps')));
+  } catch (e) {
+    showMessage(`The link's fps was not used: ${e.message.replace(/^setMaxFps: /, '')}.`);
+  }
+}
 const initialView = query.get('view');
-player.setView(VIEWS.includes(initialView) ? initialView : VIEWS[0]);
+if (VIEWS.includes(initialView)) player.setView(initialView);
 if (QUALITIES.includes(query.get('quality'))) player.setQuality(query.get('quality'));
 player.setGuides(true);
+
+/**
+ * The notice of the lighter version (`player/machine.js`): why, what it gave up, and the full
+ * version one click away (which holds for the rest of the visit).
+ */
+function showLighterNotice({ reason, gaveUp, renderer }) {
+  const why = reason === 'software'
+    ? 'This browser draws 3-D in software: showing a lighter version.'
+    : 'This machine draws the 3-D view slowly: showing a lighter version.';
+  showMessage(why, {
+    info: true,
+    details: [
+      ...gaveUp.map((g) => `Given up: ${g}.`),
+      ...(renderer ? [`The browser draws with ${renderer}.`] : []),
+      'Every setting can be changed in the panel; a change holds for the rest of this visit.',
+    ],
+    actions: [{
+      label: 'Show the full version',
+      run: () => {
+        rememberChoice('full', true);
+        player.showFull().catch((e) => showMessage(e.message)).finally(() => { controls?.refresh(); updateStatus(true); });
+      },
+    }],
+  });
+}
 
 /** The status line: always visible over the view, rewritten at most four times a second. */
 function updateStatus(force = false) {
@@ -78,14 +124,36 @@ function download(name, href) {
   a.click();
 }
 
-/** Loads a whole new scene (it starts at t = 0) named `name` for notices and the canvas. */
-async function loadScene(scene, name) {
+/** Plays or pauses, with the Play button saying which. */
+function setPlaying(on) {
+  player.setPlaying(on);
+  $('#play').setAttribute('aria-pressed', String(on));
+  $('#play').textContent = on ? 'Pause' : 'Play';
+}
+
+/**
+ * Loads a whole new scene (it starts at t = 0) named `name` for notices and the canvas, with
+ * `poster` (an image URL, or null) over the view until its first frame with gas. Paused (with
+ * reduced motion, say), the scene is shown at its `render.time`, as a still would show it.
+ */
+async function loadScene(scene, name, poster = null) {
   const previous = sceneName;
   sceneName = name;
+  const img = $('#poster');
+  if (poster) {
+    img.src = poster;
+    img.hidden = false;
+  }
   try {
-    return await player.load(scene);
+    const loaded = await player.load(scene);
+    if (!player.playing) {
+      const steps = Math.round((loaded.render.time ?? DEFAULT_RENDER_TIME) / loaded.simulation.dt);
+      if (steps > 0) await player.step(steps);
+    }
+    return loaded;
   } catch (e) {
     sceneName = previous;
+    img.hidden = true;
     throw e;
   }
 }
@@ -124,8 +192,8 @@ const editWith = (fn) => () => {
 function simulationFolder(gui) {
   const sim = gui.addFolder('Simulation');
   const actions = {
-    play: () => player.setPlaying(true),
-    pause: () => player.setPlaying(false),
+    play: () => setPlaying(true),
+    pause: () => setPlaying(false),
     step: () => player.step(1),
     reset: () => player.reset().catch((e) => showMessage(`Could not restart the scene: ${e.message}`)),
   };
@@ -134,30 +202,40 @@ function simulationFolder(gui) {
   sim.add(actions, 'step').name('step once');
   sim.add(actions, 'reset').name('restart at t = 0');
   // The player's settings, as properties for the panel.
+  // The view's settings are the user's own choices: each holds for the rest of the visit over
+  // the lighter version (`player/machine.js`).
   const settings = {
     get speed() { return player.speed; },
     set speed(v) { player.setSpeed(v); },
     get mode() { return player.mode; },
-    set mode(v) { player.setView(v); },
+    set mode(v) { player.setView(v); rememberChoice('view', v); },
     get quality() { return player.quality; },
-    set quality(v) { player.setQuality(v); },
+    set quality(v) { player.setQuality(v); rememberChoice('quality', v); },
+    get resolution() { return player.resolutionSetting; },
+    set resolution(v) { player.setResolution(v); rememberChoice('resolution', v); },
+    get blobCap() { return player.blobCap ?? 'none'; },
+    set blobCap(v) {
+      const cap = v === 'none' ? null : Number(v);
+      rememberChoice('blobCap', cap);
+      player.setBlobCap(cap).catch((e) => showMessage(`Could not change the blob cap: ${e.message}`)).finally(() => updateStatus(true));
+    },
   };
   sim.add(settings, 'speed', 0, 4, 0.05).name('time speed');
-  sim.add(settings, 'mode', VIEWS).name('view');
-  sim.add(settings, 'quality', QUALITIES).name('quality');
+  sim.add(settings, 'mode', VIEWS).name('view').listen();
+  sim.add(settings, 'quality', QUALITIES).name('quality').listen();
   const stepping = {
     get stepper() { return player.stepperChoice; },
     set stepper(kind) {
+      rememberChoice('stepper', kind);
       player.setStepper(kind)
         .then((now) => { if (kind === 'gpu' && now !== 'gpu') showMessage(`The worker steps the gas: ${player.snapshot().stepperReason}.`); })
         .catch((e) => showMessage(`Could not change what steps the gas: ${e.message}`))
         .finally(() => updateStatus(true));
     },
   };
-  sim.add(stepping, 'stepper', { 'auto (GPU where it can)': 'auto', GPU: 'gpu', 'worker (CPU)': 'cpu' }).name('gas stepped by');
-  const resolution = { scale: 'auto' };
-  sim.add(resolution, 'scale', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution')
-    .onChange((v) => player.setResolution(v));
+  sim.add(stepping, 'stepper', { 'auto (GPU where it can)': 'auto', GPU: 'gpu', 'worker (CPU)': 'cpu' }).name('gas stepped by').listen();
+  sim.add(settings, 'resolution', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution').listen();
+  sim.add(settings, 'blobCap', { 'the scene’s own': 'none', '300,000': 300000, '100,000': 100000, '30,000': 30000 }).name('most blobs').listen();
   const view = {
     get guides() { return player.guides; },
     set guides(on) { player.setGuides(on); },
@@ -192,25 +270,40 @@ function sceneFolders(gui) {
   const proxy = {};
   const getters = {};
   const scene = () => player.scene;
-  // Number fields without slider ranges: a typed value goes to the core as it is, and the core
-  // names the valid range when it refuses one.
-  const bind = (folder, label, get, set, step) => {
+  // Number fields without slider ranges: a typed value goes to the core exactly as typed (not
+  // rounded to the field's step), and the core names the valid range when it refuses one; text
+  // that is not a decimal number is refused here, with what was typed.
+  const bind = (folder, label, get, set) => {
     proxy[label] = get(scene());
     getters[label] = get;
     const c = folder.add(proxy, label);
-    if (step !== undefined) c.step(step);
-    return c.onFinishChange(editWith((s) => set(s, proxy[label])));
+    // What was typed, before the field reads it as a float and shows that instead.
+    let typed = null;
+    if (typeof proxy[label] === 'number') c.$input.addEventListener('input', () => { typed = c.$input.value; });
+    return c.onFinishChange(() => {
+      if (typeof proxy[label] === 'boolean') return editWith((s) => set(s, proxy[label]))();
+      const text = (typed ?? String(proxy[label])).trim();
+      typed = null;
+      const value = DECIMAL.test(text) ? Number(text) : NaN;
+      if (!Number.isFinite(value)) {
+        showMessage(`That change was not applied: ${label} must be a number written in decimal, like 0.25 or 1e-3 (got “${text.slice(0, 40)}”).`);
+        proxy[label] = get(scene());
+        c.updateDisplay();
+        return undefined;
+      }
+      return editWith((s) => set(s, value))();
+    });
   };
   const field = gui.addFolder('Small-scale field (§3)');
-  bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; }, 0.01);
-  bind(field, 'k inertial', (s) => s.field.spectrum.k_inertial, (s, v) => { s.field.spectrum.k_inertial = v; }, 0.5);
-  bind(field, 'σ', (s) => s.field.spectrum.sigma, (s, v) => { s.field.spectrum.sigma = v; }, 0.05);
-  bind(field, 'amplitude', (s) => s.field.amplitude, (s, v) => { s.field.amplitude = v; }, 0.05);
-  bind(field, 'seed', (s) => s.seed, (s, v) => { s.seed = v; }, 1);
+  bind(field, 'ε', (s) => s.field.spectrum.epsilon, (s, v) => { s.field.spectrum.epsilon = v; });
+  bind(field, 'k inertial', (s) => s.field.spectrum.k_inertial, (s, v) => { s.field.spectrum.k_inertial = v; });
+  bind(field, 'σ', (s) => s.field.spectrum.sigma, (s, v) => { s.field.spectrum.sigma = v; });
+  bind(field, 'amplitude', (s) => s.field.amplitude, (s, v) => { s.field.amplitude = v; });
+  bind(field, 'seed', (s) => s.seed, (s, v) => { s.seed = v; });
   const gas = gui.addFolder('Gas (§4)');
-  bind(gas, 'diffusion κ', (s) => s.gas.diffusion, (s, v) => { s.gas.diffusion = v; }, 1e-6);
-  bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; }, 0.01);
-  bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; }, 100);
+  bind(gas, 'diffusion κ', (s) => s.gas.diffusion, (s, v) => { s.gas.diffusion = v; });
+  bind(gas, 'dissipation α', (s) => s.gas.dissipation, (s, v) => { s.gas.dissipation = v; });
+  bind(gas, 'max blobs', (s) => s.gas.max_blobs, (s, v) => { s.gas.max_blobs = v; });
   const look = gui.addFolder('Rendering (§5)');
   bind(look, 'shadows', (s) => s.render.shadows, (s, v) => { s.render.shadows = v; });
   const editor = sceneEditor(gui, { scene, apply: (draft) => tryEdit(structuredClone(draft)) });
@@ -231,8 +324,14 @@ function shareFolder(gui) {
     importScene: () => $('#import').click(),
     still: async () => {
       const size = { width: 480, height: 360 };
-      const url = await player.renderReference(size);
-      $('#still').src = url;
+      // Drawn on a canvas from the PNG's bytes: no data: or blob: URL, which a strict Content
+      // Security Policy (`img-src 'self'`) refuses.
+      const png = await player.referencePng(size);
+      const bitmap = await createImageBitmap(new Blob([png], { type: 'image/png' }));
+      const canvas = $('#still');
+      [canvas.width, canvas.height] = [bitmap.width, bitmap.height];
+      canvas.getContext('2d').drawImage(bitmap, 0, 0);
+      bitmap.close();
       $('#still-figure .still-caption').textContent = `Reference still (CPU renderer), t = ${player.snapshot().time.toFixed(2)} s, ${size.width} × ${size.height}`;
       $('#still-figure').hidden = false;
     },
@@ -247,7 +346,7 @@ function shareFolder(gui) {
     },
     frames: 120,
     video: async () => {
-      player.setPlaying(false);
+      setPlaying(false);
       try {
         const video = await player.recordWebM({ frames: actions.frames, width: 640, height: 480 });
         download('windfield.webm', URL.createObjectURL(video));
@@ -307,9 +406,13 @@ function wireKeys() {
       e.preventDefault();
       return;
     }
-    if (e.key === ' ') { player.setPlaying(!player.playing); e.preventDefault(); }
+    if (e.key === ' ') { setPlaying(!player.playing); e.preventDefault(); }
     if (e.key === '.') player.step(1);
-    if (e.key === 'v') player.setView(player.mode === 'points' ? 'raymarch' : 'points');
+    if (e.key === 'v') {
+      const next = player.mode === 'points' ? 'raymarch' : 'points';
+      player.setView(next);
+      rememberChoice('view', next);
+    }
     if (e.key === 'g') player.setGuides(!player.guides);
     if (e.key === 's') setStirring(!player.stirring);
     if (e.key === 'w') {
@@ -318,6 +421,7 @@ function wireKeys() {
     }
   });
   $('#stir').addEventListener('click', () => setStirring(!player.stirring));
+  $('#play').addEventListener('click', () => setPlaying(!player.playing));
   $('#still-figure .still-close').addEventListener('click', () => { $('#still-figure').hidden = true; });
 }
 
@@ -351,7 +455,7 @@ async function loadPreset(name) {
   const scene = response?.ok && isJson ? await response.json().catch(() => null) : null;
   if (!scene || typeof scene !== 'object' || !('version' in scene)) throw new NoSuchPreset(name);
   const label = name === DEFAULT ? nameOfDefault() : `the ${titleOf(name).toLowerCase()} scene`;
-  return loadScene(scene, label);
+  return loadScene(scene, label, new URL(`./scenes/thumbs/${name}.png`, document.baseURI).href);
 }
 
 /**

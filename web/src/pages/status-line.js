@@ -9,6 +9,11 @@ const LIMITS = {
   paused: 'paused',
 };
 
+/** Frames a second as the status line shows them: one decimal below 10 (0.2 stays 0.2), whole above. */
+export function fpsText(fps) {
+  return fps < 10 ? fps.toFixed(1) : String(Math.round(fps));
+}
+
 /**
  * The status text for `stats` (the player's `stats()`) in view `mode`, with the real-time
  * view's volume (`[nx, ny, nz]` voxels, or null) and whether the pointer stirs.
@@ -16,8 +21,8 @@ const LIMITS = {
 export function statusText(stats, { mode, volume = null, stirring = false }) {
   const parts = [
     `t = ${stats.time.toFixed(2)} s`,
-    `${stats.blobs.toLocaleString('en')} blobs`,
-    `${Math.round(stats.fps)} fps (${LIMITS[stats.limitedBy] ?? stats.limitedBy})`,
+    `${stats.blobs.toLocaleString('en')} blobs${stats.sceneBlobCap ? ` (lighter version: at most ${stats.sceneBlobCap.toLocaleString('en')})` : ''}`,
+    `${fpsText(stats.fps)} fps (${LIMITS[stats.limitedBy] ?? stats.limitedBy})`,
     `step ${stats.stepMs.toFixed(2)} ms (${stats.stepper === 'gpu' ? 'GPU' : `worker${stats.stepperReason ? `: ${stats.stepperReason}` : ''}`})`,
     `field ${stats.fieldMs.toFixed(0)} ms`,
   ];

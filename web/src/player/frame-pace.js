@@ -1,20 +1,21 @@
 // How the player's frames go: the frames drawn per second (`stats().fps`), what holds the rate
-// down (`stats().limitedBy`), and the pace the view keeps up, which the resolution governor
-// follows (`resolution.js`).
+// down (`stats().limitedBy`), the time a frame takes (`frameMs`, which sets how many steps a
+// frame may take), and the pace the view itself keeps up, which the resolution governor follows
+// (`resolution.js`) while playing as well as while the camera moves.
 
-/** A frame that waited longer than this (ms) for the worker's step was paced by the worker. */
-const WORKER_WAIT_MS = 2;
+/** `stats().fps` counts the frames drawn in this window (ms): 0.2 frames a second shows as 0.2. */
+const RATE_WINDOW_MS = 5000;
 
 export class FramePace {
-  /** When the last frames were drawn (ms), the newest last: `stats().fps` counts them. */
+  /** When the last frames were drawn (ms), the newest last, within `RATE_WINDOW_MS`. */
   #times = [];
-  /** When the loop last found nothing to do (rAF ms). */
-  #idleAt = -Infinity;
+  /** When the count began (ms): a window shorter than `RATE_WINDOW_MS` until it has run that long. */
+  #since = null;
   /** When the last frame was drawn (ms). */
-  #lastDrawn = 0;
-  /** Frames per second the view keeps up, from frames drawn back to back (the governor's input). */
+  #lastDrawn = -Infinity;
+  /** Frames a second the view itself keeps up (smoothed): the governor's input. */
   #pace = 0;
-  /** How long the frame being drawn waited for the worker (ms), and the share of recent frames spent so. */
+  /** How long the frame being drawn waited for the worker's step (ms), and the share of recent frames spent so. */
   #waited = 0;
   #waitShare = 0;
 
@@ -25,6 +26,13 @@ export class FramePace {
   constructor(stats, resolution) {
     this.stats = stats;
     this.resolution = resolution;
+    /** A frame's time (ms, smoothed) from one drawn frame to the next while they come back to back. */
+    this.frameMs = 1000 / 60;
+  }
+
+  /** The view's own frames a second (smoothed; 0 before the first frame). */
+  get pace() {
+    return this.#pace;
   }
 
   /** The frame being drawn waited `ms` for the worker's step. */
@@ -34,50 +42,63 @@ export class FramePace {
 
   /** The loop found nothing to do at `now` (rAF ms). */
   idle(now) {
-    this.#idleAt = now;
+    this.#countRate(now);
   }
 
-  /** At `now` (ms): frames stop counting while nothing is drawn. */
+  /** At `now` (ms): the rate falls while nothing is drawn. */
   tick(now) {
-    if (now - (this.#times.at(-1) ?? -Infinity) > 2000 && this.stats.fps > 0) this.#countRate(now);
+    this.#countRate(now);
   }
 
   /**
    * Counts a frame drawn from `start` to `end` (ms), while `playing`. `stats().fps` is the
-   * number of frames drawn in the last second (the last two while the rate is low), so it says
-   * what the screen shows; `stats().limitedBy` what holds the rate down: `worker` (frames spend
-   * most of their time waiting for the step), `view` (drawing takes the time), `display` (the
-   * frames keep up with the display) or `paused`. The resolution follows the pace of frames the
-   * view itself paced: drawn back to back, not after an idle animation frame (a scene stepping
-   * slower than the display) nor after waiting for the worker. Returns whether the governor
-   * changed the resolution (when `scaled`, the view's resolution follows it).
+   * number of frames drawn in the last five seconds divided by five (by the time since the
+   * count began, before that), so it says what the screen shows, however slow; `stats().limitedBy`
+   * what holds the rate down: `worker` (frames spend most of their time waiting for the step),
+   * `view` (drawing takes the time), `display` (the frames keep up with the display) or `paused`.
+   * The view's own pace is a frame's time less its wait for the worker, so the resolution
+   * follows the view's cost whether the scene plays or the camera moves. Returns whether the
+   * governor changed the resolution (when `scaled`, the view's resolution follows it).
    */
   drawn(start, end, { playing, scaled }) {
-    const times = this.#times;
-    times.push(end);
-    while (times.length > 2 && times[0] < end - 2000) times.shift();
+    this.#times.push(end);
+    this.#since ??= start;
     this.stats.frames += 1;
     this.#countRate(end);
+    // Back to back: this frame began soon after the last one ended.
     const busy = start - this.#lastDrawn < 100;
-    const seconds = (busy ? end - this.#lastDrawn : end - start) / 1000;
-    // The share of the frame spent waiting for the worker's step (smoothed).
-    if (seconds > 0) this.#waitShare = 0.8 * this.#waitShare + 0.2 * Math.min(this.#waited / (1000 * seconds), 1);
-    const paced = this.#idleAt > this.#lastDrawn || this.#waited > WORKER_WAIT_MS;
-    this.#waited = 0;
+    const ms = busy ? end - this.#lastDrawn : end - start;
     this.#lastDrawn = end;
+    if (busy) this.frameMs = 0.7 * this.frameMs + 0.3 * ms;
+    const own = Math.max(ms - this.#waited, 0.5);
+    // The share of the frame spent waiting for the worker's step (smoothed).
+    if (ms > 0) this.#waitShare = 0.8 * this.#waitShare + 0.2 * Math.min(this.#waited / ms, 1);
+    this.#waited = 0;
     this.stats.limitedBy = !playing ? 'paused'
       : this.#waitShare > 0.5 ? 'worker'
         : this.stats.fps < 0.9 * this.resolution.target ? 'view' : 'display';
-    if (!(seconds > 0) || paced) return false;
-    this.#pace = this.#pace > 0 && busy ? 0.8 * this.#pace + 0.2 / seconds : 1 / seconds;
+    // Only frames drawn back to back tell the view's pace (a lone frame's time is the time to
+    // ask for it, not for the GPU to draw it).
+    if (!busy) return false;
+    this.#pace = this.#pace > 0 ? 0.7 * this.#pace + 0.3 * (1000 / own) : 1000 / own;
     return scaled && this.resolution.observe(end, this.#pace);
   }
 
-  /** Frames drawn per second at `now` (ms): those of the last second, or of two when few. */
+  /** Forgets the frames counted so far (a new scene, or play after a pause). */
+  restart() {
+    this.#times = [];
+    this.#since = null;
+  }
+
+  /** `stats().fps` at `now` (ms): the frames of the last five seconds, per second. */
   #countRate(now) {
     const times = this.#times;
-    const inLast = (ms) => times.filter((t) => t > now - ms).length;
-    const recent = inLast(1000);
-    this.stats.fps = recent >= 10 ? recent : inLast(2000) / 2;
+    while (times.length && times[0] <= now - RATE_WINDOW_MS) times.shift();
+    if (this.#since === null) {
+      this.stats.fps = 0;
+      return;
+    }
+    const seconds = Math.min(RATE_WINDOW_MS, Math.max(now - this.#since, 1000)) / 1000;
+    this.stats.fps = times.length / seconds;
   }
 }

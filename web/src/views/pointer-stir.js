@@ -1,33 +1,32 @@
 // Stirring the gas with a pointer or a finger: while stirring is on, dragging over the view
-// moves a transient wind primitive with the pointer (paper §6: wind fields superposed
-// interactively). The pointer is followed on the plane through the orbit target facing the
-// camera; the wind there is the pointer's own velocity, falling off as exp(−distance/radius)
-// around it (a uniform primitive with decay, outside the scene). Orbiting is off meanwhile.
+// pushes the gas with the pointer (paper §6: wind fields superposed interactively). The pointer
+// is followed on the plane through the orbit target facing the camera; each move sends how far
+// it went there, and the next steps of the simulation give that motion to the gas near it
+// (falling off as exp(−distance/radius)): the gas moves as far as the pointer did, whether the
+// view draws 60 frames a second or 2 (`stir` in engine/handlers.js). Orbiting is off meanwhile.
 
 import * as THREE from 'three';
 
 /** The stir's reach as a fraction of the camera's distance to its target. */
 const REACH = 0.06;
-/** Fastest wind the pointer makes (m/s). */
-const MAX_SPEED = 4;
-/** Least time between two stirs sent (ms). */
+/** Least time between two stirs sent (ms); the motion in between adds up. */
 const SEND_EVERY = 30;
-/** A pointer resting this long (ms) stirs no more. */
-const REST_AFTER = 120;
 
 export class PointerStir {
   /**
    * @param {import('./scene-view.js').SceneView} view
-   * @param {(position: number[], velocity: number[], radius: number) => void} send stirs the
-   *   gas (radius 0 stops it)
+   * @param {(position: number[], displacement: number[], radius: number) => void} send gives
+   *   the gas the pointer's motion `displacement` (m), ending at `position` (m), with a reach of
+   *   `radius` (m)
    */
   constructor(view, send) {
     this.view = view;
     this.send = send;
     this.on = false;
+    /** Where the pointer was last seen (world, m), and its motion not yet sent. */
     this.last = null;
+    this.unsent = new THREE.Vector3();
     this.sentAt = -Infinity;
-    this.restTimer = 0;
     this.raycaster = new THREE.Raycaster();
     this.handlers = {
       pointerdown: (e) => this.#down(e),
@@ -73,24 +72,28 @@ export class PointerStir {
 
   #down(e) {
     this.view.canvas.setPointerCapture?.(e.pointerId);
-    const at = this.worldAt(e.clientX, e.clientY);
-    this.last = at && { at, time: e.timeStamp, velocity: new THREE.Vector3() };
+    this.last = this.worldAt(e.clientX, e.clientY);
+    this.unsent.set(0, 0, 0);
   }
 
   #move(e) {
     if (!this.last) return;
-    const at = this.worldAt(e.clientX, e.clientY);
-    const dt = (e.timeStamp - this.last.time) / 1000;
-    if (!at || !(dt > 0)) return;
-    const velocity = at.clone().sub(this.last.at).divideScalar(dt).clampLength(0, MAX_SPEED);
-    // Smoothed over a few events, so one jittery event does not jerk the gas.
-    this.last = { at, time: e.timeStamp, velocity: this.last.velocity.lerp(velocity, 0.5) };
-    if (e.timeStamp - this.sentAt >= SEND_EVERY) {
-      this.sentAt = e.timeStamp;
-      this.send(at.toArray(), this.last.velocity.toArray(), this.#radius());
+    // Every position the browser saw since the last event (it may hand several at once).
+    const events = e.getCoalescedEvents?.().length ? e.getCoalescedEvents() : [e];
+    for (const c of events) {
+      const at = this.worldAt(c.clientX, c.clientY);
+      if (!at) continue;
+      this.unsent.add(at.clone().sub(this.last));
+      this.last = at;
     }
-    clearTimeout(this.restTimer);
-    this.restTimer = setTimeout(() => this.last && this.send(this.last.at.toArray(), [0, 0, 0], this.#radius()), REST_AFTER);
+    if (e.timeStamp - this.sentAt >= SEND_EVERY) this.#flush(e.timeStamp);
+  }
+
+  #flush(now) {
+    if (!this.last || this.unsent.lengthSq() === 0) return;
+    this.sentAt = now;
+    this.send(this.last.toArray(), this.unsent.toArray(), this.#radius());
+    this.unsent.set(0, 0, 0);
   }
 
   #up(e) {
@@ -99,8 +102,8 @@ export class PointerStir {
   }
 
   #stop() {
-    clearTimeout(this.restTimer);
-    if (this.last) this.send([0, 0, 0], [0, 0, 0], 0);
+    // The motion since the last send still goes to the gas.
+    this.#flush(performance.now());
     this.last = null;
   }
 }

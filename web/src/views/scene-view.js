@@ -118,6 +118,27 @@ export class SceneView {
     this.onContextLost?.();
   }
 
+  /**
+   * Lets go of everything this view made on the GPU, and of its context (the browser may give
+   * it to another page's canvas): the view draws no more.
+   */
+  dispose() {
+    this.onContextLost = null;
+    this.onContextRestored = null;
+    this.#lost = true;
+    this.volume.dispose();
+    this.exact.contextLost();
+    this.blobs.contextLost();
+    this.windSlice.contextLost();
+    this.points.contextLost();
+    this.target?.dispose();
+    this.target = null;
+    releaseGeometries(this.scene, this.overlay);
+    this.controls.dispose();
+    this.renderer.dispose();
+    this.renderer.forceContextLoss();
+  }
+
   #contextRestored() {
     this.#lost = false;
     this.#loseContext = this.renderer.getContext().getExtension('WEBGL_lose_context') ?? this.#loseContext;
@@ -325,6 +346,36 @@ export function frameDescription(info) {
   };
 }
 
+/** Half the side of a plane object's mesh (m): it reaches the horizon as far as the camera sees. */
+const PLANE_REACH = 2000;
+/** Cells from a plane's centre to its edge, and the narrowest cell there (m). */
+const PLANE_CELLS = 16;
+const PLANE_FINEST = 0.25;
+
+/**
+ * A plane object's mesh: 2·PLANE_REACH metres a side, its cells PLANE_FINEST metres wide at the
+ * centre (where the scene is, so shading and shadows are interpolated finely) and widening
+ * geometrically to the horizon: x(u) = R sinh(a·n·u) / sinh(a·n) for u in [−1, 1], 2,048
+ * triangles where an even grid of the same fineness would need millions.
+ */
+function horizonPlane() {
+  const n = PLANE_CELLS;
+  // a such that the first cell is PLANE_FINEST wide: R sinh(a) / sinh(a n) = PLANE_FINEST (bisection).
+  let [lo, hi] = [1e-6, 4];
+  for (let i = 0; i < 60; i++) {
+    const a = (lo + hi) / 2;
+    if ((PLANE_REACH * Math.sinh(a)) / Math.sinh(a * n) > PLANE_FINEST) lo = a;
+    else hi = a;
+  }
+  const a = (lo + hi) / 2;
+  const stretch = (u) => (PLANE_REACH * Math.sinh(a * n * u)) / Math.sinh(a * n);
+  const geometry = new THREE.PlaneGeometry(2, 2, 2 * n, 2 * n);
+  const p = geometry.attributes.position;
+  for (let i = 0; i < p.count; i++) p.setXY(i, stretch(p.getX(i)), stretch(p.getY(i)));
+  geometry.computeBoundingSphere();
+  return geometry;
+}
+
 function objectMesh(o, standIns, gas) {
   const material = shadowedLambert(o.color, gas);
   const model = o.type === 'cylinder' && !standIns ? modelMesh(o, material) : null;
@@ -335,7 +386,7 @@ function objectMesh(o, standIns, gas) {
     return mesh;
   }
   if (o.type === 'plane') {
-    const mesh = new THREE.Mesh(new THREE.PlaneGeometry(4000, 4000, 200, 200), material);
+    const mesh = new THREE.Mesh(horizonPlane(), material);
     mesh.position.fromArray(o.point);
     mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3().fromArray(o.normal).normalize());
     return mesh;

@@ -8,6 +8,23 @@ out vec2 vUv;
 void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }
 `;
 
+/**
+ * A copy of `material` that shares its uniforms (the same objects, not copies): a variant of a
+ * pass's shader reading the same inputs. three.js's `clone` would copy the uniforms first (and
+ * warn about every render target's texture among them).
+ */
+export function sharingUniforms(material) {
+  const { uniforms } = material;
+  material.uniforms = {};
+  try {
+    const copy = material.clone();
+    copy.uniforms = uniforms;
+    return copy;
+  } finally {
+    material.uniforms = uniforms;
+  }
+}
+
 export class ScreenPass {
   /**
    * @param {string} fragmentShader GLSL 3

@@ -14,7 +14,7 @@
 // in; it is blurred and cleared before class k + 2, of its parity, is deposited.
 
 import * as THREE from 'three';
-import { ScreenPass } from '../screen-pass.js';
+import { ScreenPass, sharingUniforms } from '../screen-pass.js';
 import { CLASS_BIAS, DIRECT_LIMIT, MAX_BLUR_RADIUS } from '../../generated/contract.js';
 import { BLOB_GLSL } from '../shaders/blob-record.js';
 import { VOXEL_GRID_GLSL } from '../shaders/voxel-grid.js';
@@ -205,9 +205,8 @@ export class MeshPass {
   #blurInto(outputs, base, added, layered = false) {
     const key = `${outputs}|${base}|${added}|${layered}`;
     if (!this.blurs.has(key)) {
-      const material = this.blur.material.clone();
+      const material = sharingUniforms(this.blur.material);
       material.fragmentShader = blurFragment(outputs, base, layered);
-      material.uniforms = this.blur.material.uniforms;
       if (added) Object.assign(material, ADDITIVE);
       this.blurs.set(key, material);
     }

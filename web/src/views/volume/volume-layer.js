@@ -15,6 +15,7 @@ import * as THREE from 'three';
 import { DIRECT_LIMIT } from '../../generated/contract.js';
 import { waitForGpu } from '../gpu-sync.js';
 import { MarchQuad } from '../march-quad.js';
+import { sharingUniforms } from '../screen-pass.js';
 import { releaseGeometries } from '../context-loss.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
@@ -140,8 +141,7 @@ export class VolumeLayer extends MarchQuad {
     };
     super(fragmentShader, { ...gas, ...own });
     /** The same march writing radiance and transmittance apart, for a lower resolution. */
-    this.splitMaterial = this.material.clone();
-    this.splitMaterial.uniforms = this.material.uniforms;
+    this.splitMaterial = sharingUniforms(this.material);
     this.splitMaterial.defines = { SPLIT: 1 };
     this.fullMaterial = this.material;
     this.upsample = new MarchUpsample(this.material.uniforms);

@@ -1,0 +1,253 @@
+// Good on any machine: these tests run where the browser draws WebGL in software (SwiftShader),
+// as on GPU-blocked laptops, virtual machines and remote desktops, and check what a visitor
+// there gets: the lighter version and its notice, frames that keep coming and simulated time
+// that keeps up, input handled at once, scenes that show gas within seconds, stirring at any
+// frame rate, an honest status line, a phone's layout, a clean console, reduced motion and
+// hidden tabs. Most use Playwright's own `test` (no full-version fixture: see helpers.js).
+import { test, expect } from '@playwright/test';
+import { readFileSync } from 'node:fs';
+import { test as fullTest, collectErrors, toSegment, worldAt } from './helpers.js';
+
+const root = new URL('../', import.meta.url);
+const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
+
+async function open(page, url = './') {
+  await page.goto(url);
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+}
+
+/** A second tab that keeps one core busy (a heavy page beside the playground). */
+async function busyTab(browser) {
+  const busy = await browser.newPage();
+  await busy.setContent(`<script>
+    (function spin() {
+      const end = performance.now() + 45;
+      while (performance.now() < end) Math.sqrt(Math.random());
+      setTimeout(spin, 5);
+    })();
+  </script>`);
+  return busy;
+}
+
+test('in software, the default scene gets the lighter version: at least 10 frames a second within 10 s of load, simulated time within 2× of real time', async ({ page, browser }) => {
+  const busy = await busyTab(browser);
+  const loadedAt = Date.now();
+  await open(page);
+  const notice = page.locator('#message');
+  await expect(notice).toContainText('This browser draws 3-D in software: showing a lighter version.');
+  await expect(notice.locator('summary')).toHaveText('Details');
+  const info = await page.evaluate(() => window.windfield.stats());
+  expect(info.software).toBe(true);
+  expect(info.lighter.reason).toBe('software');
+  expect(info.lighter.gaveUp.length).toBeGreaterThan(0);
+  expect(info.stepper).toBe('cpu');
+  // The rate over the three seconds that end 10 s after the load began.
+  await page.waitForTimeout(Math.max(0, loadedAt + 7000 - Date.now()));
+  const a = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+  await page.waitForTimeout(3000);
+  const b = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+  const seconds = (b.now - a.now) / 1000;
+  const fps = (b.frames - a.frames) / seconds;
+  const simulated = (b.time - a.time) / seconds;
+  console.log(`lighter version, busy second tab: ${fps.toFixed(1)} frames a second, ${simulated.toFixed(2)} simulated seconds a second`);
+  expect(fps).toBeGreaterThanOrEqual(10);
+  expect(simulated).toBeGreaterThanOrEqual(0.5);
+  expect(simulated).toBeLessThanOrEqual(2);
+  await busy.close();
+});
+
+test('a pointer event is handled within 100 ms while the scene plays', async ({ page }) => {
+  await open(page);
+  await page.evaluate(() => {
+    window.delays = [];
+    document.querySelector('#canvas').addEventListener('pointermove', (e) => window.delays.push(performance.now() - e.timeStamp));
+  });
+  const box = await page.locator('#canvas').boundingBox();
+  for (let k = 0; k < 12; k++) {
+    await page.mouse.move(box.x + 100 + 20 * k, box.y + box.height / 2);
+    await page.waitForTimeout(150);
+  }
+  const delays = await page.evaluate(() => window.delays);
+  delays.sort((x, y) => x - y);
+  const median = delays[Math.floor(delays.length / 2)];
+  console.log(`pointer delay: median ${median.toFixed(0)} ms, most ${delays.at(-1).toFixed(0)} ms over ${delays.length} events`);
+  expect(delays.length).toBeGreaterThanOrEqual(10);
+  expect(median).toBeLessThan(100);
+});
+
+test('a picker click shows gas within 5 s for every preset', async ({ page }) => {
+  test.setTimeout(180_000);
+  await open(page);
+  const times = {};
+  for (const { name } of catalog) {
+    const card = page.locator(`#picker [data-preset="${name}"]`);
+    const before = await page.evaluate(() => window.windfield.stats().frames);
+    const t0 = Date.now();
+    await card.click();
+    // The first frame drawn after the click with gas in it (the scene's own, not the poster).
+    await page.waitForFunction(({ frames, preset }) => {
+      const s = window.windfield.stats();
+      return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset)
+        && s.frames > frames && s.blobs > 0;
+    }, { frames: before, preset: name }, { timeout: 30_000, polling: 50 });
+    times[name] = Date.now() - t0;
+  }
+  console.log(`click to first frame with gas (ms): ${JSON.stringify(times)}`);
+  for (const [name, ms] of Object.entries(times)) expect(ms, name).toBeLessThan(5000);
+});
+
+test('stirring at 2 frames a second pushes the gas aside, and a drag while paused is used by the next steps', async ({ page }) => {
+  await open(page, './?fps=2');
+  await page.locator('#stir').click();
+  const box = await page.locator('#canvas').boundingBox();
+  const [y, x0, x1] = [box.height * 0.4, box.width * 0.3, box.width * 0.6];
+  /** The drag's ends in the world, on the plane through the camera's target. */
+  const { camera } = await page.evaluate(() => window.windfield.exportBlobs({ width: 32, height: 24 }));
+  const [a, b] = [worldAt(camera, box.width, box.height, x0, y), worldAt(camera, box.width, box.height, x1, y)];
+  /** Along the drag (m) on average, for the blobs within 0.15 m of its line; and their count. */
+  const band = async () => {
+    const list = await page.evaluate(() => window.windfield.exportBlobs({ width: 32, height: 24 }));
+    const dir = b.map((v, i) => v - a[i]);
+    const len = Math.hypot(...dir);
+    const near = list.blobs.filter((blob) => toSegment(blob.center, a, b) < 0.15);
+    const along = near.reduce((sum, blob) => sum + blob.center.reduce((d, v, i) => d + (v - a[i]) * dir[i], 0) / len, 0);
+    return { along: along / Math.max(near.length, 1), n: near.length };
+  };
+  const drag = async () => {
+    await page.mouse.move(box.x + x0, box.y + y);
+    await page.mouse.down();
+    for (let k = 1; k <= 20; k++) {
+      await page.mouse.move(box.x + x0 + ((x1 - x0) * k) / 20, box.y + y);
+      await page.waitForTimeout(25);
+    }
+    await page.mouse.up();
+  };
+  // A plume to stir, then frames at two a second.
+  await page.evaluate(async () => { await window.windfield.pause(); await window.windfield.step(200); window.windfield.play(); });
+  const calm0 = await band();
+  await page.waitForTimeout(2000);
+  const calm1 = await band();
+  await drag();
+  await page.waitForTimeout(2000);
+  const stirred = await band();
+  const calmShift = Math.abs(calm1.along - calm0.along);
+  const stirShift = stirred.along - calm1.along;
+  console.log(`2 fps: the gas by the drag moved ${stirShift.toFixed(3)} m along it, ${calmShift.toFixed(3)} m in as long without it (${calm1.n} blobs)`);
+  expect(calm1.n).toBeGreaterThan(200);
+  expect(stirShift).toBeGreaterThan(0.05);
+  expect(stirShift).toBeGreaterThan(3 * calmShift);
+  // Paused: the drag's motion waits for the steps, which give it to the gas.
+  const still = await page.evaluate(async () => { await window.windfield.pause(); return window.windfield.stats().time; });
+  const before = await band();
+  await drag();
+  await page.waitForTimeout(500);
+  expect(await page.evaluate(() => window.windfield.stats().time)).toBe(still);
+  await page.evaluate(() => window.windfield.step(10));
+  const after = await band();
+  expect(after.along - before.along).toBeGreaterThan(0.05);
+});
+
+test('the status line counts the frames drawn: 0.2 a second shows as 0.2', async ({ page }) => {
+  await open(page, './?fps=0.2');
+  await page.waitForTimeout(11_000);
+  const { fps } = await page.evaluate(() => window.windfield.stats());
+  expect(fps).toBeGreaterThan(0.1);
+  expect(fps).toBeLessThan(0.35);
+  await expect(page.locator('#status')).toContainText(/ 0\.[1-3] fps/);
+});
+
+fullTest('four scene switches leave no notice that contradicts the status line', async ({ page }) => {
+  const errors = collectErrors(page);
+  await open(page);
+  for (const name of ['steam-mug', 'cigarette', 'default', 'sphere-smoke']) {
+    await page.locator(`#picker [data-preset="${name}"]`).click();
+    await page.waitForFunction((n) => new URLSearchParams(location.search).get('preset') === (n === 'default' ? null : n), name);
+    await page.evaluate(() => window.windfield.ready);
+    await page.waitForTimeout(1500);
+  }
+  await expect(page.locator('#message')).toBeHidden();
+  expect(errors).toEqual([]);
+});
+
+test('a choice made in the panel holds for the rest of the visit; the full version is one click away', async ({ page }) => {
+  await open(page);
+  expect(await page.evaluate(() => window.windfield.stats().lighter?.gaveUp.some((g) => g.includes('points')))).toBe(true);
+  await page.keyboard.press('v');
+  await page.reload();
+  await open(page, page.url());
+  const chosen = await page.evaluate(() => window.windfield.stats());
+  expect(chosen.lighter.gaveUp.some((g) => g.includes('points'))).toBe(false);
+  await page.locator('#message').getByRole('button', { name: 'Show the full version' }).click();
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().lighter)).toBe(null);
+  await page.reload();
+  await open(page, page.url());
+  expect(await page.evaluate(() => window.windfield.stats().lighter)).toBe(null);
+  await expect(page.locator('#message')).toBeHidden();
+});
+
+test('a hidden page neither steps nor draws', async ({ page }) => {
+  await open(page);
+  const hide = (state) => page.evaluate((s) => {
+    Object.defineProperty(document, 'visibilityState', { value: s, configurable: true });
+    document.dispatchEvent(new Event('visibilitychange'));
+  }, state);
+  await hide('hidden');
+  await page.waitForTimeout(300);
+  const a = await page.evaluate(() => window.windfield.stats());
+  await page.waitForTimeout(1500);
+  const b = await page.evaluate(() => window.windfield.stats());
+  expect(b.time).toBe(a.time);
+  expect(b.frames).toBe(a.frames);
+  await hide('visible');
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().time)).toBeGreaterThan(a.time);
+});
+
+test('under reduced motion the playground starts paused on the scene at its render.time, with a Play button', async ({ page }) => {
+  await page.emulateMedia({ reducedMotion: 'reduce' });
+  await open(page);
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().time), { timeout: 60_000 }).toBeCloseTo(4, 1);
+  const play = page.locator('#play');
+  await expect(play).toBeVisible();
+  await expect(play).toHaveText('Play');
+  const t = await page.evaluate(() => window.windfield.stats().time);
+  await page.waitForTimeout(1000);
+  expect(await page.evaluate(() => window.windfield.stats().time)).toBe(t);
+  await play.click();
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().time)).toBeGreaterThan(t);
+});
+
+test.describe('on a phone', () => {
+  test.use({ viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true });
+  test('the view is in the first screenful, the status line beside the picture, the cards\' texts whole lines', async ({ page }) => {
+    await open(page);
+    await page.evaluate(() => window.windfield.pause());
+    const canvas = await page.locator('#canvas').boundingBox();
+    expect(canvas.y).toBeGreaterThanOrEqual(0);
+    expect(canvas.y + canvas.height).toBeLessThanOrEqual(844);
+    expect(canvas.height).toBeGreaterThan(240);
+    await expect(page.locator('.keyboard-hint').first()).toBeHidden();
+    const status = await page.locator('#status').boundingBox();
+    const overlaps = status.y < canvas.y + canvas.height && status.y + status.height > canvas.y
+      && status.x < canvas.x + canvas.width && status.x + status.width > canvas.x;
+    expect(overlaps).toBe(false);
+    const cut = await page.locator('.picker-quote').evaluateAll((quotes) => quotes.map((q) => {
+      const line = parseFloat(getComputedStyle(q).lineHeight);
+      const lines = q.clientHeight / line;
+      return Math.abs(lines - Math.round(lines));
+    }));
+    for (const fraction of cut) expect(fraction).toBeLessThan(0.05);
+  });
+});
+
+test('no warnings or errors in the console while the playground and a player load and draw', async ({ page }) => {
+  const messages = [];
+  page.on('console', (m) => { if (m.type() === 'warning' || m.type() === 'error') messages.push(m.text()); });
+  page.on('pageerror', (e) => messages.push(e.message));
+  await open(page, './?view=raymarch');
+  await page.evaluate(() => window.windfield.step(30));
+  await page.goto('./embed.html');
+  await page.locator('wind-field').first().evaluate((el) => el.ready);
+  await page.waitForTimeout(500);
+  expect(messages).toEqual([]);
+});
