@@ -118,5 +118,56 @@ export async function benchBrowser() {
     emit('points_frame_640x360_1m_ms', points[1000], 'ms');
     emit('points_frame_640x360_1m_over_100k', points[1000] / points[100], 'ratio');
   });
+  for (const r of await benchLighter()) results.push(r);
+  return results;
+}
+
+/**
+ * The lighter version SwiftShader gets (`web/src/player/machine.js`), as a visitor meets it in
+ * the playground (1100 × 720): per preset, the frames drawn a second and the simulated seconds
+ * a second over the 5 s after its first 10 s; the time from a click on its card in the picker to
+ * the first frame with gas; and the delay from a pointer event to its handler while the default
+ * scene plays (median of 20). Prints {name, value, unit} objects.
+ */
+export async function benchLighter() {
+  const results = [];
+  const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
+  const { presets } = JSON.parse(readFileSync(`${root}public/scenes/index.json`, 'utf8'));
+  await withSite('', async (page, open) => {
+    await page.evaluate(() => window.windfield.ready);
+    await page.evaluate(() => {
+      window.pointerDelays = [];
+      document.querySelector('#canvas').addEventListener('pointermove', (e) => window.pointerDelays.push(performance.now() - e.timeStamp));
+    });
+    const box = await page.locator('#canvas').boundingBox();
+    for (let k = 0; k < 20; k++) {
+      await page.mouse.move(box.x + 100 + 10 * k, box.y + box.height / 2);
+      await page.waitForTimeout(100);
+    }
+    const delays = (await page.evaluate(() => window.pointerDelays)).sort((x, y) => x - y);
+    emit('light_pointer_delay_median_ms', delays[Math.floor(delays.length / 2)], 'ms');
+    emit('light_pointer_delay_most_ms', delays.at(-1), 'ms');
+    for (const { name } of presets) {
+      const before = await page.evaluate(() => window.windfield.stats().frames);
+      const t0 = Date.now();
+      await page.locator(`#picker [data-preset="${name}"]`).click();
+      await page.waitForFunction(({ frames, preset }) => {
+        const s = window.windfield.stats();
+        return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset) && s.frames > frames && s.blobs > 0;
+      }, { frames: before, preset: name }, { timeout: 120_000, polling: 50 });
+      emit(`light_click_to_gas_${name}_ms`, Date.now() - t0, 'ms');
+    }
+    for (const { name } of presets) {
+      await open(`?preset=${name}`);
+      await page.evaluate(() => window.windfield.ready);
+      await page.waitForTimeout(10_000);
+      const a = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+      await page.waitForTimeout(5000);
+      const b = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+      const seconds = (b.now - a.now) / 1000;
+      emit(`light_fps_${name}`, (b.frames - a.frames) / seconds, 'frames/s');
+      emit(`light_simulated_${name}`, (b.time - a.time) / seconds, 's/s');
+    }
+  }, { lighter: true });
   return results;
 }

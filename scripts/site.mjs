@@ -10,9 +10,10 @@ const PORT = 4179;
 /**
  * Serves dist/, opens a page on it (`path`, e.g. `?view=points`) once the server answers, runs
  * `fn(page, open)` (`open(path)` navigates again and waits for `window.windfield`), and closes
- * everything.
+ * everything. The page shows the full version (as on a machine with a GPU) unless `lighter`:
+ * SwiftShader would otherwise get the lighter version (`web/src/player/machine.js`).
  */
-export async function withSite(path, fn) {
+export async function withSite(path, fn, { lighter = false } = {}) {
   const server = spawn('npx', ['vite', 'preview', '--config', 'web/vite.config.js', '--host', '127.0.0.1', '--port', String(PORT), '--strictPort'], {
     cwd: root, stdio: 'ignore', detached: true,
   });
@@ -22,6 +23,7 @@ export async function withSite(path, fn) {
   });
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 720 } });
+    if (!lighter) await page.addInitScript(() => sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true })));
     const open = async (to) => {
       for (let i = 0; i < 50; i++) {
         try {

@@ -140,26 +140,59 @@ fn golden_presets() {
 }
 
 /// The presets at scale hold at least 250,000 blobs at their still's time (the showcase a
-/// million), and their stills match their golden images.
+/// million), and their stills match their golden images. One test each, so that they run side
+/// by side.
+fn golden_at_scale(name: &str) {
+    let seconds = PRESETS_AT_SCALE
+        .iter()
+        .find(|(n, _)| *n == name)
+        .expect("a preset at scale")
+        .1;
+    let path = presets_dir().join(format!("{name}.json"));
+    let scene = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert_eq!(scene.render.time, Some(seconds), "{name}: render.time");
+    let mut sim = Simulation::new(scene).unwrap();
+    sim.run(sim.steps_for(seconds));
+    let n = sim.blobs().len();
+    assert!(n >= AT_SCALE_BLOBS, "{name}: {n} blobs at t = {seconds} s");
+    if name == "chimney" {
+        assert_eq!(n, 1_000_000);
+    }
+    let list = sim.blob_list();
+    let image = Renderer::new(&list, Some(PRESET_SIZE), RenderOptions::default())
+        .unwrap()
+        .render();
+    let rgb = image.to_rgb8(list.image.encoding);
+    compare(&format!("preset-{name}"), image.width, image.height, &rgb);
+}
+
 #[test]
-fn golden_presets_at_scale() {
-    for (name, seconds) in PRESETS_AT_SCALE {
-        let path = presets_dir().join(format!("{name}.json"));
-        let scene = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        assert_eq!(scene.render.time, Some(seconds), "{name}: render.time");
-        let mut sim = Simulation::new(scene).unwrap();
-        sim.run(sim.steps_for(seconds));
-        let n = sim.blobs().len();
-        assert!(n >= AT_SCALE_BLOBS, "{name}: {n} blobs at t = {seconds} s");
-        if name == "chimney" {
-            assert_eq!(n, 1_000_000);
-        }
-        let list = sim.blob_list();
-        let image = Renderer::new(&list, Some(PRESET_SIZE), RenderOptions::default())
-            .unwrap()
-            .render();
-        let rgb = image.to_rgb8(list.image.encoding);
-        compare(&format!("preset-{name}"), image.width, image.height, &rgb);
+fn golden_mist_at_scale() {
+    golden_at_scale("mist");
+}
+
+#[test]
+fn golden_dust_swirl_at_scale() {
+    golden_at_scale("dust-swirl");
+}
+
+#[test]
+fn golden_car_exhaust_at_scale() {
+    golden_at_scale("car-exhaust");
+}
+
+#[test]
+fn golden_chimney_at_scale() {
+    golden_at_scale("chimney");
+}
+
+/// Every preset at scale has its test above.
+#[test]
+fn every_preset_at_scale_is_tested() {
+    let source = include_str!("render_golden.rs");
+    for (name, _) in PRESETS_AT_SCALE {
+        let call = format!("golden_at_scale(\"{name}\")");
+        assert!(source.contains(&call), "{name} has no test");
     }
 }
 

@@ -514,9 +514,11 @@ export class Player {
    */
   #stepsPerFrame() {
     if (this.#stepper.active === 'gpu') return MAX_GPU_STEPS_PER_FRAME;
-    const frameMs = Math.max(this.pace.frameMs, 1000 / 60);
+    // The view's own time for a frame (not counting its wait for the worker): steps that fit
+    // in it are free, more would make the worker the one that paces the frames.
+    const viewMs = this.pace.pace > 0 ? 1000 / this.pace.pace : 1000 / 60;
     const stepMs = Math.max(this.stats.stepMs, 0.1);
-    return Math.max(1, Math.min(MAX_WORKER_STEPS_PER_FRAME, Math.floor(frameMs / stepMs)));
+    return Math.max(1, Math.min(MAX_WORKER_STEPS_PER_FRAME, Math.floor((0.8 * Math.max(viewMs, 1000 / 60)) / stepMs)));
   }
 
   loop(now) {

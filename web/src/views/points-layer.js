@@ -19,8 +19,12 @@ import { ScreenPass } from './screen-pass.js';
 import { BLOB_GLSL } from './shaders/blob-record.js';
 import { LIGHTS_GLSL } from './shaders/lights.js';
 
-/** Sprites reach this many σ from the centre. */
-const REACH = 3;
+/**
+ * Sprites reach this many σ from the centre, by quality: at `draft` (the lighter version's) 2σ,
+ * their column scaled by 1/(1 − e^{−2}) so each still carries its whole optical depth, with
+ * less than half the fragments to draw.
+ */
+const REACH = { draft: 2, standard: 3, high: 3 };
 /** Smallest sprite (pixels): a blob smaller than this spreads its opacity over it. */
 const MIN_SIZE = 2;
 
@@ -30,6 +34,7 @@ precision highp int;
 ${BLOB_GLSL}
 ${LIGHTS_GLSL}
 uniform float pixelsPerUnit;
+uniform float reach;
 out vec3 vColor;
 out float vDepth;   // κ_t m/(2πσ²) at the centre, spread over the sprite if it was enlarged
 out float vReach;   // the sprite's radius in σ
@@ -40,12 +45,14 @@ void main() {
   fetchBlob(gl_VertexID, c, sigma, mass, albedo, source);
   vec4 mv = modelViewMatrix * vec4(c, 1.0);
   gl_Position = projectionMatrix * mv;
-  float size = 2.0 * ${REACH.toFixed(1)} * sigma * pixelsPerUnit / max(-mv.z, 1e-4);
+  float size = 2.0 * reach * sigma * pixelsPerUnit / max(-mv.z, 1e-4);
   float shown = max(size, ${MIN_SIZE.toFixed(1)});
   gl_PointSize = shown;
-  vReach = ${REACH.toFixed(1)} * shown / max(size, 1e-6);
+  vReach = reach * shown / max(size, 1e-6);
   float k = (kappa.r + kappa.g + kappa.b) / 3.0;
-  vDepth = k * mass / (6.2831853 * sigma * sigma) * min(1.0, (size * size) / (shown * shown));
+  // The share of a blob's column within the sprite's disc: 1 − exp(−reach²/2).
+  float held = 1.0 - exp(-0.5 * reach * reach);
+  vDepth = k * mass / (6.2831853 * sigma * sigma) / held * min(1.0, (size * size) / (shown * shown));
   vec3 L = vec3(0.0);
   for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
     if (l >= lightCount) break;
@@ -113,7 +120,7 @@ export class PointsLayer {
       blendSrcAlpha: THREE.OneFactor,
       blendDstAlpha: THREE.OneFactor,
       uniforms: {
-        ...gas, blobTex: { value: null }, pixelsPerUnit: { value: 500 },
+        ...gas, blobTex: { value: null }, pixelsPerUnit: { value: 500 }, reach: { value: REACH.standard },
         opaqueDepth: { value: null }, viewSize: { value: new THREE.Vector2(1, 1) },
       },
     });
@@ -142,7 +149,8 @@ export class PointsLayer {
    * colour, transparent where none, and depth) and `background` (linear RGB) into the
    * renderer's current target (the canvas).
    */
-  render(renderer, camera, opaque, background) {
+  render(renderer, camera, opaque, background, quality = 'standard') {
+    this.material.uniforms.reach.value = REACH[quality] ?? REACH.standard;
     const output = renderer.getRenderTarget();
     const { width, height } = opaque;
     if (!this.sums || this.sums.width !== width || this.sums.height !== height) {

@@ -114,6 +114,7 @@ export class SceneView {
     this.windSlice.contextLost();
     this.points.contextLost();
     this.target?.dispose();
+    this.opaqueKey = null;
     releaseGeometries(this.scene, this.overlay);
     this.onContextLost?.();
   }
@@ -222,6 +223,7 @@ export class SceneView {
     this.gas.hasShadows.value = Boolean(settings.shadows) && settings.lights.length > 0;
     this.gas.srgb.value = (settings.image?.encoding ?? 'srgb') === 'srgb';
     this.spheresKey = '';
+    this.opaqueKey = null;
     this.volume.invalidate();
   }
 
@@ -268,8 +270,19 @@ export class SceneView {
     return { width: this.canvas.width, height: this.canvas.height };
   }
 
-  /** The objects alone, colour and depth, into the opaque target (transparent where none). */
-  #opaquePass() {
+  /**
+   * The objects alone, colour and depth, into the opaque target (transparent where none).
+   * `reuse`: skipped when nothing it draws changed since the last time (the camera, the target,
+   * the objects and their lights, the repulsor spheres' places): the points view's objects are
+   * not shadowed by the gas, so its opaque pass only changes with those.
+   */
+  #opaquePass(reuse = false) {
+    const key = reuse
+      ? `${this.camera.matrixWorld.elements.join()}|${this.camera.projectionMatrix.elements.join()}|${this.settingsKey.length}:${this.settingsKey}|${this.spheres.children.map((m) => m.position.toArray().join()).join(';')}`
+      : null;
+    if (key !== null && key === this.opaqueKey && this.opaqueDrawnIn === this.target) return;
+    this.opaqueKey = key;
+    this.opaqueDrawnIn = this.target;
     const background = this.scene.background;
     this.scene.background = null;
     this.renderer.setRenderTarget(this.target);
@@ -288,10 +301,11 @@ export class SceneView {
     const gas = this.gas;
     if (mode === 'points') {
       gas.shadowSource.value = 0;
-      // The objects into the opaque target (their depth hides the sprites behind them), then the
-      // sprites over them and the background.
-      this.#opaquePass();
-      this.points.render(this.renderer, this.camera, this.target, this.background);
+      // The objects into the opaque target (their depth hides the sprites behind them; drawn
+      // again only when they or the camera moved), then the sprites over them and the background.
+      this.camera.updateMatrixWorld();
+      this.#opaquePass(true);
+      this.points.render(this.renderer, this.camera, this.target, this.background, quality);
     } else {
       const layer = mode === 'exact' ? this.exact : this.volume;
       gas.shadowSource.value = mode === 'exact' ? 1 : 2;
