@@ -557,3 +557,220 @@ fn shards_of_more_than_2_to_the_63_render_their_own_frames() {
         }
     }
 }
+
+/// A scene that simulates and renders in milliseconds: an 8⁴ lattice, one small plume.
+fn tiny_scene(dir: &Path, name: &str, seed: u64) -> String {
+    let v = serde_json::json!({
+        "version": 1,
+        "seed": seed,
+        "field": {"size": [8, 8, 8, 8], "spectrum": {"k_inertial": 1}, "period": [2, 2, 2]},
+        "emitters": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 0.1,
+                      "rate": 120, "sigma0": 0.05, "mass0": 0.01}],
+        "wind": [{"type": "uniform", "velocity": [0, 0.4, 0]}],
+        "gas": {"max_blobs": 400},
+        "render": {"camera": {"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]}}
+    });
+    write(dir, name, &v)
+}
+
+/// `render INPUT --frames RANGE --fps 240 --width 32 --height 24 --out PATTERN EXTRA…`.
+fn frames_of(input: &str, range: &str, pattern: &str, extra: &[&str]) -> Command {
+    let mut c = Command::new(bin());
+    c.args([
+        "render", input, "--frames", range, "--fps", "240", "--width", "32", "--height", "24",
+        "--out", pattern,
+    ])
+    .args(extra);
+    c
+}
+
+/// The manifests in `dir`.
+fn manifests(dir: &Path) -> Vec<String> {
+    let mut out: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".windfield.json"))
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn frames_reached_through_another_spelling_of_the_pattern_stay_with_their_run() {
+    let dir = scratch("spellings");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let b = tiny_scene(&dir, "b.json", 2);
+    let d = dir.join("d");
+    let padded = format!("{}/f%03d.png", s(&d));
+    let plain = format!("{}/f%d.png", s(&d));
+    let first = frames_of(&a, "100..106", &padded, &[]).output().unwrap();
+    assert!(first.status.success(), "{}", stderr(&first));
+    let before = frames(&d);
+    assert_eq!(before.len(), 6);
+    // Another scene through the other spelling would skip f100.png … f105.png: refused, both
+    // runs named, nothing touched.
+    let other = frames_of(&b, "98..106", &plain, &[]).output().unwrap();
+    let e = stderr(&other);
+    assert_eq!(other.status.code(), Some(2), "{e}");
+    assert!(e.starts_with("windfield: error: --out: "), "{e}");
+    for words in [
+        "b.json",
+        "frames 98..106 of",
+        "f%d.png",
+        "a.json",
+        "frames 100..106 of",
+        "f%03d.png",
+        "6 of its frames",
+        "f100.png … f105.png",
+        "another scene",
+        "--force",
+    ] {
+        assert!(e.contains(words), "{words:?} in {e}");
+    }
+    assert!(frames(&d) == before, "a refused run touched the frames");
+    assert_eq!(manifests(&d), ["f%03d.png.windfield.json"]);
+    // The same run through the other spelling shares its claim: the six are skipped.
+    let again = frames_of(&a, "98..106", &plain, &[]).output().unwrap();
+    let e = stderr(&again);
+    assert!(again.status.success(), "{e}");
+    assert!(e.contains("6 of 8 frames already complete"), "{e}");
+    let now = frames(&d);
+    assert_eq!(now.len(), 8);
+    assert!(before.iter().all(|(name, bytes)| &now[name] == bytes));
+    // --force takes the frames over from run a; then run a is refused on them.
+    let forced = frames_of(&b, "98..106", &plain, &["--force"])
+        .output()
+        .unwrap();
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    let taken = frames(&d);
+    assert_eq!(taken.len(), 8);
+    assert!(taken["f100.png"] != before["f100.png"], "run b's frame");
+    assert_eq!(manifests(&d), ["f%d.png.windfield.json"]);
+    let back = frames_of(&a, "100..106", &padded, &[]).output().unwrap();
+    assert_eq!(back.status.code(), Some(2), "{}", stderr(&back));
+    assert!(frames(&d) == taken);
+    // A frame file of the range that no manifest claims is not taken for this run's.
+    std::fs::copy(d.join("f100.png"), d.join("f107.png")).unwrap();
+    let stray = frames_of(&b, "98..108", &plain, &[]).output().unwrap();
+    let e = stderr(&stray);
+    assert_eq!(stray.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("f107.png") && e.contains("no manifest claims"),
+        "{e}"
+    );
+    let forced = frames_of(&b, "98..108", &plain, &["--force"])
+        .output()
+        .unwrap();
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    assert!(
+        frames(&d)["f107.png"] != taken["f100.png"],
+        "rendered, not kept"
+    );
+}
+
+#[test]
+fn two_runs_started_at_once_into_one_folder_never_both_claim_it() {
+    let dir = scratch("race");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let b = tiny_scene(&dir, "b.json", 2);
+    let reference = |input: &str, name: &str| {
+        let pattern = format!("{}/{name}/f%03d.png", s(&dir));
+        let out = frames_of(input, "100..104", &pattern, &[])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", stderr(&out));
+        frames(&dir.join(name))
+    };
+    let want = [reference(&a, "ref-a"), reference(&b, "ref-b")];
+    for trial in 0..6 {
+        let d = dir.join(format!("trial{trial}"));
+        // Even trials spell the pattern the same way twice; odd ones differently.
+        let patterns = [
+            format!("{}/f%03d.png", s(&d)),
+            format!("{}/f{}.png", s(&d), ["%03d", "%d"][trial % 2]),
+        ];
+        let children: Vec<_> = [&a, &b]
+            .iter()
+            .zip(&patterns)
+            .map(|(input, pattern)| {
+                frames_of(input, "100..104", pattern, &[])
+                    .stderr(std::process::Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        let outs: Vec<Output> = children
+            .into_iter()
+            .map(|c| c.wait_with_output().unwrap())
+            .collect();
+        let won: Vec<usize> = (0..2).filter(|&i| outs[i].status.success()).collect();
+        assert_eq!(
+            won.len(),
+            1,
+            "trial {trial}: {} / {}",
+            stderr(&outs[0]),
+            stderr(&outs[1])
+        );
+        let (w, l) = (won[0], 1 - won[0]);
+        assert_eq!(outs[l].status.code(), Some(2), "trial {trial}");
+        assert!(
+            stderr(&outs[l]).contains("another run"),
+            "{}",
+            stderr(&outs[l])
+        );
+        let mut got = frames(&d);
+        assert!(got.keys().all(|n| n.ends_with(".png")), "{:?}", got.keys());
+        got.retain(|n, _| n.ends_with(".png"));
+        assert!(got == want[w], "trial {trial}: the folder mixes two runs");
+        assert_eq!(manifests(&d).len(), 1, "trial {trial}");
+        assert!(!d.join(".windfield.lock").exists(), "trial {trial}");
+    }
+}
+
+/// This machine's name as the CLI reads it for its folder lock.
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().to_string())
+        .unwrap_or_default()
+}
+
+#[test]
+fn a_claim_lock_left_by_a_dead_run_is_taken_over_and_a_live_one_waited_for() {
+    let dir = scratch("lock");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let lock = |d: &Path, pid: u32| {
+        std::fs::create_dir_all(d).unwrap();
+        let holder =
+            serde_json::json!({"pid": pid, "host": host(), "run": "another", "token": "t"});
+        std::fs::write(d.join(".windfield.lock"), holder.to_string()).unwrap();
+    };
+    // A process that has ended held it.
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let d = dir.join("dead");
+    lock(&d, dead);
+    let out = frames_of(&a, "0..2", &format!("{}/f%02d.png", s(&d)), &[])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(frames(&d).len(), 2);
+    assert!(!d.join(".windfield.lock").exists());
+    // A live process of another run holds it: nothing is claimed or written until it is gone.
+    let d = dir.join("live");
+    lock(&d, std::process::id());
+    let child = frames_of(&a, "0..2", &format!("{}/f%02d.png", s(&d)), &[])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    assert!(
+        frames(&d).keys().eq([".windfield.lock"]) && manifests(&d).is_empty(),
+        "claimed or written while another run held the lock: {:?}",
+        frames(&d).keys()
+    );
+    std::fs::remove_file(d.join(".windfield.lock")).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(frames(&d).len(), 2);
+}

@@ -15,6 +15,7 @@
 //! 3.00 s, 2.4 s`). Numeric flags take negative numbers as values (`--seconds -1`), so that
 //! the range check, not the argument parser, answers them.
 
+mod claim;
 mod sequence;
 
 use clap::{Args, Parser, Subcommand};
@@ -229,6 +230,16 @@ fn temporary_path(path: &Path) -> PathBuf {
         .finish();
     name.push(format!(".{}-{random:016x}.partial", std::process::id()));
     path.with_file_name(name)
+}
+
+/// Creates the directory `path` lies in, if it has one and it is missing.
+pub fn create_parent(path: &Path) -> Result<(), Failure> {
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => {
+            fs::create_dir_all(dir).map_err(|e| Failure::Io(format!("{}: {e}", dir.display())))
+        }
+        None => Ok(()),
+    }
 }
 
 /// Writes through a temporary file and renames it, so a failure leaves no partial output and
@@ -496,7 +507,7 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
         size,
     )?;
     match read_input(&args.input)? {
-        Input::Scene(scene) => job.run(*scene, start),
+        Input::Scene(scene) => job.run(*scene, &args.input, start),
         Input::List(_) => Err(Failure::Input(format!(
             "--frames: needs a scene to simulate; {} is a blob list",
             args.input.display()
