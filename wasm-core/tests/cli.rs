@@ -774,3 +774,71 @@ fn a_claim_lock_left_by_a_dead_run_is_taken_over_and_a_live_one_waited_for() {
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(frames(&d).len(), 2);
 }
+
+/// The files in `dir` whose names end with `.partial` (temporary files left behind).
+fn partials(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".partial"))
+        .collect()
+}
+
+#[test]
+fn a_failed_generate_leaves_the_old_field_beside_its_own_parameters() {
+    let dir = scratch("generate-pair");
+    let npy = dir.join("field.npy");
+    let side = dir.join("field.npy.json");
+    let generate = |seed: &str, epsilon: &str, out: &Path| {
+        run(&[
+            "generate",
+            "--size",
+            "8",
+            "--k-inertial",
+            "1",
+            "--seed",
+            seed,
+            "--epsilon",
+            epsilon,
+            "--out",
+            s(out),
+        ])
+    };
+    let first = generate("1", "1", &npy);
+    assert!(first.status.success(), "{}", stderr(&first));
+    let (old_npy, old_side) = (std::fs::read(&npy).unwrap(), std::fs::read(&side).unwrap());
+    // The parameters cannot be written (a folder holds their name): the new field must not
+    // replace the old one.
+    std::fs::remove_file(&side).unwrap();
+    std::fs::create_dir_all(side.join("in-the-way")).unwrap();
+    let failed = generate("2", "16", &npy);
+    let e = stderr(&failed);
+    assert_eq!(failed.status.code(), Some(1), "{e}");
+    assert!(
+        e.starts_with("windfield: error: ") && e.contains("field.npy.json"),
+        "{e}"
+    );
+    assert!(
+        std::fs::read(&npy).unwrap() == old_npy,
+        "the field was replaced"
+    );
+    assert!(partials(&dir).is_empty(), "{:?}", partials(&dir));
+    // Put back, the pair is the old one: stats measures the energy its parameters predict.
+    std::fs::remove_dir_all(&side).unwrap();
+    std::fs::write(&side, &old_side).unwrap();
+    let stats = run(&["stats", s(&npy), "--json"]);
+    assert!(stats.status.success(), "{}", stderr(&stats));
+    let report: serde_json::Value = serde_json::from_slice(&stats.stdout).unwrap();
+    let ratio = report["energy_ratio"].as_f64().unwrap();
+    assert!((0.5..2.0).contains(&ratio), "{report}");
+    // A name whose parameters' name is too long for the file system: the same.
+    let long = dir.join(format!("{}.npy", "f".repeat(248)));
+    std::fs::write(&long, &old_npy).unwrap();
+    let failed = generate("2", "16", &long);
+    assert_eq!(failed.status.code(), Some(1), "{}", stderr(&failed));
+    assert!(
+        std::fs::read(&long).unwrap() == old_npy,
+        "the field was replaced"
+    );
+    assert!(partials(&dir).is_empty(), "{:?}", partials(&dir));
+}

@@ -16,6 +16,7 @@
 //! the range check, not the argument parser, answers them.
 
 mod claim;
+mod output;
 mod sequence;
 
 use clap::{Args, Parser, Subcommand};
@@ -221,15 +222,21 @@ fn resolve_spectrum(
 /// 9c0f….partial`). Shards in containers often share a process id (1), and frames without
 /// an extension share a stem, so neither alone would do.
 fn temporary_path(path: &Path) -> PathBuf {
-    let mut name = path
+    let name = path
         .file_name()
         .map(|n| n.to_os_string())
         .unwrap_or_else(|| "windfield".into());
     let random = std::collections::hash_map::RandomState::new()
         .build_hasher()
         .finish();
-    name.push(format!(".{}-{random:016x}.partial", std::process::id()));
-    path.with_file_name(name)
+    let tail = format!(".{}-{random:016x}.partial", std::process::id());
+    // A name near the file system's limit (255 bytes) is shortened, so that its temporary
+    // name can be made wherever the name itself can.
+    let mut name = name.to_string_lossy().into_owned();
+    while name.len() + tail.len() > 255 {
+        name.pop();
+    }
+    path.with_file_name(name + &tail)
 }
 
 /// Creates the directory `path` lies in, if it has one and it is missing.
@@ -243,11 +250,13 @@ pub fn create_parent(path: &Path) -> Result<(), Failure> {
 }
 
 /// Writes through a temporary file and renames it, so a failure leaves no partial output and
-/// concurrent writers (shards) never see each other's half-written files.
+/// concurrent writers (shards) never see each other's half-written files. A missing folder
+/// is made.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<fs::File>) -> std::io::Result<()>,
 ) -> Result<(), Failure> {
+    create_parent(path)?;
     let tmp = temporary_path(path);
     let io = |e: std::io::Error| Failure::Io(format!("{}: {e}", path.display()));
     let result = (|| {
@@ -282,13 +291,18 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
         .check_finite()
         .map_err(|e| Failure::Input(format!("the synthesised {e}")))?;
     let [nx, ny, nz, nt] = params.size;
-    write_atomically(&args.out, |w| {
-        npy::write_f32(w, &[nt, nz, ny, nx, 3], &field.data)
-    })?;
     let meta = serde_json::to_string_pretty(&params).expect("parameters serialise");
-    write_atomically(&sidecar(&args.out), |w| {
-        std::io::Write::write_all(w, meta.as_bytes())
-    })?;
+    // The field and its parameters are one pair: written together, the parameters last.
+    output::write_together(&[
+        output::Output {
+            path: &args.out,
+            write: Box::new(|w| npy::write_f32(w, &[nt, nz, ny, nx, 3], &field.data)),
+        },
+        output::Output {
+            path: &sidecar(&args.out),
+            write: Box::new(|w| std::io::Write::write_all(w, meta.as_bytes())),
+        },
+    ])?;
     eprintln!(
         "wrote {} ({nx}x{ny}x{nz}x{nt}, 3 components) in {ms:.1} ms; parameters in {}",
         args.out.display(),
