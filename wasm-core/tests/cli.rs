@@ -1,9 +1,13 @@
 //! The `windfield` command line as a user meets it (docs/FORMATS.md, the command line): a still at the scene's
 //! `render.time`, the summary line of every command that writes, the project's own message for
-//! negative numbers, budgets that refuse a hostile scene before it allocates (under a 3 GB
-//! address-space limit, where an allocation failure would abort), no silent NaN, and
-//! sequences whose shards never share a temporary name, whose manifest keeps two runs' frames
-//! apart, and whose shard arithmetic does not wrap.
+//! negative numbers and for every other refusal (`windfield: error:`, in a person's words),
+//! budgets that refuse a hostile scene before it allocates (under an address-space limit, where
+//! an allocation failure would abort), scene files bounded by size and by list length as they
+//! are read, `.npy` files refused by their declared lengths before they are read, no silent NaN,
+//! a field and its parameters written together, and sequences whose shards never share a
+//! temporary name, whose manifests keep two runs' frames apart whatever the pattern's spelling
+//! (claimed under a folder lock, so two runs started at once never both pass), and whose shard
+//! arithmetic does not wrap.
 //!
 //! The binary is the one Cargo builds for these tests; `WINDFIELD_TEST_BIN` names another
 //! (to run the same checks against an older build).
@@ -841,4 +845,307 @@ fn a_failed_generate_leaves_the_old_field_beside_its_own_parameters() {
         "the field was replaced"
     );
     assert!(partials(&dir).is_empty(), "{:?}", partials(&dir));
+}
+
+/// Runs the CLI under an address-space limit of `kib` KiB (`ulimit -v`).
+fn run_under(kib: u64, args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!(r#"ulimit -v {kib} && exec "$0" "$@""#))
+        .arg(bin())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn npy_files_are_refused_by_their_declared_lengths_before_they_are_read() {
+    let dir = scratch("npy");
+    let hostile = |name: &str| s(&root().join("wasm-core/tests/hostile").join(name)).to_string();
+    for (file, words) in [
+        ("fortran-order.npy", "unknown key 'note'"),
+        ("fortran-order-plain.npy", "Fortran-ordered"),
+        ("header-4gib.npy", "at most 10000"),
+        ("shape-4tib.npy", "needs 4398046511104 bytes"),
+    ] {
+        let o = run_limited(&["stats", &hostile(file)]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{file}: {:?} {e}", o.status);
+        assert!(
+            e.starts_with("windfield: error: ") && e.contains(words),
+            "{file}: {e}"
+        );
+    }
+    // A valid field with a 6 GiB tail (a sparse file): refused by its size, unread.
+    let field = dir.join("field.npy");
+    assert!(run(&[
+        "generate",
+        "--size",
+        "4",
+        "--k-inertial",
+        "1",
+        "--out",
+        s(&field)
+    ])
+    .status
+    .success());
+    let len = std::fs::metadata(&field).unwrap().len();
+    let tailed = dir.join("tailed.npy");
+    std::fs::copy(&field, &tailed).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&tailed)
+        .unwrap()
+        .set_len(len + (6 << 30))
+        .unwrap();
+    let o = run_limited(&["stats", s(&tailed)]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{:?} {e}", o.status);
+    assert!(e.contains("6442450944 bytes after the 3072"), "{e}");
+}
+
+/// `{"version": 1, "emitters": [{}, {}, …]}` with `n` emitters.
+fn emitter_flood(path: &Path, n: usize) {
+    let mut text = String::with_capacity(30 + 3 * n);
+    text.push_str(r#"{"version": 1, "emitters": ["#);
+    for i in 0..n {
+        text.push_str(if i == 0 { "{}" } else { ",{}" });
+    }
+    text.push_str("]}");
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn scene_files_are_bounded_by_size_unread_and_by_list_length_as_they_are_read() {
+    let dir = scratch("scene-flood");
+    // Ten million emitters in 30 MB: refused with the count, in a few times the file's memory
+    // (the whole file read at once grew past 1.6 GB before).
+    let flood = dir.join("flood.json");
+    emitter_flood(&flood, 10_000_000);
+    for command in ["simulate", "render"] {
+        let o = run_under(
+            400_000,
+            &[
+                command,
+                s(&flood),
+                "--seconds",
+                "1",
+                "--out",
+                s(&dir.join("x")),
+            ],
+        );
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{command}: {:?} {e}", o.status);
+        assert!(
+            e.contains("emitters: must hold at most 256 emitters (got 10000000)"),
+            "{command}: {e}"
+        );
+    }
+    // Over 64 MiB: refused before it is read (a sparse file of 210 MB: a scene's start, then
+    // nothing).
+    let huge = dir.join("huge.json");
+    std::fs::write(&huge, r#"{"version": 1, "emitters": ["#).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&huge)
+        .unwrap()
+        .set_len(210_000_000)
+        .unwrap();
+    for args in [
+        vec!["simulate", s(&huge), "--seconds", "1"],
+        vec!["render", s(&huge)],
+        vec!["render", s(&huge), "--frames", "0..2", "--fps", "24"],
+    ] {
+        let out = s(&dir.join(if args.contains(&"--frames") {
+            "f%d.png"
+        } else {
+            "x"
+        }))
+        .to_string();
+        let o = run_under(400_000, &[&args[..], &["--out", &out]].concat());
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {:?} {e}", o.status);
+        assert!(
+            e.contains("200.3 MiB of JSON, over the limit of 64 MiB"),
+            "{args:?}: {e}"
+        );
+    }
+}
+
+#[test]
+fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
+    let dir = scratch("messages");
+    let out = s(&dir.join("o.json")).to_string();
+    let scene_with = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        s(&path).to_string()
+    };
+    let cases = [
+        (
+            r#"{"version": "1"}"#,
+            r#"version: must be the number 1 (got the string "1")"#,
+        ),
+        (
+            r#"{"version": 1, "gas": {"max_blobs": -1}}"#,
+            "gas.max_blobs: must be a whole number ≥ 0 (got -1)",
+        ),
+        (
+            r#"{"version": 1, "seed": 1.5}"#,
+            "seed: must be a whole number ≥ 0 (got 1.5)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": 1e308}}"#,
+            "simulation.dt: must be a finite number greater than 0 and at most 1 (got 1e308)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": 1e999}}"#,
+            "simulation.dt: a number beyond ±1.8e308",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": NaN}}"#,
+            "simulation.dt: NaN is not a number JSON can hold",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": null}}"#,
+            "simulation.dt: must be a number (got null): JSON has no NaN or infinity",
+        ),
+        (
+            r#"{"version": 1, "render": {"shadows": "yes"}}"#,
+            r#"render.shadows: must be true or false (got the string "yes")"#,
+        ),
+        (
+            r#"{"version": 1, "field": {"size": [8, 8, 8]}}"#,
+            "field.size: must be a list of 4 numbers (got 3 items)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"integrator": "rk4"}}"#,
+            r#"simulation.integrator: must be "rk2" or "euler" (got "rk4")"#,
+        ),
+    ];
+    for (i, (text, want)) in cases.iter().enumerate() {
+        let path = scene_with(&format!("s{i}.json"), text);
+        let e = refused(&["simulate", &path, "--seconds", "1", "--out", &out]);
+        assert!(
+            e.starts_with(&format!("windfield: error: {path}: {want}")),
+            "{text}: {e}"
+        );
+        for rust in ["usize", "u64", "f64", "invalid type", "0000000000"] {
+            assert!(!e.contains(rust), "{text}: {e}");
+        }
+    }
+    let list = scene_with(
+        "list.json",
+        r#"{"blobs": [{"center": [0, 0, "a"], "sigma": 1, "mass": 1}]}"#,
+    );
+    let e = refused(&["render", &list, "--out", &out]);
+    assert!(
+        e.contains(r#"blobs[0].center[2]: must be a number (got the string "a")"#),
+        "{e}"
+    );
+    // The flags, as clap reads them.
+    let default = scene("default.json");
+    for (args, want) in [
+        (
+            vec!["render", &default, "--width", "abc", "--out", &out],
+            r#"--width: must be a whole number (got "abc")"#,
+        ),
+        (
+            vec!["render", &default, "--seconds", "soon", "--out", &out],
+            r#"--seconds: must be a number (got "soon")"#,
+        ),
+        (
+            vec!["generate", "--seed", "1.5", "--out", &out],
+            r#"--seed: must be a whole number (got "1.5")"#,
+        ),
+        (
+            vec!["render", &default],
+            "the following required arguments were not provided",
+        ),
+        (vec!["paint"], "unrecognized subcommand 'paint'"),
+        (
+            vec!["simulate", &default, "--seconds", "1e308", "--out", &out],
+            "--seconds: must be a number between 0 and 100000 (got 1e308)",
+        ),
+    ] {
+        let e = refused(&args);
+        assert!(
+            e.starts_with(&format!("windfield: error: {want}")),
+            "{args:?}: {e}"
+        );
+    }
+    let help = run(&["render", "--help"]);
+    assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--frames"));
+    // A field's shape is the file's, not a flag's.
+    let odd = dir.join("odd.npy");
+    let mut bytes = Vec::new();
+    windfield::field::npy::write_f32(&mut bytes, &[4, 4, 4, 5, 3], &vec![0.0; 960]).unwrap();
+    std::fs::write(&odd, bytes).unwrap();
+    let e = refused(&["stats", s(&odd)]);
+    assert!(
+        e.contains("odd.npy: its shape [4, 4, 4, 5, 3]: must be an even number"),
+        "{e}"
+    );
+    assert!(!e.contains("--size"), "{e}");
+    // A folder given as input is a failed read (exit 1), as a missing file is.
+    for args in [
+        vec!["stats", s(&dir)],
+        vec!["simulate", s(&dir), "--seconds", "1", "--out", &out],
+        vec!["render", s(&dir), "--out", &out],
+        vec![
+            "render",
+            s(&dir),
+            "--frames",
+            "0..2",
+            "--fps",
+            "24",
+            "--out",
+            "f%d.png",
+        ],
+    ] {
+        let o = run(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(
+            e.starts_with("windfield: error: ") && e.contains("directory"),
+            "{args:?}: {e}"
+        );
+    }
+}
+
+#[test]
+fn every_command_makes_the_folder_it_writes_into() {
+    let dir = scratch("folders");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let still = dir.join("stills/new/x.png");
+    ok(&[
+        "render",
+        &a,
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--out",
+        s(&still),
+    ]);
+    let png = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&still).unwrap(),
+    ))
+    .read_info()
+    .unwrap();
+    assert_eq!((png.info().width, png.info().height), (16, 12));
+    let list = dir.join("lists/l.json");
+    ok(&["simulate", &a, "--seconds", "0.1", "--out", s(&list)]);
+    assert!(list.exists());
+    let field = dir.join("fields/f.npy");
+    ok(&[
+        "generate",
+        "--size",
+        "4",
+        "--k-inertial",
+        "1",
+        "--out",
+        s(&field),
+    ]);
+    assert!(field.exists() && dir.join("fields/f.npy.json").exists());
 }
