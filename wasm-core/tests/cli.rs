@@ -1074,6 +1074,11 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
             "{args:?}: {e}"
         );
     }
+    let bare = refused(&[]);
+    assert!(
+        bare.starts_with("windfield: error: a subcommand is needed"),
+        "{bare}"
+    );
     let help = run(&["render", "--help"]);
     assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--frames"));
     // A field's shape is the file's, not a flag's.

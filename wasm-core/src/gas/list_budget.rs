@@ -7,9 +7,9 @@
 //!
 //! Every array is counted against the budget of its path (indices written `[]`: `wind[].path`);
 //! an array on no budget's path is one of the formats' vectors, colours or sizes (3 or 4
-//! numbers) and may hold at most [`OTHER_LIST_MAX`] items. The pass is lenient about anything
-//! else: text that is not JSON, or nests deeper than serde_json reads, is left to the parser to
-//! refuse with its own message.
+//! numbers) and may hold at most [`OTHER_LIST_MAX`] items; nesting deeper than serde_json reads
+//! is refused too. The pass is lenient about anything else: text that is not JSON is left to
+//! the parser to refuse with its own message.
 
 use crate::error::ParamError;
 use crate::gas::limits::{
@@ -52,7 +52,8 @@ pub const BLOB_LIST_LISTS: &[ListBudget] = &[
 /// colour or a size of 3 or 4 numbers.
 pub const OTHER_LIST_MAX: usize = 16;
 
-/// Deepest nesting counted: serde_json refuses deeper documents itself (its recursion limit).
+/// Deepest nesting read: serde_json's recursion limit (deeper lists and objects are refused
+/// here, wherever they lie, as serde_json refuses them where it recurses).
 const MAX_DEPTH: usize = 128;
 
 /// The budget of the array at `path` (`wind[].path`).
@@ -120,7 +121,13 @@ pub fn check_lists(text: &str, lists: &[ListBudget], root: &str) -> Result<(), P
             c @ (b'{' | b'[') => {
                 begin_item(text, &mut stack, i, root)?;
                 if stack.len() >= MAX_DEPTH {
-                    return Ok(());
+                    return Err(ParamError::new(
+                        root,
+                        format!(
+                            "lists and objects nested more than {MAX_DEPTH} deep (recursion \
+                             limit exceeded at byte {i})"
+                        ),
+                    ));
                 }
                 let path_len = path.len();
                 let step = match stack.last() {
@@ -400,9 +407,16 @@ mod tests {
         let cut = list(r#""emitters": "#, "{}", 300, "");
         let e = check_lists(&cut[..cut.len() - 10], SCENE_LISTS, "scene").unwrap_err();
         assert!(e.message.ends_with("(got more than 256)"), "{e}");
-        // Nesting beyond serde_json's limit, and text that is not JSON, are the parser's to refuse.
-        let deep = format!(r#"{{"wind": {}{}}}"#, "[".repeat(200), "]".repeat(200));
-        assert_eq!(check_lists(&deep, SCENE_LISTS, "scene"), Ok(()));
+        // Nesting beyond serde_json's limit is refused wherever it lies; text that is not JSON
+        // is the parser's to refuse.
+        let nest = |n: usize| format!(r#"{{"wind": {}{}}}"#, "[".repeat(n), "]".repeat(n));
+        assert_eq!(check_lists(&nest(126), SCENE_LISTS, "scene"), Ok(()));
+        let e = check_lists(&nest(200), SCENE_LISTS, "scene").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("scene: lists and objects nested more than 128"),
+            "{e}"
+        );
         assert_eq!(check_lists("{]]]", SCENE_LISTS, "scene"), Ok(()));
         assert_eq!(
             check_lists(r#"{"a" "b": [1,2]}"#, SCENE_LISTS, "scene"),

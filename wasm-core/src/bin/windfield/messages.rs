@@ -15,7 +15,11 @@ pub fn parse_args<P: Parser>() -> Result<P, ExitCode> {
             let _ = e.print();
             return ExitCode::SUCCESS;
         }
-        eprintln!("windfield: error: {}", describe(&e));
+        if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+            eprintln!("windfield: error: a subcommand is needed\n\n{}", e.render());
+        } else {
+            eprintln!("windfield: error: {}", describe(&e));
+        }
         ExitCode::from(2)
     })
 }
