@@ -1019,6 +1019,10 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
             "field.size: must be a list of 4 numbers (got 3 items)",
         ),
         (
+            r#"{"version": 1, "simulation": {"dt": 1e-300}, "render": {"time": 100}}"#,
+            "simulation.dt: 100 s of simulated time at dt = 1e-300 s is 9.999999999999999e301 steps",
+        ),
+        (
             r#"{"version": 1, "simulation": {"integrator": "rk4"}}"#,
             r#"simulation.integrator: must be "rk2" or "euler" (got "rk4")"#,
         ),
