@@ -3,7 +3,7 @@
 //! that apply them are `gas::validate` (scenes and blob lists) and the field's own parameters
 //! (`FieldParams::validate`, `SpectrumParams::validate`).
 
-use crate::error::ParamError;
+use crate::error::{number, ParamError};
 
 /// A finite number in `[lo, hi]`.
 pub fn range(path: &str, v: f64, lo: f64, hi: f64) -> Result<(), ParamError> {
@@ -12,7 +12,12 @@ pub fn range(path: &str, v: f64, lo: f64, hi: f64) -> Result<(), ParamError> {
     } else {
         Err(ParamError::new(
             path,
-            format!("must be a finite number between {lo} and {hi} (got {v})"),
+            format!(
+                "must be a finite number between {} and {} (got {})",
+                number(lo),
+                number(hi),
+                number(v)
+            ),
         ))
     }
 }
@@ -49,7 +54,11 @@ pub fn positive(path: &str, v: f64, hi: f64) -> Result<(), ParamError> {
     } else {
         Err(ParamError::new(
             path,
-            format!("must be a finite number greater than 0 and at most {hi} (got {v})"),
+            format!(
+                "must be a finite number greater than 0 and at most {} (got {})",
+                number(hi),
+                number(v)
+            ),
         ))
     }
 }

@@ -1,9 +1,13 @@
 //! The `windfield` command line as a user meets it (docs/FORMATS.md, the command line): a still at the scene's
 //! `render.time`, the summary line of every command that writes, the project's own message for
-//! negative numbers, budgets that refuse a hostile scene before it allocates (under a 3 GB
-//! address-space limit, where an allocation failure would abort), no silent NaN, and
-//! sequences whose shards never share a temporary name, whose manifest keeps two runs' frames
-//! apart, and whose shard arithmetic does not wrap.
+//! negative numbers and for every other refusal (`windfield: error:`, in a person's words),
+//! budgets that refuse a hostile scene before it allocates (under an address-space limit, where
+//! an allocation failure would abort), scene files bounded by size and by list length as they
+//! are read, `.npy` files refused by their declared lengths before they are read, no silent NaN,
+//! a field and its parameters written together, and sequences whose shards never share a
+//! temporary name, whose manifests keep two runs' frames apart whatever the pattern's spelling
+//! (claimed under a folder lock, so two runs started at once never both pass), and whose shard
+//! arithmetic does not wrap.
 //!
 //! The binary is the one Cargo builds for these tests; `WINDFIELD_TEST_BIN` names another
 //! (to run the same checks against an older build).
@@ -556,4 +560,601 @@ fn shards_of_more_than_2_to_the_63_render_their_own_frames() {
             assert!(bytes == &want[name], "{shard}: {name} differs");
         }
     }
+}
+
+/// A scene that simulates and renders in milliseconds: an 8⁴ lattice, one small plume.
+fn tiny_scene(dir: &Path, name: &str, seed: u64) -> String {
+    let v = serde_json::json!({
+        "version": 1,
+        "seed": seed,
+        "field": {"size": [8, 8, 8, 8], "spectrum": {"k_inertial": 1}, "period": [2, 2, 2]},
+        "emitters": [{"shape": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 0.1,
+                      "rate": 120, "sigma0": 0.05, "mass0": 0.01}],
+        "wind": [{"type": "uniform", "velocity": [0, 0.4, 0]}],
+        "gas": {"max_blobs": 400},
+        "render": {"camera": {"position": [0, 0.5, 2.5], "target": [0, 0.5, 0]}}
+    });
+    write(dir, name, &v)
+}
+
+/// `render INPUT --frames RANGE --fps 240 --width 32 --height 24 --out PATTERN EXTRA…`.
+fn frames_of(input: &str, range: &str, pattern: &str, extra: &[&str]) -> Command {
+    let mut c = Command::new(bin());
+    c.args([
+        "render", input, "--frames", range, "--fps", "240", "--width", "32", "--height", "24",
+        "--out", pattern,
+    ])
+    .args(extra);
+    c
+}
+
+/// The manifests in `dir`.
+fn manifests(dir: &Path) -> Vec<String> {
+    let mut out: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".windfield.json"))
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn frames_reached_through_another_spelling_of_the_pattern_stay_with_their_run() {
+    let dir = scratch("spellings");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let b = tiny_scene(&dir, "b.json", 2);
+    let d = dir.join("d");
+    let padded = format!("{}/f%03d.png", s(&d));
+    let plain = format!("{}/f%d.png", s(&d));
+    let first = frames_of(&a, "100..106", &padded, &[]).output().unwrap();
+    assert!(first.status.success(), "{}", stderr(&first));
+    let before = frames(&d);
+    assert_eq!(before.len(), 6);
+    // Another scene through the other spelling would skip f100.png … f105.png: refused, both
+    // runs named, nothing touched.
+    let other = frames_of(&b, "98..106", &plain, &[]).output().unwrap();
+    let e = stderr(&other);
+    assert_eq!(other.status.code(), Some(2), "{e}");
+    assert!(e.starts_with("windfield: error: --out: "), "{e}");
+    for words in [
+        "b.json",
+        "frames 98..106 of",
+        "f%d.png",
+        "a.json",
+        "frames 100..106 of",
+        "f%03d.png",
+        "6 of its frames",
+        "f100.png … f105.png",
+        "another scene",
+        "--force",
+    ] {
+        assert!(e.contains(words), "{words:?} in {e}");
+    }
+    assert!(frames(&d) == before, "a refused run touched the frames");
+    assert_eq!(manifests(&d), ["f%03d.png.windfield.json"]);
+    // The same run through the other spelling shares its claim: the six are skipped.
+    let again = frames_of(&a, "98..106", &plain, &[]).output().unwrap();
+    let e = stderr(&again);
+    assert!(again.status.success(), "{e}");
+    assert!(e.contains("6 of 8 frames already complete"), "{e}");
+    let now = frames(&d);
+    assert_eq!(now.len(), 8);
+    assert!(before.iter().all(|(name, bytes)| &now[name] == bytes));
+    // --force takes the frames over from run a; then run a is refused on them.
+    let forced = frames_of(&b, "98..106", &plain, &["--force"])
+        .output()
+        .unwrap();
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    let taken = frames(&d);
+    assert_eq!(taken.len(), 8);
+    assert!(taken["f100.png"] != before["f100.png"], "run b's frame");
+    assert_eq!(manifests(&d), ["f%d.png.windfield.json"]);
+    let back = frames_of(&a, "100..106", &padded, &[]).output().unwrap();
+    assert_eq!(back.status.code(), Some(2), "{}", stderr(&back));
+    assert!(frames(&d) == taken);
+    // A frame file of the range that no manifest claims is not taken for this run's.
+    std::fs::copy(d.join("f100.png"), d.join("f107.png")).unwrap();
+    let stray = frames_of(&b, "98..108", &plain, &[]).output().unwrap();
+    let e = stderr(&stray);
+    assert_eq!(stray.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("f107.png") && e.contains("no manifest claims"),
+        "{e}"
+    );
+    let forced = frames_of(&b, "98..108", &plain, &["--force"])
+        .output()
+        .unwrap();
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    assert!(
+        frames(&d)["f107.png"] != taken["f100.png"],
+        "rendered, not kept"
+    );
+}
+
+#[test]
+fn two_runs_started_at_once_into_one_folder_never_both_claim_it() {
+    let dir = scratch("race");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let b = tiny_scene(&dir, "b.json", 2);
+    let reference = |input: &str, name: &str| {
+        let pattern = format!("{}/{name}/f%03d.png", s(&dir));
+        let out = frames_of(input, "100..104", &pattern, &[])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", stderr(&out));
+        frames(&dir.join(name))
+    };
+    let want = [reference(&a, "ref-a"), reference(&b, "ref-b")];
+    for trial in 0..6 {
+        let d = dir.join(format!("trial{trial}"));
+        // Even trials spell the pattern the same way twice; odd ones differently.
+        let patterns = [
+            format!("{}/f%03d.png", s(&d)),
+            format!("{}/f{}.png", s(&d), ["%03d", "%d"][trial % 2]),
+        ];
+        let children: Vec<_> = [&a, &b]
+            .iter()
+            .zip(&patterns)
+            .map(|(input, pattern)| {
+                frames_of(input, "100..104", pattern, &[])
+                    .stderr(std::process::Stdio::piped())
+                    .spawn()
+                    .unwrap()
+            })
+            .collect();
+        let outs: Vec<Output> = children
+            .into_iter()
+            .map(|c| c.wait_with_output().unwrap())
+            .collect();
+        let won: Vec<usize> = (0..2).filter(|&i| outs[i].status.success()).collect();
+        assert_eq!(
+            won.len(),
+            1,
+            "trial {trial}: {} / {}",
+            stderr(&outs[0]),
+            stderr(&outs[1])
+        );
+        let (w, l) = (won[0], 1 - won[0]);
+        assert_eq!(outs[l].status.code(), Some(2), "trial {trial}");
+        assert!(
+            stderr(&outs[l]).contains("another run"),
+            "{}",
+            stderr(&outs[l])
+        );
+        let mut got = frames(&d);
+        assert!(got.keys().all(|n| n.ends_with(".png")), "{:?}", got.keys());
+        got.retain(|n, _| n.ends_with(".png"));
+        assert!(got == want[w], "trial {trial}: the folder mixes two runs");
+        assert_eq!(manifests(&d).len(), 1, "trial {trial}");
+        assert!(!d.join(".windfield.lock").exists(), "trial {trial}");
+    }
+}
+
+/// This machine's name as the CLI reads it for its folder lock.
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().to_string())
+        .unwrap_or_default()
+}
+
+#[test]
+fn a_claim_lock_left_by_a_dead_run_is_taken_over_and_a_live_one_waited_for() {
+    let dir = scratch("lock");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let lock = |d: &Path, pid: u32| {
+        std::fs::create_dir_all(d).unwrap();
+        let holder =
+            serde_json::json!({"pid": pid, "host": host(), "run": "another", "token": "t"});
+        std::fs::write(d.join(".windfield.lock"), holder.to_string()).unwrap();
+    };
+    // A process that has ended held it.
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let d = dir.join("dead");
+    lock(&d, dead);
+    let out = frames_of(&a, "0..2", &format!("{}/f%02d.png", s(&d)), &[])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(frames(&d).len(), 2);
+    assert!(!d.join(".windfield.lock").exists());
+    // A live process of another run holds it: nothing is claimed or written until it is gone.
+    let d = dir.join("live");
+    lock(&d, std::process::id());
+    let child = frames_of(&a, "0..2", &format!("{}/f%02d.png", s(&d)), &[])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    assert!(
+        frames(&d).keys().eq([".windfield.lock"]) && manifests(&d).is_empty(),
+        "claimed or written while another run held the lock: {:?}",
+        frames(&d).keys()
+    );
+    std::fs::remove_file(d.join(".windfield.lock")).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(frames(&d).len(), 2);
+}
+
+/// The files in `dir` whose names end with `.partial` (temporary files left behind).
+fn partials(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".partial"))
+        .collect()
+}
+
+#[test]
+fn a_failed_generate_leaves_the_old_field_beside_its_own_parameters() {
+    let dir = scratch("generate-pair");
+    let npy = dir.join("field.npy");
+    let side = dir.join("field.npy.json");
+    let generate = |seed: &str, epsilon: &str, out: &Path| {
+        run(&[
+            "generate",
+            "--size",
+            "8",
+            "--k-inertial",
+            "1",
+            "--seed",
+            seed,
+            "--epsilon",
+            epsilon,
+            "--out",
+            s(out),
+        ])
+    };
+    let first = generate("1", "1", &npy);
+    assert!(first.status.success(), "{}", stderr(&first));
+    let (old_npy, old_side) = (std::fs::read(&npy).unwrap(), std::fs::read(&side).unwrap());
+    // The parameters cannot be written (a folder holds their name): the new field must not
+    // replace the old one.
+    std::fs::remove_file(&side).unwrap();
+    std::fs::create_dir_all(side.join("in-the-way")).unwrap();
+    let failed = generate("2", "16", &npy);
+    let e = stderr(&failed);
+    assert_eq!(failed.status.code(), Some(1), "{e}");
+    assert!(
+        e.starts_with("windfield: error: ") && e.contains("field.npy.json"),
+        "{e}"
+    );
+    assert!(
+        std::fs::read(&npy).unwrap() == old_npy,
+        "the field was replaced"
+    );
+    assert!(partials(&dir).is_empty(), "{:?}", partials(&dir));
+    // Put back, the pair is the old one: stats measures the energy its parameters predict.
+    std::fs::remove_dir_all(&side).unwrap();
+    std::fs::write(&side, &old_side).unwrap();
+    let stats = run(&["stats", s(&npy), "--json"]);
+    assert!(stats.status.success(), "{}", stderr(&stats));
+    let report: serde_json::Value = serde_json::from_slice(&stats.stdout).unwrap();
+    let ratio = report["energy_ratio"].as_f64().unwrap();
+    assert!((0.5..2.0).contains(&ratio), "{report}");
+    // A name whose parameters' name is too long for the file system: the same.
+    let long = dir.join(format!("{}.npy", "f".repeat(248)));
+    std::fs::write(&long, &old_npy).unwrap();
+    let failed = generate("2", "16", &long);
+    assert_eq!(failed.status.code(), Some(1), "{}", stderr(&failed));
+    assert!(
+        std::fs::read(&long).unwrap() == old_npy,
+        "the field was replaced"
+    );
+    assert!(partials(&dir).is_empty(), "{:?}", partials(&dir));
+}
+
+/// Runs the CLI under an address-space limit of `kib` KiB (`ulimit -v`).
+fn run_under(kib: u64, args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!(r#"ulimit -v {kib} && exec "$0" "$@""#))
+        .arg(bin())
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn npy_files_are_refused_by_their_declared_lengths_before_they_are_read() {
+    let dir = scratch("npy");
+    let hostile = |name: &str| s(&root().join("wasm-core/tests/hostile").join(name)).to_string();
+    for (file, words) in [
+        ("fortran-order.npy", "unknown key 'note'"),
+        ("fortran-order-plain.npy", "Fortran-ordered"),
+        ("header-4gib.npy", "at most 10000"),
+        ("shape-4tib.npy", "needs 4398046511104 bytes"),
+    ] {
+        let o = run_limited(&["stats", &hostile(file)]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{file}: {:?} {e}", o.status);
+        assert!(
+            e.starts_with("windfield: error: ") && e.contains(words),
+            "{file}: {e}"
+        );
+    }
+    // A valid field with a 6 GiB tail (a sparse file): refused by its size, unread.
+    let field = dir.join("field.npy");
+    assert!(run(&[
+        "generate",
+        "--size",
+        "4",
+        "--k-inertial",
+        "1",
+        "--out",
+        s(&field)
+    ])
+    .status
+    .success());
+    let len = std::fs::metadata(&field).unwrap().len();
+    let tailed = dir.join("tailed.npy");
+    std::fs::copy(&field, &tailed).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&tailed)
+        .unwrap()
+        .set_len(len + (6 << 30))
+        .unwrap();
+    let o = run_limited(&["stats", s(&tailed)]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{:?} {e}", o.status);
+    assert!(e.contains("6442450944 bytes after the 3072"), "{e}");
+}
+
+/// `{"version": 1, "emitters": [{}, {}, …]}` with `n` emitters.
+fn emitter_flood(path: &Path, n: usize) {
+    let mut text = String::with_capacity(30 + 3 * n);
+    text.push_str(r#"{"version": 1, "emitters": ["#);
+    for i in 0..n {
+        text.push_str(if i == 0 { "{}" } else { ",{}" });
+    }
+    text.push_str("]}");
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn scene_files_are_bounded_by_size_unread_and_by_list_length_as_they_are_read() {
+    let dir = scratch("scene-flood");
+    // Ten million emitters in 30 MB: refused with the count, in a few times the file's memory
+    // (the whole file read at once grew past 1.6 GB before).
+    let flood = dir.join("flood.json");
+    emitter_flood(&flood, 10_000_000);
+    for command in ["simulate", "render"] {
+        let o = run_under(
+            400_000,
+            &[
+                command,
+                s(&flood),
+                "--seconds",
+                "1",
+                "--out",
+                s(&dir.join("x")),
+            ],
+        );
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{command}: {:?} {e}", o.status);
+        assert!(
+            e.contains("emitters: must hold at most 256 emitters (got 10000000)"),
+            "{command}: {e}"
+        );
+    }
+    // Over 64 MiB: refused before it is read (a sparse file of 210 MB: a scene's start, then
+    // nothing).
+    let huge = dir.join("huge.json");
+    std::fs::write(&huge, r#"{"version": 1, "emitters": ["#).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&huge)
+        .unwrap()
+        .set_len(210_000_000)
+        .unwrap();
+    for args in [
+        vec!["simulate", s(&huge), "--seconds", "1"],
+        vec!["render", s(&huge)],
+        vec!["render", s(&huge), "--frames", "0..2", "--fps", "24"],
+    ] {
+        let out = s(&dir.join(if args.contains(&"--frames") {
+            "f%d.png"
+        } else {
+            "x"
+        }))
+        .to_string();
+        let o = run_under(400_000, &[&args[..], &["--out", &out]].concat());
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {:?} {e}", o.status);
+        assert!(
+            e.contains("200.3 MiB of JSON, over the limit of 64 MiB"),
+            "{args:?}: {e}"
+        );
+    }
+}
+
+#[test]
+fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
+    let dir = scratch("messages");
+    let out = s(&dir.join("o.json")).to_string();
+    let scene_with = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        s(&path).to_string()
+    };
+    let cases = [
+        (
+            r#"{"version": "1"}"#,
+            r#"version: must be the number 1 (got the string "1")"#,
+        ),
+        (
+            r#"{"version": 1, "gas": {"max_blobs": -1}}"#,
+            "gas.max_blobs: must be a whole number ≥ 0 (got -1)",
+        ),
+        (
+            r#"{"version": 1, "seed": 1.5}"#,
+            "seed: must be a whole number ≥ 0 (got 1.5)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": 1e308}}"#,
+            "simulation.dt: must be a finite number greater than 0 and at most 1 (got 1e308)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": 1e999}}"#,
+            "simulation.dt: a number beyond ±1.8e308",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": NaN}}"#,
+            "simulation.dt: NaN is not a number JSON can hold",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": null}}"#,
+            "simulation.dt: must be a number (got null): JSON has no NaN or infinity",
+        ),
+        (
+            r#"{"version": 1, "render": {"shadows": "yes"}}"#,
+            r#"render.shadows: must be true or false (got the string "yes")"#,
+        ),
+        (
+            r#"{"version": 1, "field": {"size": [8, 8, 8]}}"#,
+            "field.size: must be a list of 4 numbers (got 3 items)",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"dt": 1e-300}, "render": {"time": 100}}"#,
+            "simulation.dt: 100 s of simulated time at dt = 1e-300 s is 9.999999999999999e301 steps",
+        ),
+        (
+            r#"{"version": 1, "simulation": {"integrator": "rk4"}}"#,
+            r#"simulation.integrator: must be "rk2" or "euler" (got "rk4")"#,
+        ),
+    ];
+    for (i, (text, want)) in cases.iter().enumerate() {
+        let path = scene_with(&format!("s{i}.json"), text);
+        let e = refused(&["simulate", &path, "--seconds", "1", "--out", &out]);
+        assert!(
+            e.starts_with(&format!("windfield: error: {path}: {want}")),
+            "{text}: {e}"
+        );
+        for rust in ["usize", "u64", "f64", "invalid type", "0000000000"] {
+            assert!(!e.contains(rust), "{text}: {e}");
+        }
+    }
+    let list = scene_with(
+        "list.json",
+        r#"{"blobs": [{"center": [0, 0, "a"], "sigma": 1, "mass": 1}]}"#,
+    );
+    let e = refused(&["render", &list, "--out", &out]);
+    assert!(
+        e.contains(r#"blobs[0].center[2]: must be a number (got the string "a")"#),
+        "{e}"
+    );
+    // The flags, as clap reads them.
+    let default = scene("default.json");
+    for (args, want) in [
+        (
+            vec!["render", &default, "--width", "abc", "--out", &out],
+            r#"--width: must be a whole number (got "abc")"#,
+        ),
+        (
+            vec!["render", &default, "--seconds", "soon", "--out", &out],
+            r#"--seconds: must be a number (got "soon")"#,
+        ),
+        (
+            vec!["generate", "--seed", "1.5", "--out", &out],
+            r#"--seed: must be a whole number (got "1.5")"#,
+        ),
+        (
+            vec!["render", &default],
+            "the following required arguments were not provided",
+        ),
+        (vec!["paint"], "unrecognized subcommand 'paint'"),
+        (
+            vec!["simulate", &default, "--seconds", "1e308", "--out", &out],
+            "--seconds: must be a number between 0 and 100000 (got 1e308)",
+        ),
+    ] {
+        let e = refused(&args);
+        assert!(
+            e.starts_with(&format!("windfield: error: {want}")),
+            "{args:?}: {e}"
+        );
+    }
+    let bare = refused(&[]);
+    assert!(
+        bare.starts_with("windfield: error: a subcommand is needed"),
+        "{bare}"
+    );
+    let help = run(&["render", "--help"]);
+    assert!(help.status.success() && String::from_utf8_lossy(&help.stdout).contains("--frames"));
+    // A field's shape is the file's, not a flag's.
+    let odd = dir.join("odd.npy");
+    let mut bytes = Vec::new();
+    windfield::field::npy::write_f32(&mut bytes, &[4, 4, 4, 5, 3], &vec![0.0; 960]).unwrap();
+    std::fs::write(&odd, bytes).unwrap();
+    let e = refused(&["stats", s(&odd)]);
+    assert!(
+        e.contains("odd.npy: its shape [4, 4, 4, 5, 3]: must be an even number"),
+        "{e}"
+    );
+    assert!(!e.contains("--size"), "{e}");
+    // A folder given as input is a failed read (exit 1), as a missing file is.
+    for args in [
+        vec!["stats", s(&dir)],
+        vec!["simulate", s(&dir), "--seconds", "1", "--out", &out],
+        vec!["render", s(&dir), "--out", &out],
+        vec![
+            "render",
+            s(&dir),
+            "--frames",
+            "0..2",
+            "--fps",
+            "24",
+            "--out",
+            "f%d.png",
+        ],
+    ] {
+        let o = run(&args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(
+            e.starts_with("windfield: error: ") && e.contains("directory"),
+            "{args:?}: {e}"
+        );
+    }
+}
+
+#[test]
+fn every_command_makes_the_folder_it_writes_into() {
+    let dir = scratch("folders");
+    let a = tiny_scene(&dir, "a.json", 1);
+    let still = dir.join("stills/new/x.png");
+    ok(&[
+        "render",
+        &a,
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--out",
+        s(&still),
+    ]);
+    let png = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&still).unwrap(),
+    ))
+    .read_info()
+    .unwrap();
+    assert_eq!((png.info().width, png.info().height), (16, 12));
+    let list = dir.join("lists/l.json");
+    ok(&["simulate", &a, "--seconds", "0.1", "--out", s(&list)]);
+    assert!(list.exists());
+    let field = dir.join("fields/f.npy");
+    ok(&[
+        "generate",
+        "--size",
+        "4",
+        "--k-inertial",
+        "1",
+        "--out",
+        s(&field),
+    ]);
+    assert!(field.exists() && dir.join("fields/f.npy.json").exists());
 }

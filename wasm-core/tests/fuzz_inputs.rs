@@ -63,9 +63,26 @@ fn blob_list_corpus() -> Vec<Vec<u8>> {
     c
 }
 
-/// `.npy` fields: small syntheses of a few shapes, one with a NaN in it.
+/// The hostile `.npy` files of `tests/hostile/`.
+fn hostile_npy() -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("wasm-core/tests/hostile"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "npy"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|p| {
+            let name = p.file_name().unwrap().to_str().unwrap().to_string();
+            (name, std::fs::read(p).unwrap())
+        })
+        .collect()
+}
+
+/// `.npy` fields: small syntheses of a few shapes, one with a NaN in it, and the hostile ones.
 fn npy_corpus() -> Vec<Vec<u8>> {
-    [
+    let mut corpus: Vec<Vec<u8>> = [
         ([4, 4, 4, 4], None),
         ([8, 4, 4, 8], None),
         ([4, 4, 4, 4], Some(77)),
@@ -86,7 +103,9 @@ fn npy_corpus() -> Vec<Vec<u8>> {
         npy::write_f32(&mut bytes, &[nt, nz, ny, nx, 3], &field.data).unwrap();
         bytes
     })
-    .collect()
+    .collect();
+    corpus.extend(hostile_npy().into_iter().map(|(_, bytes)| bytes));
+    corpus
 }
 
 struct Mutator {
@@ -357,10 +376,18 @@ fn blob_list_target(bytes: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// A `.npy` field: read; the reader refuses what it cannot take. A field's shape on a valid
-/// lattice becomes a field, which refuses values that are not finite.
+/// A `.npy` field: read, as a stream and as a file of its size, the two readers agreeing;
+/// the reader refuses what it cannot take. A field's shape on a valid lattice becomes a field,
+/// which refuses values that are not finite.
 fn npy_target(bytes: &[u8]) -> Result<(), String> {
-    let (shape, data) = npy::read_f32(bytes).map_err(|e| e.to_string())?;
+    let sized = npy::read_f32_sized(bytes, bytes.len() as u64);
+    let streamed = npy::read_f32(bytes);
+    assert_eq!(
+        sized.as_ref().ok().map(|(s, d)| (s, d.len())),
+        streamed.as_ref().ok().map(|(s, d)| (s, d.len())),
+        "the two readers disagree"
+    );
+    let (shape, data) = streamed.map_err(|e| e.to_string())?;
     if let [nt, nz, ny, nx, 3] = shape[..] {
         let params = FieldParams {
             size: [nx, ny, nz, nt],
@@ -421,6 +448,24 @@ fn hostile_scenes_stay_refused_before_any_work_with_their_path() {
     ] {
         let e = hostile(name).unwrap_or_else(|| panic!("{name} was accepted"));
         assert!(e.starts_with(start) && e.contains(words), "{name}: {e}");
+    }
+}
+
+#[test]
+fn hostile_npy_files_stay_refused_before_they_are_read() {
+    let want = [
+        ("fortran-order-plain.npy", "Fortran-ordered"),
+        ("fortran-order.npy", "unknown key 'note'"),
+        ("header-4gib.npy", "at most 10000"),
+        ("shape-4tib.npy", "needs 4398046511104 bytes"),
+    ];
+    let files = hostile_npy();
+    assert_eq!(files.len(), want.len(), "a hostile .npy without its check");
+    for ((name, bytes), (want_name, words)) in files.iter().zip(want) {
+        assert_eq!(name, want_name);
+        let e = npy::read_f32_sized(&bytes[..], bytes.len() as u64).unwrap_err();
+        assert!(e.to_string().contains(words), "{name}: {e}");
+        assert!(npy::read_f32(&bytes[..]).is_err(), "{name}");
     }
 }
 

@@ -30,9 +30,16 @@ const GOOD: &str = r#"{
 fn error_of(edit: impl Fn(&mut serde_json::Value)) -> String {
     let mut v: serde_json::Value = serde_json::from_str(GOOD).unwrap();
     edit(&mut v);
-    match Scene::from_value(v) {
+    // Read from text and from a parsed value alike.
+    let from_text = Scene::from_json(&v.to_string()).map_err(|e| e.to_string());
+    let from_value = Scene::from_value(v).map_err(|e| e.to_string());
+    assert_eq!(from_text.is_ok(), from_value.is_ok());
+    match from_value {
         Ok(_) => "accepted".into(),
-        Err(e) => e.to_string(),
+        Err(e) => {
+            assert_eq!(from_text.unwrap_err(), e, "text and value read alike");
+            e
+        }
     }
 }
 
@@ -121,9 +128,17 @@ fn malformed_scenes_are_rejected_with_their_path() {
     let cases: Vec<(Edit, &str, &str)> = vec![
         (remove("version"), "version", "missing"),
         (set("/version", json!(2)), "version", "unsupported"),
-        (set("/version", json!("one")), "version", "unsupported"),
+        (
+            set("/version", json!("one")),
+            "version",
+            "must be the number 1 (got the string \"one\")",
+        ),
         (insert("", "colour", json!(1)), "colour", "unknown field"),
-        (set("/seed", json!(-1)), "seed", "invalid value"),
+        (
+            set("/seed", json!(-1)),
+            "seed",
+            "must be a whole number ≥ 0 (got -1)",
+        ),
         (
             set("/seed", json!(9007199254740993u64)),
             "seed",
@@ -152,17 +167,17 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/field/size", json!([32, 32, 32])),
             "field.size",
-            "invalid length",
+            "must be a list of 4 numbers (got 3 items)",
         ),
         (
             set("/field/size/0", json!("32")),
             "field.size[0]",
-            "invalid type",
+            "must be a whole number ≥ 0 (got the string \"32\")",
         ),
         (
             set("/field/spectrum/law", json!("kolmogoroff")),
             "field.spectrum.law",
-            "unknown variant",
+            "must be \"kolmogorov\" or \"paper-literal\" (got \"kolmogoroff\")",
         ),
         (
             set("/field/spectrum/epsilon", json!(-1)),
@@ -202,7 +217,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/wind/0/type", json!("tornado")),
             "wind[0].type",
-            "unknown variant",
+            "must be one of \"uniform\", ",
         ),
         (
             insert("/wind/0", "speed", json!(1)),
@@ -212,7 +227,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/wind/0/velocity", json!([0, 1])),
             "wind[0]",
-            "invalid length",
+            "must be a list of 3 numbers (got 2 items)",
         ),
         (
             insert("/wind/1", "radius", json!(0)),
@@ -247,7 +262,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/emitters/0/shape", json!("cone")),
             "emitters[0].shape",
-            "unknown variant",
+            "(got \"cone\")",
         ),
         (
             set("/emitters/0/rate", json!(-3)),
@@ -297,7 +312,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/simulation/integrator", json!("rk4")),
             "simulation.integrator",
-            "unknown variant",
+            "must be \"rk2\" or \"euler\" (got \"rk4\")",
         ),
         (
             set("/render/camera/fov_y_deg", json!(180)),
@@ -317,7 +332,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/render/image/encoding", json!("gamma")),
             "render.image.encoding",
-            "unknown variant",
+            "(got \"gamma\")",
         ),
         (
             set("/render/medium/phase/g", json!(1)),
@@ -342,7 +357,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/render/shadows", json!("yes")),
             "render.shadows",
-            "invalid type",
+            "must be true or false (got the string \"yes\")",
         ),
         (
             insert("/render", "time", json!(-1)),
@@ -352,7 +367,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             insert("/render", "time", json!("soon")),
             "render.time",
-            "invalid type",
+            "must be a number (got the string \"soon\")",
         ),
         (
             insert("/render", "time", json!(20_000)),
@@ -370,10 +385,8 @@ fn malformed_scenes_are_rejected_with_their_path() {
         assert!(e.contains(text), "expected '{text}' in: {e}");
     }
     // Not JSON at all, and not an object.
-    assert!(Scene::from_json("{")
-        .unwrap_err()
-        .to_string()
-        .starts_with("scene: not valid JSON"));
+    let e = Scene::from_json("{").unwrap_err().to_string();
+    assert!(e.starts_with("scene: not valid JSON"), "{e}");
     assert!(Scene::from_json("[1]")
         .unwrap_err()
         .to_string()

@@ -99,7 +99,7 @@ impl SpectrumParams {
                 format!("{path}.k_inertial"),
                 format!(
                     "must be greater than 0 and at most {max_k_inertial} (half the smallest spatial extent minus one) (got {})",
-                    self.k_inertial
+                    crate::error::number(self.k_inertial)
                 ),
             ));
         }

@@ -6,6 +6,11 @@
 //! factor); a blob handed to a renderer 88 more (its record), and the renderer's own copy of it
 //! 88 + 44 + its share of the hierarchy.
 
+/// Longest scene text read (bytes): a scene file, or the JSON the browser's worker is handed,
+/// is refused over it before it is parsed. The largest scene the list budgets allow in
+/// ordinary notation is a few megabytes.
+pub const MAX_SCENE_BYTES: usize = 64 << 20;
+
 /// Largest accepted coordinate magnitude (m).
 pub const MAX_COORD: f64 = 1.0e6;
 

@@ -9,7 +9,9 @@
 //!   the two formats share their view settings, their bounds and their validation, and the
 //!   renderers downstream read it without knowing of scenes.
 //! - [`limits`]: the bounds and memory guards of both formats.
-//! - [`read`]: parsing from JSON (errors at their JSON path, version migration).
+//! - [`read`]: parsing from JSON (errors at their JSON path, version migration), bounded
+//!   first by [`list_budget`] (every list counted in the text before it is built); serde's
+//!   errors in a person's words by [`json_errors`].
 //! - [`validate`]: the one validation walk of each format.
 //!
 //! The physics, in the order a step uses it:
@@ -29,7 +31,9 @@ pub mod blob_list;
 pub mod blobs;
 pub mod emitter;
 pub mod figure1;
+pub mod json_errors;
 pub mod limits;
+pub mod list_budget;
 pub mod random;
 pub mod read;
 pub mod scene;

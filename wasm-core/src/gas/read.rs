@@ -1,77 +1,209 @@
 //! Reading the two formats from JSON: the scene and the blob list (docs/FORMATS.md).
 //!
-//! Reading is strict: serde refuses unknown keys and wrong types, naming the JSON path; an old
-//! scene version is migrated first; then the one validation walk ([`super::validate`]) checks
-//! every value. What comes out of here is ready to simulate or render.
+//! Reading is strict, and bounded before it builds anything: a scene's text over
+//! [`MAX_SCENE_BYTES`] is refused unread, and every list of either format is counted against
+//! its budget in the text ([`super::list_budget`]) before serde builds it. Then serde refuses
+//! unknown keys and wrong types, naming the JSON path in a person's words
+//! ([`super::json_errors`]); an old scene version is migrated first; then the one validation
+//! walk ([`super::validate`]) checks every value. What comes out of here is ready to simulate
+//! or render.
 
 use crate::error::ParamError;
 use crate::gas::blob_list::BlobList;
+use crate::gas::json_errors::describe;
+use crate::gas::limits::MAX_SCENE_BYTES;
+use crate::gas::list_budget::{check_lists, BLOB_LIST_LISTS, SCENE_LISTS};
 use crate::gas::scene::{Scene, SCENE_VERSION};
+use serde::{Deserialize, Deserializer};
+use serde_json::Value;
 
-/// A serde error as a [`ParamError`] at its JSON path (`root` for the document itself).
-fn at_path(root: &str, e: serde_path_to_error::Error<serde_json::Error>) -> ParamError {
+/// A serde error as a [`ParamError`] at its JSON path (`root` for the document itself); `text`
+/// is the JSON read, when it was text.
+fn at_path(
+    root: &str,
+    e: serde_path_to_error::Error<serde_json::Error>,
+    text: Option<&str>,
+) -> ParamError {
+    // serde_path_to_error writes `.` for the document and `?` for a key it has not read.
     let path = e.path().to_string();
-    let path = if path == "." { root.to_string() } else { path };
-    ParamError::new(path, e.inner().to_string())
+    let path = match path.trim_end_matches(".?") {
+        "." | "?" | "" => root.to_string(),
+        known => known.to_string(),
+    };
+    ParamError::new(path, describe(e.inner(), text))
+}
+
+/// A size in bytes as the limits are stated: `64 MiB`, `210.0 MiB`.
+fn mebibytes(bytes: usize) -> String {
+    match bytes % (1 << 20) {
+        0 => format!("{} MiB", bytes >> 20),
+        _ => format!("{:.1} MiB", bytes as f64 / (1u64 << 20) as f64),
+    }
+}
+
+/// A scene of `len` bytes is refused over [`MAX_SCENE_BYTES`], before it is read.
+pub fn check_scene_size(len: u64) -> Result<(), ParamError> {
+    if len <= MAX_SCENE_BYTES as u64 {
+        return Ok(());
+    }
+    Err(ParamError::new(
+        "scene",
+        format!(
+            "{} of JSON, over the limit of {} for a scene",
+            mebibytes(len.min(usize::MAX as u64) as usize),
+            mebibytes(MAX_SCENE_BYTES)
+        ),
+    ))
+}
+
+/// The document's `version`, whatever its value, every other key skipped unread.
+#[derive(Deserialize)]
+struct VersionProbe {
+    #[serde(default, deserialize_with = "present")]
+    version: Option<Value>,
+}
+
+fn present<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Value>, D::Error> {
+    Value::deserialize(d).map(Some)
+}
+
+/// Refuses text whose document is not a JSON object (serde would read a struct's fields from
+/// a list by position), naming `root`.
+fn require_object(text: &str, root: &str) -> Result<(), ParamError> {
+    if text.trim_start().starts_with('{') {
+        return Ok(());
+    }
+    match serde_json::from_str::<serde::de::IgnoredAny>(text) {
+        Ok(_) => Err(ParamError::new(root, "must be a JSON object")),
+        Err(e) => Err(ParamError::new(root, describe(&e, Some(text)))),
+    }
 }
 
 impl Scene {
-    /// Parses and validates a scene from JSON text; errors name the JSON path.
+    /// Parses and validates a scene from JSON text; errors name the JSON path. The text is
+    /// bounded first (its size, its lists), then read straight into the scene, without an
+    /// intermediate JSON tree.
     pub fn from_json(text: &str) -> Result<Self, ParamError> {
-        let value: serde_json::Value = serde_json::from_str(text)
-            .map_err(|e| ParamError::new("scene", format!("not valid JSON: {e}")))?;
-        Self::from_value(value)
+        check_scene_size(text.len() as u64)?;
+        require_object(text, "scene")?;
+        check_lists(text, SCENE_LISTS, "scene")?;
+        // The version first, every other key skipped unread. Text that is not JSON is left to
+        // the reading below, which names the path where it breaks.
+        match serde_json::from_str::<VersionProbe>(text) {
+            Ok(probe) => check_version(probe.version.as_ref())?,
+            Err(e) if e.classify() == serde_json::error::Category::Data => {
+                return Err(ParamError::new("scene", "must be a JSON object"))
+            }
+            // Nesting past serde_json's limit is the document's fault, wherever it lies.
+            Err(e) if e.to_string().starts_with("recursion limit exceeded") => {
+                return Err(ParamError::new("scene", describe(&e, Some(text))))
+            }
+            Err(_) => {}
+        }
+        let mut de = serde_json::Deserializer::from_str(text);
+        let scene: Scene = serde_path_to_error::deserialize(&mut de)
+            .map_err(|e| at_path("scene", e, Some(text)))?;
+        de.end()
+            .map_err(|e| ParamError::new("scene", describe(&e, Some(text))))?;
+        scene.validate()?;
+        Ok(scene)
     }
 
     /// Validates a parsed JSON value, migrating older versions first.
-    pub fn from_value(value: serde_json::Value) -> Result<Self, ParamError> {
+    pub fn from_value(value: Value) -> Result<Self, ParamError> {
         let value = migrate(value)?;
         let scene: Scene =
-            serde_path_to_error::deserialize(value).map_err(|e| at_path("scene", e))?;
+            serde_path_to_error::deserialize(value).map_err(|e| at_path("scene", e, None))?;
         scene.validate()?;
         Ok(scene)
     }
 }
 
+/// Checks a scene's `version` (None: missing): this build reads version 1, the first, so
+/// there is nothing older to migrate.
+fn check_version(version: Option<&Value>) -> Result<(), ParamError> {
+    let bad = |message: String| Err(ParamError::new("version", message));
+    match version {
+        None => bad(format!(
+            "missing: a scene names its format version (current: {SCENE_VERSION})"
+        )),
+        Some(v) if v.as_u64() == Some(SCENE_VERSION as u64) => Ok(()),
+        Some(Value::Number(n)) => bad(format!(
+            "unsupported scene version {n}; this build reads version {SCENE_VERSION}"
+        )),
+        Some(v) => {
+            let got = match v {
+                Value::String(_) => format!("the string {v}"),
+                Value::Array(_) => "a list".into(),
+                Value::Object(_) => "an object".into(),
+                other => other.to_string(),
+            };
+            bad(format!("must be the number {SCENE_VERSION} (got {got})"))
+        }
+    }
+}
+
 /// Brings an older scene up to the current version (version 1 is the first, so only checks).
-fn migrate(value: serde_json::Value) -> Result<serde_json::Value, ParamError> {
+fn migrate(value: Value) -> Result<Value, ParamError> {
     let obj = value
         .as_object()
         .ok_or_else(|| ParamError::new("scene", "must be a JSON object"))?;
-    match obj.get("version") {
-        None => Err(ParamError::new(
-            "version",
-            format!("missing: a scene names its format version (current: {SCENE_VERSION})"),
-        )),
-        Some(v) if v.as_u64() == Some(SCENE_VERSION as u64) => Ok(value),
-        Some(v) => Err(ParamError::new(
-            "version",
-            format!("unsupported scene version {v}; this build reads version {SCENE_VERSION}"),
-        )),
-    }
+    check_version(obj.get("version"))?;
+    Ok(value)
 }
 
 impl BlobList {
     /// Parses and validates a blob list from a JSON value; errors name the JSON path.
-    pub fn from_value(value: serde_json::Value) -> Result<Self, ParamError> {
-        Self::checked(serde_path_to_error::deserialize(value))
+    pub fn from_value(value: Value) -> Result<Self, ParamError> {
+        let list =
+            serde_path_to_error::deserialize(value).map_err(|e| at_path("blob_list", e, None));
+        Self::checked(list)
     }
 
     /// Parses and validates a blob list straight from JSON text, without the intermediate
-    /// `serde_json::Value` (a tenth of the memory for a long list); errors name the JSON path.
+    /// `serde_json::Value` (a tenth of the memory for a long list), its lists counted against
+    /// their budgets first; errors name the JSON path.
     pub fn from_json(text: &str) -> Result<Self, ParamError> {
+        require_object(text, "blob_list")?;
+        check_lists(text, BLOB_LIST_LISTS, "blob_list")?;
         let mut de = serde_json::Deserializer::from_str(text);
-        let list = Self::checked(serde_path_to_error::deserialize(&mut de))?;
+        let list = serde_path_to_error::deserialize(&mut de)
+            .map_err(|e| at_path("blob_list", e, Some(text)));
+        let list = Self::checked(list)?;
         de.end()
-            .map_err(|e| ParamError::new("blob_list", format!("not valid JSON: {e}")))?;
+            .map_err(|e| ParamError::new("blob_list", describe(&e, Some(text))))?;
+        Ok(list)
+    }
+
+    /// Parses and validates a blob list from a stream, never holding its text (for files too
+    /// long to read whole); the blobs are bounded as they are read. Errors name the JSON path.
+    pub fn from_reader(mut reader: impl std::io::BufRead) -> Result<Self, ParamError> {
+        // The document must be an object (serde would read a struct from a list by position).
+        loop {
+            let io = |e: std::io::Error| ParamError::new("blob_list", e.to_string());
+            let buf = reader.fill_buf().map_err(io)?;
+            match buf.iter().position(|b| !b.is_ascii_whitespace()) {
+                Some(i) if buf[i] == b'{' => break,
+                Some(_) => return Err(ParamError::new("blob_list", "must be a JSON object")),
+                None if buf.is_empty() => break,
+                None => {
+                    let n = buf.len();
+                    reader.consume(n);
+                }
+            }
+        }
+        let mut de = serde_json::Deserializer::from_reader(reader);
+        let list =
+            serde_path_to_error::deserialize(&mut de).map_err(|e| at_path("blob_list", e, None));
+        let list = Self::checked(list)?;
+        de.end()
+            .map_err(|e| ParamError::new("blob_list", describe(&e, None)))?;
         Ok(list)
     }
 
     /// A deserialised list, validated, or the error at its JSON path.
-    fn checked(
-        list: Result<Self, serde_path_to_error::Error<serde_json::Error>>,
-    ) -> Result<Self, ParamError> {
-        let list = list.map_err(|e| at_path("blob_list", e))?;
+    fn checked(list: Result<Self, ParamError>) -> Result<Self, ParamError> {
+        let list = list?;
         list.validate()?;
         Ok(list)
     }

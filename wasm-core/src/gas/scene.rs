@@ -369,8 +369,10 @@ impl SimulationSettings {
         Err(ParamError::new(
             "simulation.dt",
             format!(
-                "{seconds} s of simulated time at dt = {:?} s is {steps:.0} steps, over the limit of {MAX_STEPS}: raise simulation.dt or simulate less time",
-                self.dt
+                "{} s of simulated time at dt = {:?} s is {} steps, over the limit of {MAX_STEPS}: raise simulation.dt or simulate less time",
+                crate::error::number(seconds),
+                self.dt,
+                crate::error::number(steps)
             ),
         ))
     }

@@ -409,7 +409,10 @@ fn medium(m: &Medium, prefix: &str) -> Result<(), ParamError> {
         if !(g.is_finite() && g > -1.0 && g < 1.0) {
             return Err(ParamError::new(
                 p("phase.g"),
-                format!("must be strictly between -1 and 1 (got {g})"),
+                format!(
+                    "must be strictly between -1 and 1 (got {})",
+                    crate::error::number(g as f64)
+                ),
             ));
         }
     }

@@ -9,12 +9,17 @@
 //! ```
 //!
 //! Every command checks its flags and its input before it starts work; a refusal names the
-//! flag or the JSON path and what is allowed (exit status 2; a failed read or write, 1). On
+//! flag or the JSON path and what is allowed (exit status 2; a failed read or write, a folder
+//! given as an input file included, 1), and begins `windfield: error:`, the argument parser's
+//! too (`messages`). On
 //! success `simulate` and `render` end with one line on stderr: what was written, the blobs,
 //! the simulated time and the wall time (`wrote still.png (640×480): 41,203 blobs at t =
 //! 3.00 s, 2.4 s`). Numeric flags take negative numbers as values (`--seconds -1`), so that
 //! the range check, not the argument parser, answers them.
 
+mod claim;
+mod messages;
+mod output;
 mod sequence;
 
 use clap::{Args, Parser, Subcommand};
@@ -26,11 +31,13 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
+use windfield::error::number;
 use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
 use windfield::field::{npy, statistics};
 use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
 use windfield::gas::blob_list::BlobList;
-use windfield::gas::limits::{MAX_IMAGE_SIDE, MAX_SECONDS};
+use windfield::gas::limits::{MAX_IMAGE_SIDE, MAX_SCENE_BYTES, MAX_SECONDS};
+use windfield::gas::read::check_scene_size;
 use windfield::render::{encode_png, RenderOptions, Renderer};
 use windfield::{ParamError, Scene, Simulation};
 
@@ -220,23 +227,41 @@ fn resolve_spectrum(
 /// 9c0f….partial`). Shards in containers often share a process id (1), and frames without
 /// an extension share a stem, so neither alone would do.
 fn temporary_path(path: &Path) -> PathBuf {
-    let mut name = path
+    let name = path
         .file_name()
         .map(|n| n.to_os_string())
         .unwrap_or_else(|| "windfield".into());
     let random = std::collections::hash_map::RandomState::new()
         .build_hasher()
         .finish();
-    name.push(format!(".{}-{random:016x}.partial", std::process::id()));
-    path.with_file_name(name)
+    let tail = format!(".{}-{random:016x}.partial", std::process::id());
+    // A name near the file system's limit (255 bytes) is shortened, so that its temporary
+    // name can be made wherever the name itself can.
+    let mut name = name.to_string_lossy().into_owned();
+    while name.len() + tail.len() > 255 {
+        name.pop();
+    }
+    path.with_file_name(name + &tail)
+}
+
+/// Creates the directory `path` lies in, if it has one and it is missing.
+pub fn create_parent(path: &Path) -> Result<(), Failure> {
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => {
+            fs::create_dir_all(dir).map_err(|e| Failure::Io(format!("{}: {e}", dir.display())))
+        }
+        None => Ok(()),
+    }
 }
 
 /// Writes through a temporary file and renames it, so a failure leaves no partial output and
-/// concurrent writers (shards) never see each other's half-written files.
+/// concurrent writers (shards) never see each other's half-written files. A missing folder
+/// is made.
 pub fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<fs::File>) -> std::io::Result<()>,
 ) -> Result<(), Failure> {
+    create_parent(path)?;
     let tmp = temporary_path(path);
     let io = |e: std::io::Error| Failure::Io(format!("{}: {e}", path.display()));
     let result = (|| {
@@ -271,13 +296,18 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
         .check_finite()
         .map_err(|e| Failure::Input(format!("the synthesised {e}")))?;
     let [nx, ny, nz, nt] = params.size;
-    write_atomically(&args.out, |w| {
-        npy::write_f32(w, &[nt, nz, ny, nx, 3], &field.data)
-    })?;
     let meta = serde_json::to_string_pretty(&params).expect("parameters serialise");
-    write_atomically(&sidecar(&args.out), |w| {
-        std::io::Write::write_all(w, meta.as_bytes())
-    })?;
+    // The field and its parameters are one pair: written together, the parameters last.
+    output::write_together(&[
+        output::Output {
+            path: &args.out,
+            write: Box::new(|w| npy::write_f32(w, &[nt, nz, ny, nx, 3], &field.data)),
+        },
+        output::Output {
+            path: &sidecar(&args.out),
+            write: Box::new(|w| std::io::Write::write_all(w, meta.as_bytes())),
+        },
+    ])?;
     eprintln!(
         "wrote {} ({nx}x{ny}x{nz}x{nt}, 3 components) in {ms:.1} ms; parameters in {}",
         args.out.display(),
@@ -286,17 +316,35 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Opens an input file that must be a file (a folder is a failed read, exit 1); its size.
+fn open_input(path: &Path) -> Result<(fs::File, u64), Failure> {
+    let io = |e: std::io::Error| Failure::Io(format!("{}: {e}", path.display()));
+    let file = fs::File::open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    if meta.is_dir() {
+        return Err(Failure::Io(format!(
+            "{}: is a directory, not a file",
+            path.display()
+        )));
+    }
+    Ok((file, meta.len()))
+}
+
 fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
-    let file = fs::File::open(&args.file)
-        .map_err(|e| Failure::Io(format!("{}: {e}", args.file.display())))?;
-    let (shape, data) = npy::read_f32(std::io::BufReader::new(file))
-        .map_err(|e| Failure::Input(format!("{}: {e}", args.file.display())))?;
+    let name = args.file.display();
+    let (file, len) = open_input(&args.file)?;
+    let (shape, data) =
+        npy::read_f32_sized(std::io::BufReader::new(file), len).map_err(|e| match e.kind() {
+            std::io::ErrorKind::InvalidData | std::io::ErrorKind::UnexpectedEof => {
+                Failure::Input(format!("{name}: {e}"))
+            }
+            _ => Failure::Io(format!("{name}: {e}")),
+        })?;
     let size = match shape.as_slice() {
         [nt, nz, ny, nx, 3] => [*nx, *ny, *nz, *nt],
         _ => {
             return Err(Failure::Input(format!(
-                "{}: expected shape (nt, nz, ny, nx, 3), got {shape:?}",
-                args.file.display()
+                "{name}: expected shape (nt, nz, ny, nx, 3), got {shape:?}"
             )))
         }
     };
@@ -310,7 +358,13 @@ fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
         spectrum,
         seed: stored.map_or(0, |p| p.seed),
     };
-    params.validate().map_err(input_error)?;
+    // The lattice is the file's shape, not a flag: its refusal names the file.
+    params
+        .validate()
+        .map_err(|e| match flag_for(&e.path) == "--size" {
+            true => Failure::Input(format!("{name}: its shape {shape:?}: {}", e.message)),
+            false => input_error(e),
+        })?;
     let field = TurbulentField::from_data(params, data)
         .map_err(|e| Failure::Input(format!("{}: {e}", args.file.display())))?;
     let report = statistics::analyse(&field, &spectrum);
@@ -327,11 +381,17 @@ fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
 
 /// Reads a file as text.
 fn read_text(path: &Path) -> Result<String, Failure> {
-    fs::read_to_string(path).map_err(|e| Failure::Io(format!("{}: {e}", path.display())))
+    let (mut file, len) = open_input(path)?;
+    let mut text = String::with_capacity(len as usize);
+    std::io::Read::read_to_string(&mut file, &mut text)
+        .map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
+    Ok(text)
 }
 
-/// Reads and validates a scene file.
+/// Reads and validates a scene file; one over `MAX_SCENE_BYTES` is refused unread.
 fn read_scene(path: &Path) -> Result<Scene, Failure> {
+    let (_, len) = open_input(path)?;
+    check_scene_size(len).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?;
     Scene::from_json(&read_text(path)?)
         .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
 }
@@ -359,21 +419,49 @@ struct Probe {
     version: Present,
 }
 
+/// The keys of a scene that a blob list does not have: met at the top of a file too long for
+/// a scene, they make it one.
+const SCENE_ONLY_KEYS: [&str; 8] = [
+    "version",
+    "seed",
+    "field",
+    "wind",
+    "emitters",
+    "shapes",
+    "gas",
+    "simulation",
+];
+
 /// Reads a scene (JSON with "version") or a blob list. A blob list is read straight into its
-/// blobs, at most `blob_list::MAX_LIST_BLOBS` of them, with no intermediate JSON tree.
+/// blobs, at most `blob_list::MAX_LIST_BLOBS` of them, with no intermediate JSON tree. A file
+/// over `MAX_SCENE_BYTES` can only be a blob list: it is read as one from the file, never held
+/// whole, and refused unread past its first scene key if it is a scene.
 fn read_input(path: &Path) -> Result<Input, Failure> {
-    let text = read_text(path)?;
     let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
+    let (file, len) = open_input(path)?;
+    if len > MAX_SCENE_BYTES as u64 {
+        return match BlobList::from_reader(std::io::BufReader::new(file)) {
+            Ok(list) => Ok(Input::List(list)),
+            Err(e)
+                if SCENE_ONLY_KEYS.contains(&e.path.as_str())
+                    && e.message.starts_with("unknown field") =>
+            {
+                Err(bad(check_scene_size(len).unwrap_err()))
+            }
+            Err(e) => Err(bad(e)),
+        };
+    }
+    let text = read_text(path)?;
     match serde_json::from_str::<Probe>(&text) {
-        Err(e) if e.is_syntax() || e.is_eof() => Err(Failure::Input(format!(
-            "{}: not valid JSON: {e}",
-            path.display()
-        ))),
         Ok(Probe {
             version: Present(true),
         }) => Ok(Input::Scene(Box::new(
             Scene::from_json(&text).map_err(bad)?,
         ))),
+        // Not JSON: read as what it looks like, so the error names where it breaks.
+        Err(e) if (e.is_syntax() || e.is_eof()) && text.contains("\"version\"") => Ok(
+            Input::Scene(Box::new(Scene::from_json(&text).map_err(bad)?)),
+        ),
         _ => Ok(Input::List(BlobList::from_json(&text).map_err(bad)?)),
     }
 }
@@ -384,7 +472,8 @@ fn check_seconds(seconds: f64) -> Result<(), Failure> {
         Ok(())
     } else {
         Err(Failure::Input(format!(
-            "--seconds: must be a number between 0 and {MAX_SECONDS} (got {seconds})"
+            "--seconds: must be a number between 0 and {MAX_SECONDS} (got {})",
+            number(seconds)
         )))
     }
 }
@@ -496,7 +585,7 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
         size,
     )?;
     match read_input(&args.input)? {
-        Input::Scene(scene) => job.run(*scene, start),
+        Input::Scene(scene) => job.run(*scene, &args.input, start),
         Input::List(_) => Err(Failure::Input(format!(
             "--frames: needs a scene to simulate; {} is a blob list",
             args.input.display()
@@ -547,7 +636,10 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match messages::parse_args::<Cli>() {
+        Ok(cli) => cli,
+        Err(code) => return code,
+    };
     let result = match cli.command {
         Command::Generate(a) => generate(a),
         Command::Stats(a) => stats_cmd(a),

@@ -11,15 +11,16 @@
 //! the right size under the final name) are skipped unless `--force`.
 //!
 //! Beside the frames a manifest, the pattern's name with `.windfield.json` added
-//! (`frames/f%04d.png.windfield.json`), records what makes their bytes: a fingerprint of the
-//! normalised scene, the frame rate, the image size and the windfield version. A run into a
-//! pattern whose manifest says otherwise is refused unless `--force`, so frames of two runs
-//! never mix; shards of one run write the same manifest, each atomically. Every argument is
-//! checked before anything is written.
+//! (`frames/f%04d.png.windfield.json`), records what makes their bytes (a fingerprint of the
+//! normalised scene, the frame rate, the image size and the windfield version) and the frames
+//! the run claims. A run that would write or skip a frame file another run claims, through
+//! any spelling of the pattern, is refused unless `--force`, so frames of two runs never mix;
+//! the claim is made under a folder lock, so two runs started at once cannot both pass
+//! ([`super::claim`]). Every argument is checked before anything is written.
 
-use super::{grouped, wall, write_atomically, Failure};
+use super::claim::{self, Manifest, Names};
+use super::{create_parent, grouped, wall, write_atomically, Failure};
 use indicatif::{ProgressBar, ProgressStyle};
-use serde::{Deserialize, Serialize};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -108,6 +109,11 @@ impl Pattern {
         if prefix.is_empty() && suffix.is_empty() {
             return Err(bad("no file name around it"));
         }
+        if suffix.contains(std::path::is_separator) {
+            return Err(bad(
+                "the frame number must be in the file's name, not a folder's",
+            ));
+        }
         Ok(Self {
             prefix,
             width,
@@ -134,9 +140,22 @@ impl Pattern {
         format!("{}{number}{}", self.prefix, self.suffix)
     }
 
-    /// Where the manifest of the frames lies: the pattern's name with `.windfield.json` added.
-    pub fn manifest_path(&self) -> PathBuf {
-        PathBuf::from(format!("{}.windfield.json", self.name()))
+    /// The folder the frames lie in (`.` for none) and their file names there.
+    pub fn folder_and_names(&self) -> (PathBuf, Names) {
+        let split = self
+            .prefix
+            .rfind(std::path::is_separator)
+            .map_or(0, |i| i + 1);
+        let folder = match &self.prefix[..split] {
+            "" => PathBuf::from("."),
+            dir => PathBuf::from(dir),
+        };
+        let names = Names {
+            prefix: self.prefix[split..].to_string(),
+            width: self.width,
+            suffix: self.suffix.clone(),
+        };
+        (folder, names)
     }
 }
 
@@ -194,76 +213,15 @@ impl Shard {
     }
 }
 
-/// What makes a sequence's bytes, written beside its frames (see the module's comment).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Manifest {
-    /// The manifest's own format, `windfield-sequence/1`.
-    pub format: String,
-    /// The version of windfield that rendered the frames.
-    pub windfield: String,
-    /// FNV-1a (128 bits) of the normalised scene's JSON, its image size set to the frames'
-    /// and its `render.time` (which a sequence does not use) left out.
-    pub scene: String,
-    /// Frames per second: frame k is the scene at t = k / fps.
-    pub fps: f64,
-    /// Image size in pixels.
-    pub width: u32,
-    pub height: u32,
-}
-
-const MANIFEST_FORMAT: &str = "windfield-sequence/1";
-
-impl Manifest {
-    pub fn new(scene: &Scene, fps: f64, width: u32, height: u32) -> Self {
-        let mut scene = scene.clone();
-        scene.render.time = None;
-        scene.render.image.width = width;
-        scene.render.image.height = height;
-        Self {
-            format: MANIFEST_FORMAT.into(),
-            windfield: env!("CARGO_PKG_VERSION").into(),
-            scene: fingerprint(scene.to_json().as_bytes()),
-            fps,
-            width,
-            height,
-        }
-    }
-
-    /// How `self` differs from `other` (what this run would write), in words.
-    fn differences(&self, other: &Self) -> Vec<String> {
-        let mut out = Vec::new();
-        if self.scene != other.scene {
-            out.push("another scene".to_string());
-        }
-        if self.fps != other.fps {
-            out.push(format!("{} fps, not {}", self.fps, other.fps));
-        }
-        if (self.width, self.height) != (other.width, other.height) {
-            out.push(format!(
-                "{}×{}, not {}×{}",
-                self.width, self.height, other.width, other.height
-            ));
-        }
-        if self.windfield != other.windfield || self.format != other.format {
-            out.push(format!(
-                "windfield {}, not {}",
-                self.windfield, other.windfield
-            ));
-        }
-        out
-    }
-}
-
-/// FNV-1a with 128 bits, in hex: a fingerprint that tells scenes apart (not a defence
-/// against forgery).
-fn fingerprint(bytes: &[u8]) -> String {
-    const OFFSET: u128 = 0x6c62_272e_07bb_0142_62b8_2175_6295_c58d;
-    const PRIME: u128 = 0x0000_0000_0100_0000_0000_0000_0000_013b;
-    let hash = bytes
-        .iter()
-        .fold(OFFSET, |h, &b| (h ^ b as u128).wrapping_mul(PRIME));
-    format!("{hash:032x}")
+/// The fingerprint of a sequence's scene: FNV-1a (128 bits) of the normalised scene's JSON,
+/// its image size set to the frames' and its `render.time` (which a sequence does not use)
+/// left out.
+pub fn scene_fingerprint(scene: &Scene, width: u32, height: u32) -> String {
+    let mut scene = scene.clone();
+    scene.render.time = None;
+    scene.render.image.width = width;
+    scene.render.image.height = height;
+    claim::fingerprint(scene.to_json().as_bytes())
 }
 
 /// What `render --frames` was asked for, checked.
@@ -293,7 +251,8 @@ impl Sequence {
         })?;
         if !(fps.is_finite() && fps > 0.0 && fps <= 1e4) {
             return Err(input(format!(
-                "--fps: must be a number greater than 0 and at most 10000 (got {fps})"
+                "--fps: must be a number greater than 0 and at most 10000 (got {})",
+                windfield::error::number(fps)
             )));
         }
         let text = out
@@ -315,9 +274,9 @@ impl Sequence {
         })
     }
 
-    /// Renders the shard's frames of `scene` (see the module's comment) and says what it
-    /// wrote; `start` is when the command began (for the wall time).
-    pub fn run(&self, scene: Scene, start: Instant) -> Result<(), Failure> {
+    /// Renders the shard's frames of `scene`, read from `input` (see the module's comment),
+    /// and says what it wrote; `start` is when the command began (for the wall time).
+    pub fn run(&self, scene: Scene, input: &Path, start: Instant) -> Result<(), Failure> {
         let manifest_scene = scene.clone();
         let mut sim = Simulation::new(scene).map_err(|e| Failure::Input(e.to_string()))?;
         let seconds = |k: u64| k as f64 / self.fps;
@@ -342,8 +301,7 @@ impl Sequence {
             eprintln!("nothing to write: no frame k of {what} has k mod N = I");
             return Ok(());
         }
-        let manifest = Manifest::new(&manifest_scene, self.fps, width, height);
-        self.claim(&manifest)?;
+        self.claim(&manifest_scene, (width, height), input)?;
         let todo: Vec<u64> = frames
             .iter()
             .copied()
@@ -418,46 +376,20 @@ impl Sequence {
         Ok(())
     }
 
-    /// Makes the pattern's manifest say `manifest`: writes it where there is none, checks it
-    /// where there is one (another run's is refused unless `--force`, which replaces it).
-    /// Shards of one run write the same bytes, each through its own temporary name.
-    fn claim(&self, manifest: &Manifest) -> Result<(), Failure> {
-        let path = self.pattern.manifest_path();
-        match std::fs::read_to_string(&path) {
-            Ok(text) => {
-                let theirs = serde_json::from_str::<Manifest>(&text);
-                if theirs.as_ref().is_ok_and(|m| m == manifest) {
-                    return Ok(());
-                }
-                if !self.force {
-                    let why = match &theirs {
-                        Ok(m) => format!("they are of {}", m.differences(manifest).join(", ")),
-                        Err(e) => format!("its manifest cannot be read ({e})"),
-                    };
-                    return Err(Failure::Input(format!(
-                        "--out: the frames of {} were written by another run: {why} (see {}); \
-                         use another --out, or --force to render over them",
-                        self.pattern.name(),
-                        path.display()
-                    )));
-                }
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-            Err(e) => return Err(Failure::Io(format!("{}: {e}", path.display()))),
-        }
-        create_parent(&path)?;
-        let text = serde_json::to_string_pretty(manifest).expect("manifests serialise") + "\n";
-        write_atomically(&path, |w| std::io::Write::write_all(w, text.as_bytes()))
-    }
-}
-
-/// Creates the directory `path` lies in, if it has one.
-fn create_parent(path: &Path) -> Result<(), Failure> {
-    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        Some(dir) => {
-            std::fs::create_dir_all(dir).map_err(|e| Failure::Io(format!("{}: {e}", dir.display())))
-        }
-        None => Ok(()),
+    /// Claims the range's frame files for this run, its identity that of `scene` at the
+    /// sequence's rate and `size` ([`claim::claim_frames`]): the whole range, whatever the
+    /// shard, so the shards of one run share the claim.
+    pub fn claim(&self, scene: &Scene, size: (u32, u32), input: &Path) -> Result<(), Failure> {
+        let (folder, names) = self.pattern.folder_and_names();
+        let run = Manifest::new(
+            scene_fingerprint(scene, size.0, size.1),
+            self.fps,
+            size,
+            &names,
+            self.range,
+            input,
+        );
+        claim::claim_frames(&folder, &names, self.range, &run, self.force)
     }
 }
 
@@ -600,16 +532,33 @@ mod tests {
 
     #[test]
     fn the_manifest_lies_beside_the_frames_and_fingerprints_differ() {
-        let p = Pattern::parse("seq/frame.%03d").unwrap();
+        let manifest = |p: &str| {
+            let (folder, names) = Pattern::parse(p).unwrap().folder_and_names();
+            claim::manifest_path(&folder, &names)
+        };
         assert_eq!(
-            p.manifest_path(),
+            manifest("seq/frame.%03d"),
             PathBuf::from("seq/frame.%03d.windfield.json")
         );
         assert_eq!(
-            Pattern::parse("100%%/f%d.png").unwrap().manifest_path(),
+            manifest("100%%/f%d.png"),
             PathBuf::from("100%/f%d.png.windfield.json")
         );
-        assert_ne!(fingerprint(b"{\"seed\": 1}"), fingerprint(b"{\"seed\": 2}"));
-        assert_eq!(fingerprint(b""), "6c62272e07bb014262b821756295c58d");
+        assert_ne!(
+            claim::fingerprint(b"{\"seed\": 1}"),
+            claim::fingerprint(b"{\"seed\": 2}")
+        );
+        assert_eq!(claim::fingerprint(b""), "6c62272e07bb014262b821756295c58d");
+        let (folder, names) = Pattern::parse("a/b/f%04d.png").unwrap().folder_and_names();
+        assert_eq!(
+            (folder, names.spelling()),
+            (PathBuf::from("a/b/"), "f%04d.png".into())
+        );
+        let (folder, names) = Pattern::parse("x%d").unwrap().folder_and_names();
+        assert_eq!(folder, PathBuf::from("."));
+        assert_eq!(names.name(3), "x3");
+        assert!(Pattern::parse("frames%d/f.png")
+            .unwrap_err()
+            .contains("not a folder's"));
     }
 }
