@@ -514,11 +514,10 @@ export class Player {
    */
   #stepsPerFrame() {
     if (this.#stepper.active === 'gpu') return MAX_GPU_STEPS_PER_FRAME;
-    // The view's own time for a frame (not counting its wait for the worker): steps that fit
-    // in it are free, more would make the worker the one that paces the frames.
-    const viewMs = this.pace.pace > 0 ? 1000 / this.pace.pace : 1000 / 60;
+    // A frame's time less its wait for the worker: steps that fit in it are free (the worker
+    // steps while the frame is drawn), more would make the worker the one that paces the frames.
     const stepMs = Math.max(this.stats.stepMs, 0.1);
-    return Math.max(1, Math.min(MAX_WORKER_STEPS_PER_FRAME, Math.floor((0.8 * Math.max(viewMs, 1000 / 60)) / stepMs)));
+    return Math.max(1, Math.min(MAX_WORKER_STEPS_PER_FRAME, Math.floor((0.8 * Math.max(this.pace.freeMs, 1000 / 60)) / stepMs)));
   }
 
   loop(now) {

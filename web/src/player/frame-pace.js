@@ -28,6 +28,11 @@ export class FramePace {
     this.resolution = resolution;
     /** A frame's time (ms, smoothed) from one drawn frame to the next while they come back to back. */
     this.frameMs = 1000 / 60;
+    /**
+     * The time (ms, smoothed) from one drawn frame to the next less its wait for the worker's
+     * step: how long the worker may step for a frame without being the one that paces it.
+     */
+    this.freeMs = 1000 / 60;
   }
 
   /** The view's own frames a second (smoothed; 0 before the first frame). */
@@ -68,6 +73,8 @@ export class FramePace {
     // Back to back: this frame began soon after the last one ended.
     const busy = start - this.#lastDrawn < 100;
     const ms = busy ? end - this.#lastDrawn : end - start;
+    const interval = Math.min(end - this.#lastDrawn, 1000);
+    if (playing && interval > 0) this.freeMs = 0.7 * this.freeMs + 0.3 * Math.max(interval - this.#waited, 1);
     this.#lastDrawn = end;
     if (busy) this.frameMs = 0.7 * this.frameMs + 0.3 * ms;
     const own = Math.max(ms - this.#waited, 0.5);
