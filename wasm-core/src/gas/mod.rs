@@ -16,7 +16,10 @@
 //!
 //! - [`wind`]: the wind u = u_l + u_s (Eq. 3), the large-scale primitives over the
 //!   small-scale field ([`crate::field`]); [`spline`] moves the repulsors; [`wind_slice`]
-//!   samples it on a plane.
+//!   samples it on a plane; [`frozen`] holds the primitives frozen at one time and
+//!   [`wind_table`] the frozen wind as the GPU reads it. [`solids`]: the solid objects it
+//!   goes round, and [`walls`] how it goes round them; [`carried`]: the small scales carried
+//!   by the large ones (§7).
 //! - [`emitter`], [`shapes`]: where blobs are born (§6), drawing from [`random`].
 //! - [`blobs`]: the blobs' state (Eq. 13); [`blob_gas`]: advection (Eq. 14), diffusion
 //!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
@@ -27,8 +30,10 @@
 pub mod blob_gas;
 pub mod blob_list;
 pub mod blobs;
+pub mod carried;
 pub mod emitter;
 pub mod figure1;
+pub mod frozen;
 pub mod limits;
 pub mod random;
 pub mod read;
@@ -36,10 +41,13 @@ pub mod scene;
 pub mod shapes;
 pub mod simulation;
 pub mod slots;
+pub mod solids;
 pub mod spline;
 pub mod validate;
+pub mod walls;
 pub mod wind;
 pub mod wind_slice;
+pub mod wind_table;
 
 pub use blob_gas::{Gas, GasCounts};
 pub use blob_list::BlobList;
