@@ -302,9 +302,9 @@ impl Gas {
     }
 
     /// [`Self::advect`] where the wind goes round solids or carries its small scales: each
-    /// blob's carried offsets move with it by its small-scale and own velocity
-    /// ([`crate::gas::carried`]), and a blob a step carried into a solid is put back on its
-    /// surface, just outside.
+    /// blob's carried coordinates move with it less the large-scale wind, so its offsets by
+    /// −u_l dt ([`crate::gas::carried`]), and a blob a step carried into a solid is put back on
+    /// its surface, just outside.
     fn advect_deflected(
         &mut self,
         t: f64,
@@ -331,18 +331,20 @@ impl Gas {
             if carries {
                 o = [0, 1].map(|k| Vec3A::from_slice(&carried[6 * i + 3 * k..6 * i + 3 * k + 3]));
             }
+            // The carried coordinates X = x + o move with the blob less the large-scale wind,
+            // so the offsets move against the large-scale wind: o ← o − u_l dt.
             let (x1, moved) = match integrator {
                 Integrator::Euler => {
                     let (l, s) = f0.parts(x, o);
-                    (x + (l + s + v) * dtf, (s + v) * dtf)
+                    (x + (l + s + v) * dtf, l * -dtf)
                 }
                 Integrator::Rk2 => {
                     let (l, s) = f0.parts(x, o);
-                    let half = (s + v) * (0.5 * dtf);
+                    let half = l * (-0.5 * dtf);
                     let xm = x + (l + s + v) * (0.5 * dtf);
                     let (lm, sm) = fh.parts(xm, [o[0] + half, o[1] + half]);
                     let vh = v * to_half;
-                    (x + (lm + sm + vh) * dtf, (sm + vh) * dtf)
+                    (x + (lm + sm + vh) * dtf, lm * -dtf)
                 }
             };
             let x1 = match walls {

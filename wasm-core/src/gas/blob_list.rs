@@ -152,6 +152,7 @@ pub enum Object {
         color: [f32; 3],
         /// A solid deflects the wind and the gas (docs/FORMATS.md, solid objects).
         #[serde(default, skip_serializing_if = "is_false")]
+        #[schemars(extend("default" = false))]
         solid: bool,
     },
     Plane {
@@ -163,6 +164,7 @@ pub enum Object {
         color: [f32; 3],
         /// A solid plane is the boundary of the half-space behind it (opposite its normal).
         #[serde(default, skip_serializing_if = "is_false")]
+        #[schemars(extend("default" = false))]
         solid: bool,
     },
     Cylinder {
@@ -182,6 +184,7 @@ pub enum Object {
         model: Option<Model>,
         /// A solid cylinder is closed (capped); a model keeps the cylinder as its solid.
         #[serde(default, skip_serializing_if = "is_false")]
+        #[schemars(extend("default" = false))]
         solid: bool,
     },
 }

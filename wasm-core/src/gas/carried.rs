@@ -13,12 +13,13 @@
 //! period L on every axis: the two samples are then independent draws of the same statistics
 //! even where the gas is at rest (X_a = X_b), and the factor keeps the field's energy exactly.
 //!
-//! Each blob carries its coordinates as offsets o = X − x (m), two vectors. A step moves them by
-//! what moved the blob less the large-scale wind, o ← o + (Δx − u_l dt), i.e. by the small-scale
-//! wind and the blob's own velocity (at the RK2 midpoint): a blob moving with the large-scale
-//! wind keeps its X. At a phase's reset, and for a newborn, o = −u_l(x)·τ (the point the
-//! large-scale wind brought there since the reset, to first order). Where no blob is (the wind
-//! command, the wind slice), X is found by tracing x back through u_l to the reset.
+//! Each blob carries its coordinates as offsets o = X − x (m), two vectors. Along the blob's
+//! path dX/dt = (u − u_l)·∇X ≈ u − u_l (∇X ≈ I while a phase is young): X moves with the
+//! blob's own and small-scale motion, and the offsets against the large-scale wind,
+//! o ← o − u_l dt (u_l at the RK2 midpoint). A blob moving with the large-scale wind keeps its
+//! X. At a phase's reset, and for a newborn, o = −u_l(x)·τ (the point the large-scale wind
+//! brought there since the reset, to first order). Where no blob is (the wind command, the
+//! wind slice), X is found by tracing x back through u_l to the reset.
 
 use glam::Vec3A;
 

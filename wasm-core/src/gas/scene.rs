@@ -460,7 +460,9 @@ pub fn json_schema() -> String {
              reversed shape's run (reverse_from / simulation.dt) and render.time / \
              simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most \
              100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits \
-             counting max(count, gas.max_blobs) a step)."
+             counting max(count, gas.max_blobs) a step); field.boundary_width is at most half \
+             the shortest field.period; no emitter's center (or path key) lies inside a solid \
+             object."
                 .into(),
         );
     }

@@ -52,10 +52,16 @@ fn taper(s: f32) -> (f32, f32) {
 /// Where a sphere's doublet is exact (within this many radii of its centre) and where it has
 /// faded to nothing (a smooth taper of its vector potential between, so the wind stays
 /// divergence-free): at 4 radii the doublet is (1/4)³/2 = 0.8 % of the wind.
-pub const SPHERE_ZONE: [f32; 2] = [4.0, 8.0];
+pub const SPHERE_ZONE: [f32; 2] = [SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER];
+/// [`SPHERE_ZONE`]'s two radii, in the sphere's radii.
+pub const SPHERE_ZONE_INNER: f32 = 4.0;
+pub const SPHERE_ZONE_OUTER: f32 = 8.0;
 /// The same for a cylinder's two-dimensional doublet (it falls as R²/ρ²: 2.8 % at 6 radii).
 /// Beyond the caps it fades over one radius.
-pub const CYLINDER_ZONE: [f32; 2] = [6.0, 12.0];
+pub const CYLINDER_ZONE: [f32; 2] = [CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER];
+/// [`CYLINDER_ZONE`]'s two distances from the axis, in the cylinder's radii.
+pub const CYLINDER_ZONE_INNER: f32 = 6.0;
+pub const CYLINDER_ZONE_OUTER: f32 = 12.0;
 
 /// The potential flow a uniform wind U makes past one solid, less U: a closed form exact on
 /// the solid's surface, faded out far from it.
