@@ -279,9 +279,9 @@ fn a_blob_moving_with_the_wind_keeps_its_carried_coordinates() {
         let b = &sim.gas.blobs;
         assert!(b.carries());
         for i in 0..b.len() {
-            for k in 0..2 {
+            for (k, age) in ages.iter().enumerate() {
                 let o = Vec3::from_slice(&b.carried[6 * i + 3 * k..6 * i + 3 * k + 3]);
-                let want = Vec3::X * -(U * ages[k]) as f32;
+                let want = Vec3::X * -(U * age) as f32;
                 assert!(
                     (o - want).length() < 1e-4,
                     "t {t}, blob {i}, phase {k}: {o} vs {want}"
