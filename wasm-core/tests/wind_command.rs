@@ -128,7 +128,7 @@ fn the_wind_at_points_and_over_a_box_is_the_potential_flow_past_the_sphere() {
                 let r = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
                 let i = 3 * ((z * 8 + y) * 12 + x);
                 let want = potential_flow(c);
-                if r > 0.525 || r < 0.5 {
+                if !(0.5..=0.525).contains(&r) {
                     for a in 0..3 {
                         assert!(
                             (data[i + a] as f64 - want[a]).abs() < 0.05,
