@@ -99,9 +99,9 @@ export type SceneObject =
       color: [number, number, number];
       radius: number;
       /**
-       * A solid deflects the wind and the gas (docs/FORMATS.md, solid objects).
+       * A solid sphere deflects the wind and the gas; absent means not solid.
        */
-      solid: boolean;
+      solid?: boolean;
       type: 'sphere';
     }
   | {
@@ -121,9 +121,10 @@ export type SceneObject =
        */
       point: [number, number, number];
       /**
-       * A solid plane is the boundary of the half-space behind it (opposite its normal).
+       * A solid plane bounds the half-space behind it (opposite its normal), which deflects
+       * the wind and the gas; absent means not solid.
        */
-      solid: boolean;
+      solid?: boolean;
       type: 'plane';
     }
   | {
@@ -150,9 +151,10 @@ export type SceneObject =
       model?: Model | null;
       radius: number;
       /**
-       * A solid cylinder is closed (capped); a model keeps the cylinder as its solid.
+       * A solid cylinder (closed by its caps; a model keeps the cylinder as its solid)
+       * deflects the wind and the gas; absent means not solid.
        */
-      solid: boolean;
+      solid?: boolean;
       type: 'cylinder';
     };
 /**
@@ -616,82 +618,6 @@ export interface SimulationSettings {
 }
 
 /**
- * An opaque, Lambert-shaded object.
- *
- * This interface was referenced by `SceneInput`'s JSON-Schema
- * via the `definition` "Object".
- */
-export type SceneObjectInput =
-  | {
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      center: [number, number, number];
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      color: [number, number, number];
-      radius: number;
-      /**
-       * A solid deflects the wind and the gas (docs/FORMATS.md, solid objects).
-       */
-      solid?: boolean;
-      type: 'sphere';
-    }
-  | {
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      color: [number, number, number];
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      normal: [number, number, number];
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      point: [number, number, number];
-      /**
-       * A solid plane is the boundary of the half-space behind it (opposite its normal).
-       */
-      solid?: boolean;
-      type: 'plane';
-    }
-  | {
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      axis: [number, number, number];
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      base: [number, number, number];
-      /**
-       * @minItems 3
-       * @maxItems 3
-       */
-      color: [number, number, number];
-      height: number;
-      /**
-       * A richer mesh the browser draws in the cylinder's place (the still keeps the
-       * cylinder as its stand-in).
-       */
-      model?: Model | null;
-      radius: number;
-      /**
-       * A solid cylinder is closed (capped); a model keeps the cylinder as its solid.
-       */
-      solid?: boolean;
-      type: 'cylinder';
-    };
-/**
  * A large-scale wind primitive. Any primitive may carry `decay` L (m): its velocity is
  * multiplied by exp(−distance/L), distance from its `position` (for a repulsor, from the
  * sphere's centre). `enabled: false` keeps it in the scene without effect.
@@ -996,7 +922,7 @@ export interface RenderSettingsInput {
   /**
    * @maxItems 256
    */
-  objects?: SceneObjectInput[];
+  objects?: SceneObject[];
   shadows?: boolean;
   /**
    * The moment (s) a still or a poster shows when none is given (`windfield render`

@@ -24,7 +24,7 @@ use crate::gas::wind::{
     REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
     WIND_TABLE_SOLID,
 };
-use crate::gas::wind_table::{CYLINDER_SOLID, NO_RESET, PLANE_SOLID, RESET_AT, SPHERE_SOLID};
+use crate::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
 use crate::render::{STEP_FRACTION, TRUNCATION};
 
 /// Where the generated module lives, from the repository's root.
@@ -108,12 +108,9 @@ pub fn sections() -> Vec<Section> {
             "Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images."),
         shared!(WIND_TABLE_SOLID in "gas::wind_table":
             "Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector."),
-        shared!(SPHERE_SOLID in "gas::wind_table": "A solid sphere's kind in a wind table."),
-        shared!(PLANE_SOLID in "gas::wind_table": "A solid plane's kind in a wind table."),
-        shared!(CYLINDER_SOLID in "gas::wind_table": "A solid cylinder's kind in a wind table."),
-        shared!(RESET_AT in "gas::wind_table":
-            "The header's float holding phase a's reset age (phase b's follows)."),
-        shared!(NO_RESET in "gas::wind_table": "A reset age meaning no reset in this step."),
+        shared!(SPHERE_SOLID_KIND in "gas::wind_table": "A solid sphere's kind in a wind table."),
+        shared!(PLANE_SOLID_KIND in "gas::wind_table": "A solid plane's kind in a wind table."),
+        shared!(CYLINDER_SOLID_KIND in "gas::wind_table": "A solid cylinder's kind in a wind table."),
         shared!(EDGE_STEPS in "gas::wind":
             "A cylinder's rims are rounded by this many difference steps for the wind."),
         shared!(SPHERE_ZONE_INNER in "gas::walls":

@@ -227,12 +227,14 @@ fn with_solids() -> Scene {
 /// (`windParts`, `pushOut`), function by function, in Rust.
 mod table {
     use glam::Vec3;
-    use windfield::gas::wind::{VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE, WIND_TABLE_SOLID};
-    use windfield::gas::wind_table::{CYLINDER_SOLID, PLANE_SOLID, SPHERE_SOLID};
     use windfield::gas::walls::{
         CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
     };
     use windfield::gas::wind::EDGE_STEPS;
+    use windfield::gas::wind::{
+        VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE, WIND_TABLE_SOLID,
+    };
+    use windfield::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
 
     pub struct Table<'a> {
         pub t: &'a [f32],
@@ -247,7 +249,12 @@ mod table {
 
     impl Table<'_> {
         fn texel(&self, i: usize) -> [f32; 4] {
-            [self.t[4 * i], self.t[4 * i + 1], self.t[4 * i + 2], self.t[4 * i + 3]]
+            [
+                self.t[4 * i],
+                self.t[4 * i + 1],
+                self.t[4 * i + 2],
+                self.t[4 * i + 3],
+            ]
         }
         fn xyz(&self, i: usize) -> Vec3 {
             v(self.t, 4 * i)
@@ -356,7 +363,10 @@ mod table {
                 return (0.0, 0.0);
             }
             let s2 = s * s;
-            (1.0 - s2 * s * (10.0 + s * (-15.0 + 6.0 * s)), -30.0 * s2 * (1.0 - s) * (1.0 - s))
+            (
+                1.0 - s2 * s * (10.0 + s * (-15.0 + 6.0 * s)),
+                -30.0 * s2 * (1.0 - s) * (1.0 - s),
+            )
         }
 
         fn perpendicular(a: Vec3) -> Vec3 {
@@ -370,23 +380,31 @@ mod table {
             let kind = self.texel(at)[0];
             let (a, radius) = (self.xyz(at + 1), self.texel(at + 1)[3]);
             let (b, height) = (self.xyz(at + 2), self.texel(at + 2)[3]);
-            if kind == SPHERE_SOLID {
+            if kind == SPHERE_SOLID_KIND {
                 let r = x - a;
                 let len = r.length();
                 return (if len > 1e-12 { r / len } else { Vec3::Y }, len - radius);
             }
-            if kind == PLANE_SOLID {
+            if kind == PLANE_SOLID_KIND {
                 return (b, (x - a).dot(b));
             }
-            assert_eq!(kind, CYLINDER_SOLID);
+            assert_eq!(kind, CYLINDER_SOLID_KIND);
             let r = x - a;
             let s = r.dot(b);
             let radial = r - b * s;
             let rho = radial.length();
-            let out = if rho > 1e-12 { radial / rho } else { Self::perpendicular(b) };
+            let out = if rho > 1e-12 {
+                radial / rho
+            } else {
+                Self::perpendicular(b)
+            };
             if edge <= 0.0 {
                 let dr = rho - radius;
-                let (cap, ds) = if s > 0.5 * height { (b, s - height) } else { (-b, -s) };
+                let (cap, ds) = if s > 0.5 * height {
+                    (b, s - height)
+                } else {
+                    (-b, -s)
+                };
                 if dr > 0.0 && ds > 0.0 {
                     let d = (dr * dr + ds * ds).sqrt();
                     return ((out * dr + cap * ds) / d, d);
@@ -416,7 +434,7 @@ mod table {
 
         fn edge(&self, j: usize) -> f32 {
             let s0 = self.texel(self.solid_at(j));
-            if s0[0] == CYLINDER_SOLID {
+            if s0[0] == CYLINDER_SOLID_KIND {
                 EDGE_STEPS * s0[1]
             } else {
                 0.0
@@ -497,7 +515,7 @@ mod table {
         }
 
         fn exact_near(&self, n: usize, j: usize) -> bool {
-            if self.texel(self.solid_at(n))[0] != PLANE_SOLID {
+            if self.texel(self.solid_at(n))[0] != PLANE_SOLID_KIND {
                 return false;
             }
             let image = self.image_of(j);
@@ -518,10 +536,10 @@ mod table {
             let at = self.solid_at(n);
             let s0 = self.texel(at);
             let (a, b, h) = (self.xyz(at + 1), self.xyz(at + 2), self.texel(at + 2)[3]);
-            if s0[0] == PLANE_SOLID {
+            if s0[0] == PLANE_SOLID_KIND {
                 let q = self.xyz(self.prim(j) + 2);
                 q - b * (q - a).dot(b)
-            } else if s0[0] == CYLINDER_SOLID {
+            } else if s0[0] == CYLINDER_SOLID_KIND {
                 a + b * (0.5 * h)
             } else {
                 a
@@ -533,7 +551,9 @@ mod table {
             let head = self.texel(at);
             let (p, axis) = (self.xyz(at + 2), self.xyz(at + 3));
             let (c, c0) = (axis.cross(y - p), axis.cross(gauge - p));
-            axis * (-0.5 * head[2] * ((c.length_squared() + head[3]) / (c0.length_squared() + head[3])).ln())
+            axis * (-0.5
+                * head[2]
+                * ((c.length_squared() + head[3]) / (c0.length_squared() + head[3])).ln())
         }
 
         fn ramped_potential(&self, n: usize, y: Vec3) -> Vec3 {
@@ -558,7 +578,11 @@ mod table {
                 points[4].z - points[5].z,
             );
             let inv = span.recip();
-            let (dx, dy, dz) = ((a[0] - a[1]) * inv.x, (a[2] - a[3]) * inv.y, (a[4] - a[5]) * inv.z);
+            let (dx, dy, dz) = (
+                (a[0] - a[1]) * inv.x,
+                (a[2] - a[3]) * inv.y,
+                (a[4] - a[5]) * inv.z,
+            );
             Vec3::new(dy.z - dz.y, dz.x - dx.z, dx.y - dy.x)
         }
 
@@ -569,11 +593,11 @@ mod table {
             let width = self.texel(5)[1];
             let (nrm, dist) = near;
             let alpha = Self::ramp(dist / width);
-            let plane = s0[0] == PLANE_SOLID;
+            let plane = s0[0] == PLANE_SOLID_KIND;
             let u0 = self.xyz(4);
-            let mut large = if s0[0] == SPHERE_SOLID {
+            let mut large = if s0[0] == SPHERE_SOLID_KIND {
                 u0
-            } else if s0[0] == CYLINDER_SOLID {
+            } else if s0[0] == CYLINDER_SOLID_KIND {
                 let along = axis * u0.dot(axis);
                 (u0 - along) + Self::projected(along, nrm, alpha, false)
             } else {
@@ -610,8 +634,9 @@ mod table {
             let c = if dist < -h { x + nrm * (-h - dist) } else { x };
             let edge = self.edge(n);
             let axes = [Vec3::X, Vec3::Y, Vec3::Z];
-            let points: [Vec3; 6] =
-                std::array::from_fn(|k| c + axes[k / 2] * (if k % 2 == 0 { 1.0 } else { -1.0 } * h));
+            let points: [Vec3; 6] = std::array::from_fn(|k| {
+                c + axes[k / 2] * (if k % 2 == 0 { 1.0 } else { -1.0 } * h)
+            });
             let geo: [(f32, Vec3); 6] = std::array::from_fn(|k| {
                 let (n, d) = self.distance(n, points[k], edge);
                 (Self::ramp(d / width), n)
@@ -639,8 +664,11 @@ mod table {
         /// The solids in the core's order: the finite ones, then the planes.
         fn order(&self) -> Vec<usize> {
             let solids = self.texel(5)[0] as usize;
-            let plane = |j: usize| self.texel(self.solid_at(j))[0] == PLANE_SOLID;
-            (0..solids).filter(|&j| !plane(j)).chain((0..solids).filter(|&j| plane(j))).collect()
+            let plane = |j: usize| self.texel(self.solid_at(j))[0] == PLANE_SOLID_KIND;
+            (0..solids)
+                .filter(|&j| !plane(j))
+                .chain((0..solids).filter(|&j| plane(j)))
+                .collect()
         }
 
         pub fn parts(&self, x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
@@ -702,11 +730,18 @@ fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the
                 psi: &psi,
                 n: field.lattice.size,
             };
-            resets += steps.wind[at + 30..at + 32].iter().filter(|&&r| r >= 0.0).count();
+            resets += steps.wind[at + 30..at + 32]
+                .iter()
+                .filter(|&&r| r >= 0.0)
+                .count();
             for j in 0..400 {
                 let f = |k: f32| ((j as f32 + 0.5) * k).fract();
                 // Points all over the scene, a quarter of them in the layers of the solids.
-                let mut x = Vec3::new(2.4 * f(0.7548777) - 1.2, 2.0 * f(0.5698403) - 0.5, 1.6 * f(0.4301597) - 0.8);
+                let mut x = Vec3::new(
+                    2.4 * f(0.7548777) - 1.2,
+                    2.0 * f(0.5698403) - 0.5,
+                    1.6 * f(0.4301597) - 0.8,
+                );
                 if j % 4 == 0 {
                     let b = j / 4 % 3;
                     let (d, n) = walls.bodies[b].distance(x.into());
@@ -721,14 +756,31 @@ fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the
                 let (cl, cs) = frame.parts(x.into(), [o[0].into(), o[1].into()]);
                 let (cl, cs) = (Vec3::from(cl), Vec3::from(cs));
                 let tol = |w: Vec3| 2e-4 * w.length().max(1.0);
-                assert!((gl - cl).length() <= tol(cl), "t = {}, x = {x}: large {gl} vs {cl}", frame.time);
-                assert!((gs - cs).length() <= tol(cs), "t = {}, x = {x}: small {gs} vs {cs}", frame.time);
-                let (gp, cp) = (t.push_out(x), Vec3::from(walls.push_out(x.into(), sim.wind.walls().unwrap().gap())));
+                assert!(
+                    (gl - cl).length() <= tol(cl),
+                    "t = {}, x = {x}: large {gl} vs {cl}",
+                    frame.time
+                );
+                assert!(
+                    (gs - cs).length() <= tol(cs),
+                    "t = {}, x = {x}: small {gs} vs {cs}",
+                    frame.time
+                );
+                let (gp, cp) = (
+                    t.push_out(x),
+                    Vec3::from(walls.push_out(x.into(), sim.wind.walls().unwrap().gap())),
+                );
                 assert!((gp - cp).length() < 1e-6, "push out {x}: {gp} vs {cp}");
                 checked += 1;
             }
         }
     }
-    assert!(checked == 24_000 && near > 5000, "{checked} points, {near} near solids");
-    assert!(resets > 5, "{resets} resets of the carried phases in the tables");
+    assert!(
+        checked == 24_000 && near > 5000,
+        "{checked} points, {near} near solids"
+    );
+    assert!(
+        resets > 5,
+        "{resets} resets of the carried phases in the tables"
+    );
 }

@@ -150,9 +150,8 @@ pub enum Object {
         radius: f32,
         #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
-        /// A solid deflects the wind and the gas (docs/FORMATS.md, solid objects).
+        /// A solid sphere deflects the wind and the gas; absent means not solid.
         #[serde(default, skip_serializing_if = "is_false")]
-        #[schemars(extend("default" = false))]
         solid: bool,
     },
     Plane {
@@ -162,9 +161,9 @@ pub enum Object {
         normal: [f32; 3],
         #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
-        /// A solid plane is the boundary of the half-space behind it (opposite its normal).
+        /// A solid plane bounds the half-space behind it (opposite its normal), which deflects
+        /// the wind and the gas; absent means not solid.
         #[serde(default, skip_serializing_if = "is_false")]
-        #[schemars(extend("default" = false))]
         solid: bool,
     },
     Cylinder {
@@ -182,9 +181,9 @@ pub enum Object {
         /// cylinder as its stand-in).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         model: Option<Model>,
-        /// A solid cylinder is closed (capped); a model keeps the cylinder as its solid.
+        /// A solid cylinder (closed by its caps; a model keeps the cylinder as its solid)
+        /// deflects the wind and the gas; absent means not solid.
         #[serde(default, skip_serializing_if = "is_false")]
-        #[schemars(extend("default" = false))]
         solid: bool,
     },
 }

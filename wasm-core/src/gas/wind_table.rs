@@ -21,9 +21,9 @@ pub const SOURCE_KIND: f32 = 1.0;
 pub const VORTEX_KIND: f32 = 2.0;
 pub const REPULSOR_KIND: f32 = 3.0;
 /// A solid's kind in a wind table.
-pub const SPHERE_SOLID: f32 = 0.0;
-pub const PLANE_SOLID: f32 = 1.0;
-pub const CYLINDER_SOLID: f32 = 2.0;
+pub const SPHERE_SOLID_KIND: f32 = 0.0;
+pub const PLANE_SOLID_KIND: f32 = 1.0;
+pub const CYLINDER_SOLID_KIND: f32 = 2.0;
 /// Where the carried phases' resets go in a table's header (floats 30 and 31): the age τ (s)
 /// each phase has at the step's end when it reset during the step, else this.
 pub const NO_RESET: f32 = -1.0;
@@ -112,15 +112,15 @@ impl WindFrame {
             for (j, body) in w.solids.bodies.iter().enumerate() {
                 let (kind, a, r, b, h) = match *body {
                     Body::Sphere { center, radius } => {
-                        (SPHERE_SOLID, center, radius, Vec3A::ZERO, 0.0)
+                        (SPHERE_SOLID_KIND, center, radius, Vec3A::ZERO, 0.0)
                     }
-                    Body::Plane { point, normal } => (PLANE_SOLID, point, 0.0, normal, 0.0),
+                    Body::Plane { point, normal } => (PLANE_SOLID_KIND, point, 0.0, normal, 0.0),
                     Body::Cylinder {
                         base,
                         axis,
                         radius,
                         height,
-                    } => (CYLINDER_SOLID, base, radius, axis, height),
+                    } => (CYLINDER_SOLID_KIND, base, radius, axis, height),
                 };
                 let (doublet, d) = match w.doublets[j] {
                     Some(Doublet::Sphere { wind, .. }) => (1.0, wind),

@@ -72,20 +72,14 @@ export const WIND_TABLE_PRIMITIVE = 16;
 /** Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector. (`gas::wind_table::WIND_TABLE_SOLID`) */
 export const WIND_TABLE_SOLID = 16;
 
-/** A solid sphere's kind in a wind table. (`gas::wind_table::SPHERE_SOLID`) */
-export const SPHERE_SOLID = 0;
+/** A solid sphere's kind in a wind table. (`gas::wind_table::SPHERE_SOLID_KIND`) */
+export const SPHERE_SOLID_KIND = 0;
 
-/** A solid plane's kind in a wind table. (`gas::wind_table::PLANE_SOLID`) */
-export const PLANE_SOLID = 1;
+/** A solid plane's kind in a wind table. (`gas::wind_table::PLANE_SOLID_KIND`) */
+export const PLANE_SOLID_KIND = 1;
 
-/** A solid cylinder's kind in a wind table. (`gas::wind_table::CYLINDER_SOLID`) */
-export const CYLINDER_SOLID = 2;
-
-/** The header's float holding phase a's reset age (phase b's follows). (`gas::wind_table::RESET_AT`) */
-export const RESET_AT = 30;
-
-/** A reset age meaning no reset in this step. (`gas::wind_table::NO_RESET`) */
-export const NO_RESET = -1;
+/** A solid cylinder's kind in a wind table. (`gas::wind_table::CYLINDER_SOLID_KIND`) */
+export const CYLINDER_SOLID_KIND = 2;
 
 /** A cylinder's rims are rounded by this many difference steps for the wind. (`gas::wind::EDGE_STEPS`) */
 export const EDGE_STEPS = 3;

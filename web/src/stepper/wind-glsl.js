@@ -11,8 +11,8 @@
 // same arithmetic, written out in Rust, to the core's own wind.
 
 import {
-  CYLINDER_SOLID, CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, EDGE_STEPS, PLANE_SOLID, REPULSOR_KIND, SOURCE_KIND,
-  SPHERE_SOLID, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
+  CYLINDER_SOLID_KIND, CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, EDGE_STEPS, PLANE_SOLID_KIND, REPULSOR_KIND, SOURCE_KIND,
+  SPHERE_SOLID_KIND, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
   WIND_TABLE_SOLID,
 } from '../generated/contract.js';
 
@@ -172,12 +172,12 @@ vec4 solidDistance(int row, int j, vec3 x, float edge) {
   float kind = tableTexel(row, at).x;
   vec4 a = tableTexel(row, at + 1);
   vec4 b = tableTexel(row, at + 2);
-  if (kind == ${f(SPHERE_SOLID)}) {
+  if (kind == ${f(SPHERE_SOLID_KIND)}) {
     vec3 r = x - a.xyz;
     float len = length(r);
     return vec4(len > 1e-12 ? r / len : vec3(0.0, 1.0, 0.0), len - a.w);
   }
-  if (kind == ${f(PLANE_SOLID)}) return vec4(b.xyz, dot(x - a.xyz, b.xyz));
+  if (kind == ${f(PLANE_SOLID_KIND)}) return vec4(b.xyz, dot(x - a.xyz, b.xyz));
   vec3 r = x - a.xyz;
   float s = dot(r, b.xyz);
   vec3 radial = r - b.xyz * s;
@@ -211,7 +211,7 @@ vec4 solidDistance(int row, int j, vec3 x, float edge) {
 
 float solidEdge(int row, int j) {
   vec4 s0 = tableTexel(row, solidAt(row, j));
-  return s0.x == ${f(CYLINDER_SOLID)} ? ${f(EDGE_STEPS)} * s0.y : 0.0;
+  return s0.x == ${f(CYLINDER_SOLID_KIND)} ? ${f(EDGE_STEPS)} * s0.y : 0.0;
 }
 
 /** A solid's doublet at x: its vector potential (out psi) and wind (out u). */
@@ -326,17 +326,17 @@ vec3 gaugeOf(int row, int n, int j) {
   vec4 s0 = tableTexel(row, at);
   vec4 a = tableTexel(row, at + 1);
   vec4 b = tableTexel(row, at + 2);
-  if (s0.x == ${f(PLANE_SOLID)}) {
+  if (s0.x == ${f(PLANE_SOLID_KIND)}) {
     vec3 q = tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j + 2).xyz;
     return q - b.xyz * dot(q - a.xyz, b.xyz);
   }
-  if (s0.x == ${f(CYLINDER_SOLID)}) return a.xyz + b.xyz * (0.5 * b.w);
+  if (s0.x == ${f(CYLINDER_SOLID_KIND)}) return a.xyz + b.xyz * (0.5 * b.w);
   return a.xyz;
 }
 
 /** Whether primitive j passes exactly near solid n (it and its mirror image in that plane). */
 bool exactNear(int row, int n, int j) {
-  if (tableTexel(row, solidAt(row, n)).x != ${f(PLANE_SOLID)}) return false;
+  if (tableTexel(row, solidAt(row, n)).x != ${f(PLANE_SOLID_KIND)}) return false;
   int image = imageOf(row, j);
   return image == n || (image < 0 && hasImageIn(row, j, n));
 }
@@ -375,11 +375,11 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
   float width = tableTexel(row, 5).y;
   vec3 nrm = near_.xyz;
   float alpha = rampOf(near_.w / width);
-  bool plane = s0.x == ${f(PLANE_SOLID)};
+  bool plane = s0.x == ${f(PLANE_SOLID_KIND)};
   vec3 u0 = tableTexel(row, 4).xyz;
-  if (s0.x == ${f(SPHERE_SOLID)}) {
+  if (s0.x == ${f(SPHERE_SOLID_KIND)}) {
     large = u0;
-  } else if (s0.x == ${f(CYLINDER_SOLID)}) {
+  } else if (s0.x == ${f(CYLINDER_SOLID_KIND)}) {
     vec3 along = sb.xyz * dot(u0, sb.xyz);
     large = (u0 - along) + projected(along, nrm, alpha, false);
   } else {
@@ -445,7 +445,7 @@ int solidInOrder(int row, int k, int solids) {
   int seen = 0;
   for (int pass = 0; pass < 2; pass++) {
     for (int j = 0; j < solids; j++) {
-      bool isPlane = tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID)};
+      bool isPlane = tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)};
       if (isPlane == (pass == 1)) {
         if (seen == k) return j;
         seen++;
