@@ -46,6 +46,10 @@ export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Floa
 /** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
  *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
  *  slot and σ range after the last step. */
+/** Streamlines past a solid sphere (`gas::sphere_flow`): the core's wind and the closed form,
+ *  `lines × points` (x, y) pairs each, in radii, and the largest gap between them. */
+export interface SphereFlow { core: Float32Array; closedForm: Float32Array; lines: number;
+  points: number; largestGap: number; }
 export interface GpuSteps { births: Float32Array; birthSlots: Uint32Array; freed: Uint32Array;
   ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; count: number;
   highWater: number; sigmaRange: Float32Array; spheres: Float32Array; emissive: boolean;
@@ -192,6 +196,21 @@ impl WindField {
         let report = statistics::analyse(&self.inner, &spectrum);
         serde_json::to_string(&report).map_err(js_error)
     }
+}
+
+/// The classroom's solid sphere: `lines` streamlines of `points` points (x, y in radii) of the
+/// core's wind past a solid sphere of unit radius in a unit wind along x, and the same of the
+/// potential flow around it, with the largest gap between the two (`gas::sphere_flow`).
+#[wasm_bindgen(js_name = sphereFlow, unchecked_return_type = "SphereFlow")]
+pub fn sphere_flow(lines: u32, points: u32) -> JsValue {
+    let flow = crate::gas::sphere_flow::sphere_flow(lines as usize, points as usize);
+    object(vec![
+        ("core", flow.core.into()),
+        ("closedForm", flow.closed_form.into()),
+        ("lines", (flow.lines as u32).into()),
+        ("points", (flow.points as u32).into()),
+        ("largestGap", flow.largest_gap.into()),
+    ])
 }
 
 /// Checks a scene; returns it normalised (every default filled in) as JSON, or throws an

@@ -25,7 +25,8 @@
 //!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
 //! - [`simulation`]: the scene's field, wind and gas advanced together, live edits, and the
 //!   blob list of the current state; [`slots`]: where each blob lives while the GPU advects it.
-//! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model.
+//! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model;
+//!   [`sphere_flow`]: streamlines past a solid sphere beside the potential flow.
 
 pub mod blob_gas;
 pub mod blob_list;
@@ -42,6 +43,7 @@ pub mod shapes;
 pub mod simulation;
 pub mod slots;
 pub mod solids;
+pub mod sphere_flow;
 pub mod spline;
 pub mod validate;
 pub mod walls;
