@@ -1,7 +1,7 @@
 // The classroom page and the exports: the spectrum plot's data is what `windfield stats`
 // reports for the same field; the Figure 1 demo conserves mass, shows the square at fixed times
-// and replays its first seconds; the side-by-side players run three variants; PNG, WebM and
-// blob-list exports are valid files.
+// and replays its first seconds; the side-by-side players run three variants; the streamlines
+// round a solid sphere are the potential flow's; PNG, WebM and blob-list exports are valid files.
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -56,12 +56,56 @@ test('classroom: Figure 1 conserves mass; the side-by-side players run three var
   expect(Math.abs(masses.blobs / masses.before - 1)).toBeLessThan(1e-9);
   const variants = await page.evaluate(() => ['off', 'on', 'carried'].map((id) => {
     const f = document.getElementById(id).getScene().field;
-    return [f.amplitude, f.carried_by_wind];
+    return [f.amplitude, f.carried];
   }));
   expect(variants[0][0]).toBe(0);
   expect(variants[1][0]).toBeGreaterThan(0);
   expect(variants[1][1]).toBe(false);
   expect(variants[2][1]).toBe(true);
+  expect(errors).toEqual([]);
+});
+
+test('classroom: the streamlines round a solid sphere are the potential flow\'s, and both panels draw them', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.goto('./classroom.html');
+  await page.waitForFunction(() => window.classroom?.ready);
+  await page.evaluate(() => window.classroom.ready);
+  const sphere = await page.evaluate(() => window.classroom.sphere);
+  expect(sphere.core.length).toBe(13);
+  // The page's own check of the core's wind: each streamline against the closed form's, and
+  // outside the sphere everywhere.
+  const potential = ([x, y]) => {
+    const r = Math.hypot(x, y);
+    const q = 0.5 / r ** 3;
+    const ur = x / r;
+    return [1 - q * (3 * ur * (x / r) - 1), -q * 3 * ur * (y / r)];
+  };
+  let gap = 0;
+  sphere.core.forEach((line, l) => line.forEach((p, k) => {
+    gap = Math.max(gap, Math.hypot(p[0] - sphere.closedForm[l][k][0], p[1] - sphere.closedForm[l][k][1]));
+    expect(Math.hypot(...p)).toBeGreaterThanOrEqual(0.99);
+  }));
+  expect(gap).toBeLessThan(0.05);
+  expect(Math.abs(gap - sphere.largestGap)).toBeLessThan(1e-6);
+  // The closed form's streamlines follow its wind: each step along the wind's direction.
+  for (const line of sphere.closedForm) {
+    for (let k = 1; k < line.length; k += 20) {
+      const u = potential(line[k - 1]);
+      const d = [line[k][0] - line[k - 1][0], line[k][1] - line[k - 1][1]];
+      const cos = (u[0] * d[0] + u[1] * d[1]) / (Math.hypot(...u) * Math.hypot(...d));
+      expect(cos).toBeGreaterThan(0.99);
+    }
+  }
+  // Both panels are drawn: lines of the chart's colour over the background.
+  const drawn = await page.evaluate(() => ['sphere-core', 'sphere-closed'].map((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let bright = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i] + d[i + 1] + d[i + 2] > 300) bright += 1;
+    return bright / (d.length / 4);
+  }));
+  for (const share of drawn) expect(share).toBeGreaterThan(0.01);
+  await expect(page.locator('#sphere-caption')).toContainText('part by at most');
   expect(errors).toEqual([]);
 });
 

@@ -1,7 +1,9 @@
-// The GPU stepper against the core: one step from the same state agrees blob by blob; 240 steps
-// of a turbulent plume agree in their statistics (paths diverge through chaos, statistics must
-// not); the real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still
-// of its read-back blobs; without float render targets the worker steps, and says so.
+// The GPU stepper against the core: one step from the same state agrees blob by blob (also with
+// solid objects and carried eddies, after which no blob is inside a solid); 240 steps of a
+// turbulent plume agree in their statistics (paths diverge through chaos, statistics must not);
+// the real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still of its
+// read-back blobs; without float render targets, or with more solids than it takes, the worker
+// steps, and says so.
 import { test, expect } from './helpers.js';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { decodePng } from '../tests/support/png.js';
@@ -72,6 +74,97 @@ test('one step from the same state: the GPU moves every blob where the core does
   expect(out.sigma.length).toBe(out.cpu.length);
   expect(relative(sorted(out.sigma), sorted(out.cpu.map((b) => b.sigma)))).toBeLessThan(1e-6);
   expect(relative(sorted(out.mass), sorted(out.cpu.map((b) => b.mass)))).toBeLessThan(1e-6);
+});
+
+/** The scene of every kind with solid objects (a plane, a sphere, a cylinder) and carried eddies. */
+const withSolids = {
+  ...everyKind,
+  field: { ...everyKind.field, carried: true, carry_time: 0.3, boundary_width: 0.15 },
+  wind: everyKind.wind.map((w) => (w.type === 'vortex' ? { ...w, axis: [1, 0, 0.2] } : w)),
+  // Gas born in the sphere's layer, carried up into it.
+  emitters: [...everyKind.emitters, { shape: 'point', center: [0.5, 0.58, 0.2], rate: 300 }],
+  render: {
+    objects: [
+      { type: 'plane', point: [0, -0.3, 0], normal: [0, 1, 0.1], color: [1, 1, 1], solid: true },
+      { type: 'sphere', center: [0.5, 0.9, 0.2], radius: 0.25, color: [1, 1, 1], solid: true },
+      { type: 'cylinder', base: [-0.6, 0.3, -0.2], axis: [0.2, 1, 0], radius: 0.2, height: 0.5, color: [1, 1, 1], solid: true },
+    ],
+  },
+};
+
+/** The signed distance (m) of `x` from a solid object of the scene format (negative inside). */
+function distanceTo(o, x) {
+  const sub = (a, b) => a.map((v, i) => v - b[i]);
+  const dot = (a, b) => a.reduce((s, v, i) => s + v * b[i], 0);
+  const unit = (a) => a.map((v) => v / Math.hypot(...a));
+  if (o.type === 'sphere') return Math.hypot(...sub(x, o.center)) - o.radius;
+  if (o.type === 'plane') return dot(sub(x, o.point), unit(o.normal));
+  const a = unit(o.axis);
+  const r = sub(x, o.base);
+  const s = dot(r, a);
+  const rho = Math.hypot(...r.map((v, i) => v - s * a[i]));
+  const dr = rho - o.radius;
+  const ds = Math.max(-s, s - o.height);
+  return dr > 0 && ds > 0 ? Math.hypot(dr, ds) : Math.max(dr, ds);
+}
+
+test('with solid objects and carried eddies: one step from the same state moves every blob where the core does, and no blob ends inside a solid', async ({ page }) => {
+  test.setTimeout(180_000);
+  await open(page, withSolids);
+  const out = await page.evaluate(async (scene) => {
+    const w = window.windfield;
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(30);
+    const stepper = await w.setStepper('gpu');
+    await w.step(1);
+    const gpu = await w.exportBlobs({ width: 32, height: 24 });
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(31);
+    const cpu = await w.exportBlobs({ width: 32, height: 24 });
+    // 60 steps on the GPU (two resets of each carried phase).
+    await w.setStepper('gpu');
+    await w.setScene(scene);
+    await w.step(60);
+    const later = await w.exportBlobs({ width: 32, height: 24 });
+    return { stepper, reason: w.stats().stepperReason ?? null, now: w.stats().stepper, gpu: gpu.blobs, cpu: cpu.blobs, later: later.blobs };
+  }, withSolids);
+  expect(out.stepper).toBe('gpu');
+  expect(out.now).toBe('gpu');
+  expect(out.gpu.length).toBe(out.cpu.length);
+  expect(out.gpu.length).toBeGreaterThan(200);
+  let worst = 0;
+  out.gpu.forEach((b, i) => {
+    worst = Math.max(worst, Math.hypot(...b.center.map((v, a) => v - out.cpu[i].center[a])));
+  });
+  const layer = withSolids.field.boundary_width;
+  const near = out.cpu.filter((b) => withSolids.render.objects.some((o) => distanceTo(o, b.center) < layer)).length;
+  console.log(`with solids and carried eddies, one step: the farthest blob ${worst.toExponential(2)} m from the core's (${near} of ${out.cpu.length} within a layer)`);
+  expect(near).toBeGreaterThan(50);
+  expect(worst).toBeLessThan(1e-5);
+  expect(out.later.length).toBeGreaterThan(300);
+  for (const b of out.later) {
+    for (const o of withSolids.render.objects) expect(distanceTo(o, b.center)).toBeGreaterThanOrEqual(-1e-6);
+  }
+});
+
+test('more solid objects than the GPU stepper takes: the worker steps the gas, and says why', async ({ page }) => {
+  const many = {
+    ...everyKind,
+    render: {
+      objects: Array.from({ length: 65 }, (_, i) => ({ type: 'sphere', center: [3 + 0.1 * i, 5, 0], radius: 0.02, color: [1, 1, 1], solid: true })),
+    },
+  };
+  await open(page, many);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    const got = await w.setStepper('gpu');
+    await w.step(2);
+    return { got, stats: w.stats() };
+  });
+  expect(out.got).toBe('cpu');
+  expect(out.stats.stepperReason).toMatch(/65 solid objects/);
 });
 
 test('a turbulent plume stepped 240 times on each: the same count, mass and statistics', async ({ page }) => {

@@ -16,6 +16,7 @@ const PRESETS = [
   ['cigarette', 3, 20_000],
   ['sphere-smoke', 4, 20_000],
   ['morph', 1.5, 20_000],
+  ['bridge-smoke', 3, 20_000],
 ];
 
 const bytes = (url) => Buffer.from(url.split(',')[1], 'base64');

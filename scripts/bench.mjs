@@ -94,6 +94,35 @@ emit('wasm_peak_memory_mib', core.memory.buffer.byteLength / 2 ** 20, 'MiB');
   worker.free();
 }
 
+// Solid objects: one RK2 step of 100,000 blobs of the blob-step scene with 0, 16 and 256 solid
+// spheres among them (as examples/bench.rs), median of 7 after a first step that puts the blobs
+// seeded inside a sphere out; and the field with its vector potential against the field alone.
+{
+  const spheres = (count) => Array.from({ length: count }, (_, i) => {
+    const f = (k) => (((i + 0.5) * k) % 1) * 3.6 - 1.8;
+    return { type: 'sphere', center: [f(0.618034), f(0.4142136) + 1, f(0.7320508)], radius: 0.08, color: [0.5, 0.5, 0.5], solid: true };
+  });
+  const steps = {};
+  for (const count of [0, 16, 256]) {
+    const scene = JSON.parse(sceneJson);
+    scene.render = { objects: spheres(count) };
+    const s = new core.SceneSimulation(JSON.stringify(scene));
+    s.addBlobs(positions.subarray(0, 3 * 100_000), 0.03, 1);
+    s.step(1);
+    steps[count] = median(7, () => s.step(1));
+    emit(`blob_step_100k_solids_${count}_wasm_ms`, steps[count], 'ms');
+    s.free();
+  }
+  emit('blob_step_256_solids_over_none_wasm', steps[256] / steps[0], 'ratio');
+  const withPotential = JSON.stringify({ ...JSON.parse(fieldJson(32)), potential: true });
+  emit('field_generate_32x32x32x32_with_potential_wasm_ms', median(5, () => {
+    const synthesis = new core.FieldSynthesis(withPotential);
+    while (synthesis.step());
+    synthesis.finish().free();
+    synthesis.free();
+  }), 'ms');
+}
+
 const value = (name) => results.find((r) => r.name === name)?.value;
 const nativeMs = value('field_generate_32x32x32x32_native_ms');
 const wasmMs = value('field_generate_32x32x32x32_wasm_ms');

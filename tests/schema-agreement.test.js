@@ -44,13 +44,15 @@ const CROSS_FIELD = [
   /simulation\.dt: .* steps, over the limit/, // reverse_from / dt and render.time / dt, the step budget
   /emitters: .* births a step, over the limit/, // Σ rate × simulation.dt
   /shapes: all shapes together make .* blobs, over the limit/, // Σ count
+  /field\.boundary_width: .*half the field's shortest period/, // against field.period
+  /lies inside the solid .* render\.objects\[\d+\]/, // an emitter against the solid objects
 ];
 
 /** A scene with every variant: each primitive, emitter shape, light, object, phase and solid. */
 const EVERY_VARIANT = {
   version: 1,
   seed: 7,
-  field: { size: [12, 10, 8, 6], spectrum: { law: 'paper-literal', epsilon: 2, k_inertial: 2, sigma: 0.5 }, period: [2, 3, 4], time_period: 5, amplitude: 0.5, carried_by_wind: true },
+  field: { size: [12, 10, 8, 6], spectrum: { law: 'paper-literal', epsilon: 2, k_inertial: 2, sigma: 0.5 }, period: [2, 3, 4], time_period: 5, amplitude: 0.5, carried_by_wind: true, carried: true, carry_time: 0.7, boundary_width: 0.2 },
   wind: [
     { type: 'uniform', velocity: [0.1, 0.2, 0], position: [0, 0, 0], decay: 3, enabled: true },
     { type: 'source', position: [0, 1, 0], strength: -0.5, radius: 0.2, decay: 2 },
@@ -77,8 +79,8 @@ const EVERY_VARIANT = {
     background: [0.1, 0.1, 0.1],
     time: 1.5,
     objects: [
-      { type: 'sphere', center: [0, 0.5, 0], radius: 0.2, color: [0.5, 0.5, 0.5] },
-      { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.3, 0.3, 0.3] },
+      { type: 'sphere', center: [0, 0.5, 0], radius: 0.2, color: [0.5, 0.5, 0.5], solid: true },
+      { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.3, 0.3, 0.3], solid: true },
       { type: 'cylinder', base: [0, 0, 0], axis: [0, 1, 0], radius: 0.1, height: 0.3, color: [1, 1, 1] },
     ],
   },

@@ -98,6 +98,10 @@ export type SceneObject =
        */
       color: [number, number, number];
       radius: number;
+      /**
+       * A solid sphere deflects the wind and the gas; absent means not solid.
+       */
+      solid?: boolean;
       type: 'sphere';
     }
   | {
@@ -116,6 +120,11 @@ export type SceneObject =
        * @maxItems 3
        */
       point: [number, number, number];
+      /**
+       * A solid plane bounds the half-space behind it (opposite its normal), which deflects
+       * the wind and the gas; absent means not solid.
+       */
+      solid?: boolean;
       type: 'plane';
     }
   | {
@@ -141,6 +150,11 @@ export type SceneObject =
        */
       model?: Model | null;
       radius: number;
+      /**
+       * A solid cylinder (closed by its caps; a model keeps the cylinder as its solid)
+       * deflects the wind and the gas; absent means not solid.
+       */
+      solid?: boolean;
       type: 'cylinder';
     };
 /**
@@ -240,7 +254,7 @@ export type WindPrimitive =
     };
 
 /**
- * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step).
+ * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
  */
 export interface Scene {
   /**
@@ -355,10 +369,27 @@ export interface FieldSettings {
    */
   amplitude: number;
   /**
-   * Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
-   * mean wind (the paper's suggested remedy for its independence assumption, §7).
+   * Width d₀ (m) of the layer over every solid object in which the wind is turned along
+   * the surface (the ramp α = r(d/d₀)); in (0, min(period)/2].
+   */
+  boundary_width: number;
+  /**
+   * Sample the field at coordinates advected by the large-scale wind (deflected by the
+   * solids): eddies ride with the flow (paper §7), in two phases cross-faded as Neyret's
+   * advected textures.
+   */
+  carried: boolean;
+  /**
+   * Sample the field at x − U·t, U the sum of the uniform winds: the whole field translated
+   * by the mean wind (the simplest form of the paper's remedy for its independence
+   * assumption, §7). `carried` is the general form and supersedes it when both are set.
    */
   carried_by_wind: boolean;
+  /**
+   * Seconds between the resets of each phase of the carried coordinates; none means
+   * `time_period` / 8.
+   */
+  carry_time?: number | null;
   /**
    * World metres per spatial period along x, y, z (the paper's grid spacing control).
    *
@@ -662,7 +693,7 @@ export type WindPrimitiveInput =
     };
 
 /**
- * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step).
+ * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
  */
 export interface SceneInput {
   /**
@@ -777,10 +808,27 @@ export interface FieldSettingsInput {
    */
   amplitude?: number;
   /**
-   * Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
-   * mean wind (the paper's suggested remedy for its independence assumption, §7).
+   * Width d₀ (m) of the layer over every solid object in which the wind is turned along
+   * the surface (the ramp α = r(d/d₀)); in (0, min(period)/2].
+   */
+  boundary_width?: number;
+  /**
+   * Sample the field at coordinates advected by the large-scale wind (deflected by the
+   * solids): eddies ride with the flow (paper §7), in two phases cross-faded as Neyret's
+   * advected textures.
+   */
+  carried?: boolean;
+  /**
+   * Sample the field at x − U·t, U the sum of the uniform winds: the whole field translated
+   * by the mean wind (the simplest form of the paper's remedy for its independence
+   * assumption, §7). `carried` is the general form and supersedes it when both are set.
    */
   carried_by_wind?: boolean;
+  /**
+   * Seconds between the resets of each phase of the carried coordinates; none means
+   * `time_period` / 8.
+   */
+  carry_time?: number | null;
   /**
    * World metres per spatial period along x, y, z (the paper's grid spacing control).
    *

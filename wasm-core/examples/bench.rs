@@ -68,6 +68,8 @@ fn main() {
     let ms = median_ms(7, || sim.step());
     emit("blob_step_200k_native_ms", ms, "ms");
     worker_plume();
+    solid_objects();
+    field_generate_with_potential(32, 5);
 
     // The reference renderer: a simulated plume of 10,000 blobs, one point light, shadows.
     let plume = Scene::from_json(include_str!("render-plume-scene.json")).expect("valid");
@@ -127,6 +129,97 @@ fn worker_plume() {
         "ms",
     );
     emit(&format!("worker_pack_{k}k_native_ms"), pack_ms, "ms");
+}
+
+/// `count` solid spheres of radius 8 cm over the blob-step benchmark's 4 m box (another
+/// low-discrepancy sequence), as scene objects.
+pub fn solid_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
+    (0..count)
+        .map(|i| {
+            let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 3.6 - 1.8;
+            windfield::gas::blob_list::Object::Sphere {
+                center: [f(0.618_034), f(0.414_213_6) + 1.0, f(0.732_050_8)],
+                radius: 0.08,
+                color: [0.5; 3],
+                solid: true,
+            }
+        })
+        .collect()
+}
+
+/// One RK2 step of 100,000 blobs of the blob-step scene with 0, 16 and 256 solid spheres among
+/// them (each a doublet in the uniform wind, its layer 0.1 m), and what finding the nearest
+/// solid costs: per blob with the grid, and per blob and solid tested one by one.
+fn solid_objects() {
+    let mut steps = Vec::new();
+    for count in [0, 16, 256] {
+        let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
+        scene.render.objects = solid_spheres(count);
+        let mut sim = Simulation::new(scene).expect("valid");
+        seed_blobs(&mut sim, 100_000);
+        // The first step puts the blobs seeded inside a sphere out.
+        sim.step();
+        let ms = median_ms(7, || sim.step());
+        emit(
+            &format!("blob_step_100k_solids_{count}_native_ms"),
+            ms,
+            "ms",
+        );
+        steps.push(ms);
+    }
+    emit(
+        "blob_step_256_solids_over_none",
+        steps[2] / steps[0],
+        "ratio",
+    );
+    let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
+    scene.render.objects = solid_spheres(256);
+    let wind = windfield::gas::wind::Wind::new(&scene, None);
+    let solids = &wind.walls().expect("solids").solids;
+    let points: Vec<glam::Vec3A> = (0..100_000)
+        .map(|i| {
+            let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 4.0 - 2.0;
+            glam::Vec3A::new(f(0.754_877_7), f(0.569_840_3) + 1.0, f(0.430_159_7))
+        })
+        .collect();
+    let grid_ms = median_ms(7, || {
+        for &x in &points {
+            std::hint::black_box(solids.nearest(x, 0.1));
+        }
+    });
+    emit(
+        "solid_nearest_256_per_blob_ns",
+        grid_ms * 1e6 / points.len() as f64,
+        "ns",
+    );
+    let brute_ms = median_ms(3, || {
+        for &x in &points {
+            for b in &solids.bodies {
+                std::hint::black_box(b.distance(x));
+            }
+        }
+    });
+    emit(
+        "solid_distance_per_blob_and_solid_ns",
+        brute_ms * 1e6 / (points.len() * solids.bodies.len()) as f64,
+        "ns",
+    );
+}
+
+/// The field with its vector potential (a scene with solid objects), against the field alone.
+fn field_generate_with_potential(n: usize, runs: usize) {
+    let params = FieldParams {
+        size: [n; 4],
+        ..FieldParams::default()
+    };
+    let ms = median_ms(runs, || {
+        std::hint::black_box(TurbulentField::generate_with_potential(&params).expect("valid"));
+    });
+    emit(
+        &format!("field_generate_{n}x{n}x{n}x{n}_with_potential_native_ms"),
+        ms,
+        "ms",
+    );
 }
 
 /// Median time of the paper's field (ε = 1, k_inertial = 4, σ = 1, seed 1) on an n^4 lattice.

@@ -46,6 +46,10 @@ export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Floa
 /** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
  *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
  *  slot and σ range after the last step. */
+/** Streamlines past a solid sphere (`gas::sphere_flow`): the core's wind and the closed form,
+ *  `lines × points` (x, y) pairs each, in radii, and the largest gap between them. */
+export interface SphereFlow { core: Float32Array; closedForm: Float32Array; lines: number;
+  points: number; largestGap: number; }
 export interface GpuSteps { births: Float32Array; birthSlots: Uint32Array; freed: Uint32Array;
   ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; count: number;
   highWater: number; sigmaRange: Float32Array; spheres: Float32Array; emissive: boolean;
@@ -88,11 +92,24 @@ pub struct FieldSynthesis {
 
 #[wasm_bindgen]
 impl FieldSynthesis {
-    /// `params_json`: `{"size": [nx,ny,nz,nt], "spectrum": {...}, "seed": n}`.
+    /// `params_json`: `{"size": [nx,ny,nz,nt], "spectrum": {...}, "seed": n}`, and
+    /// `"potential": true` to synthesise the field's vector potential with it (a scene with
+    /// solid objects: `sceneFieldParams` says so).
     #[wasm_bindgen(constructor)]
     pub fn new(params_json: &str) -> Result<FieldSynthesis, JsError> {
-        let params: FieldParams = parse(params_json, "field")?;
-        let inner = Synthesis::new(&params).map_err(js_error)?;
+        let mut value: serde_json::Value = parse(params_json, "field")?;
+        let potential = value
+            .as_object_mut()
+            .and_then(|o| o.remove("potential"))
+            .is_some_and(|p| p == serde_json::Value::Bool(true));
+        let params: FieldParams =
+            serde_json::from_value(value).map_err(|e| JsError::new(&format!("field: {e}")))?;
+        let inner = if potential {
+            Synthesis::with_potential(&params)
+        } else {
+            Synthesis::new(&params)
+        }
+        .map_err(js_error)?;
         Ok(Self { inner: Some(inner) })
     }
 
@@ -105,7 +122,7 @@ impl FieldSynthesis {
     pub fn stage(&self) -> String {
         self.inner
             .as_ref()
-            .map_or_else(|| "done".into(), |s| s.stage().label())
+            .map_or_else(|| "done".into(), |s| s.describe())
     }
 
     /// Fraction of the work done, 0..1.
@@ -152,6 +169,12 @@ impl WindField {
         self.inner.data.clone()
     }
 
+    /// A copy of the vector potential ψ's lattice (as `data`), empty when the field was
+    /// synthesised without it.
+    pub fn potential(&self) -> Vec<f32> {
+        self.inner.potential.clone().unwrap_or_default()
+    }
+
     /// Quadrilinear sample at lattice coordinates `(x, y, z, t)`: `[u1, u2, u3]`.
     pub fn sample(&self, x: f64, y: f64, z: f64, t: f64) -> Vec<f32> {
         self.inner.sample_lattice([x, y, z, t]).to_vec()
@@ -179,6 +202,21 @@ impl WindField {
     }
 }
 
+/// The classroom's solid sphere: `lines` streamlines of `points` points (x, y in radii) of the
+/// core's wind past a solid sphere of unit radius in a unit wind along x, and the same of the
+/// potential flow around it, with the largest gap between the two (`gas::sphere_flow`).
+#[wasm_bindgen(js_name = sphereFlow, unchecked_return_type = "SphereFlow")]
+pub fn sphere_flow(lines: u32, points: u32) -> JsValue {
+    let flow = crate::gas::sphere_flow::sphere_flow(lines as usize, points as usize);
+    object(vec![
+        ("core", flow.core.into()),
+        ("closedForm", flow.closed_form.into()),
+        ("lines", (flow.lines as u32).into()),
+        ("points", (flow.points as u32).into()),
+        ("largestGap", flow.largest_gap.into()),
+    ])
+}
+
 /// Checks a scene; returns it normalised (every default filled in) as JSON, or throws an
 /// Error naming the offending path.
 #[wasm_bindgen(js_name = validateScene)]
@@ -186,11 +224,19 @@ pub fn validate_scene(scene_json: &str) -> Result<String, JsError> {
     Ok(Scene::from_json(scene_json).map_err(js_error)?.to_json())
 }
 
-/// The field parameters (`{size, spectrum, seed}` JSON) a scene needs.
+/// The field parameters (`{size, spectrum, seed}` JSON) a scene needs, with `"potential":
+/// true` when it needs the field's vector potential too (solid objects): the key of the
+/// field's synthesis.
 #[wasm_bindgen(js_name = sceneFieldParams)]
 pub fn scene_field_params(scene_json: &str) -> Result<String, JsError> {
     let scene = Scene::from_json(scene_json).map_err(js_error)?;
-    serde_json::to_string(&scene.field_params()).map_err(js_error)
+    let mut value = serde_json::to_value(scene.field_params()).map_err(js_error)?;
+    if scene.needs_potential() {
+        if let Some(o) = value.as_object_mut() {
+            o.insert("potential".into(), true.into());
+        }
+    }
+    Ok(value.to_string())
 }
 
 /// A running scene: wind and gas advanced in fixed steps. Frames come out whole, as one object

@@ -17,9 +17,15 @@ use crate::frame::views::SPHERE_FLOATS;
 use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
 use crate::gas::blob_list::DEFAULT_RENDER_TIME;
 use crate::gas::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
+use crate::gas::walls::{
+    CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
+};
+use crate::gas::wind::EDGE_STEPS;
 use crate::gas::wind::{
     REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
+    WIND_TABLE_SOLID,
 };
+use crate::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
 use crate::render::{STEP_FRACTION, TRUNCATION};
 
 /// Where the generated module lives, from the repository's root.
@@ -96,11 +102,26 @@ pub fn sections() -> Vec<Section> {
     ];
     let gpu_stepper = vec![
         shared!(BLOB_FLOATS in "frame::gpu_steps":
-            "Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0."),
-        shared!(WIND_TABLE_HEADER in "gas::wind":
-            "Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count."),
-        shared!(WIND_TABLE_PRIMITIVE in "gas::wind":
-            "Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin; p; q."),
+            "Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0."),
+        shared!(WIND_TABLE_HEADER in "gas::wind_table":
+            "Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets."),
+        shared!(WIND_TABLE_PRIMITIVE in "gas::wind_table":
+            "Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images."),
+        shared!(WIND_TABLE_SOLID in "gas::wind_table":
+            "Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector."),
+        shared!(SPHERE_SOLID_KIND in "gas::wind_table": "A solid sphere's kind in a wind table."),
+        shared!(PLANE_SOLID_KIND in "gas::wind_table": "A solid plane's kind in a wind table."),
+        shared!(CYLINDER_SOLID_KIND in "gas::wind_table": "A solid cylinder's kind in a wind table."),
+        shared!(EDGE_STEPS in "gas::wind":
+            "A cylinder's rims are rounded by this many difference steps for the wind."),
+        shared!(SPHERE_ZONE_INNER in "gas::walls":
+            "A sphere's doublet is exact within this many radii of its centre."),
+        shared!(SPHERE_ZONE_OUTER in "gas::walls":
+            "A sphere's doublet has faded to nothing at this many radii."),
+        shared!(CYLINDER_ZONE_INNER in "gas::walls":
+            "A cylinder's doublet is exact within this many radii of its axis."),
+        shared!(CYLINDER_ZONE_OUTER in "gas::walls":
+            "A cylinder's doublet has faded to nothing at this many radii."),
         shared!(UNIFORM_KIND in "gas::wind": "A uniform wind's kind in a wind table."),
         shared!(SOURCE_KIND in "gas::wind": "A source's (or sink's) kind in a wind table."),
         shared!(VORTEX_KIND in "gas::wind": "A vortex's kind in a wind table."),

@@ -200,3 +200,587 @@ fn a_scene_that_splits_is_stepped_here() {
     assert_eq!(e.path, "gas.split_sigma");
     assert!(!sim.centres_on_gpu());
 }
+
+/// The scene of every kind with solid objects (a sphere, a plane, a cylinder; the uniform wind's
+/// doublets, the primitives' mirror images in the plane, the vortex turned by the ramped curl)
+/// and the small scales carried by the large ones.
+fn with_solids() -> Scene {
+    let mut s = every_kind();
+    s.field.carried = true;
+    s.field.carry_time = Some(0.3);
+    s.field.boundary_width = 0.15;
+    // The vortex lies along the plane (so it is mirrored in it).
+    if let windfield::gas::scene::Primitive::Vortex { axis, .. } = &mut s.wind[4] {
+        *axis = [1.0, 0.0, 0.2];
+    }
+    s.render.objects = serde_json::from_value(json!([
+        {"type": "plane", "point": [0, -0.3, 0], "normal": [0, 1, 0.1], "color": [1, 1, 1], "solid": true},
+        {"type": "sphere", "center": [0.5, 0.9, 0.2], "radius": 0.25, "color": [1, 1, 1], "solid": true},
+        {"type": "cylinder", "base": [-0.6, 0.3, -0.2], "axis": [0.2, 1, 0], "radius": 0.2, "height": 0.5,
+         "color": [1, 1, 1], "solid": true}
+    ]))
+    .unwrap();
+    s
+}
+
+/// The GPU's reading of a wind table with solids and carried offsets: `web/src/stepper/wind-glsl.js`
+/// (`windParts`, `pushOut`), function by function, in Rust.
+mod table {
+    use glam::Vec3;
+    use windfield::gas::walls::{
+        CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
+    };
+    use windfield::gas::wind::EDGE_STEPS;
+    use windfield::gas::wind::{
+        VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE, WIND_TABLE_SOLID,
+    };
+    use windfield::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
+
+    pub struct Table<'a> {
+        pub t: &'a [f32],
+        pub u: &'a [f32],
+        pub psi: &'a [f32],
+        pub n: [usize; 4],
+    }
+
+    fn v(a: &[f32], i: usize) -> Vec3 {
+        Vec3::new(a[i], a[i + 1], a[i + 2])
+    }
+
+    impl Table<'_> {
+        fn texel(&self, i: usize) -> [f32; 4] {
+            [
+                self.t[4 * i],
+                self.t[4 * i + 1],
+                self.t[4 * i + 2],
+                self.t[4 * i + 3],
+            ]
+        }
+        fn xyz(&self, i: usize) -> Vec3 {
+            v(self.t, 4 * i)
+        }
+        fn prim(&self, j: usize) -> usize {
+            WIND_TABLE_HEADER / 4 + WIND_TABLE_PRIMITIVE / 4 * j
+        }
+        fn solid_at(&self, j: usize) -> usize {
+            self.prim(self.texel(4)[3] as usize) + WIND_TABLE_SOLID / 4 * j
+        }
+
+        fn lattice(&self, data: &[f32], x: Vec3, scale: Vec3) -> Vec3 {
+            let s = self.texel(0);
+            let (i0, i1, f) = (s[1] as usize, s[2] as usize, s[3]);
+            let q = (x - self.xyz(1)) * self.xyz(2);
+            let fl = q.floor();
+            let t = q - fl;
+            let n = self.n;
+            let at = |ix: i64, iy: i64, iz: i64, it: usize| {
+                let (cx, cy, cz) = (
+                    ix.rem_euclid(n[0] as i64) as usize,
+                    iy.rem_euclid(n[1] as i64) as usize,
+                    iz.rem_euclid(n[2] as i64) as usize,
+                );
+                v(data, 3 * (((it * n[2] + cz) * n[1] + cy) * n[0] + cx))
+            };
+            let corner = |dx: i64, dy: i64, dz: i64| {
+                let (ix, iy, iz) = (fl.x as i64 + dx, fl.y as i64 + dy, fl.z as i64 + dz);
+                let a = at(ix, iy, iz, i0);
+                (a + (at(ix, iy, iz, i1) - a) * f) * scale
+            };
+            let along_x = |dy, dz| corner(0, dy, dz).lerp(corner(1, dy, dz), t.x);
+            let lo = along_x(0, 0).lerp(along_x(1, 0), t.y);
+            let hi = along_x(0, 1).lerp(along_x(1, 1), t.y);
+            lo.lerp(hi, t.z)
+        }
+
+        fn blended(&self, data: &[f32], x: Vec3, scale: Vec3, o: [Vec3; 2]) -> Vec3 {
+            let w = self.texel(7);
+            if self.texel(5)[3] == 0.0 {
+                return self.lattice(data, x, scale);
+            }
+            let n = Vec3::new(self.n[0] as f32, self.n[1] as f32, self.n[2] as f32);
+            let shift = n * 0.5 / self.xyz(2);
+            let mut u = Vec3::ZERO;
+            if w[0] != 0.0 {
+                u += self.lattice(data, x + o[0], scale) * w[0];
+            }
+            if w[1] != 0.0 {
+                u += self.lattice(data, x + o[1] + shift, scale) * w[1];
+            }
+            u
+        }
+
+        fn small(&self, x: Vec3, o: [Vec3; 2]) -> Vec3 {
+            if self.texel(0)[0] < 0.5 {
+                return Vec3::ZERO;
+            }
+            self.blended(self.u, x, self.xyz(3), o)
+        }
+
+        fn primitive(&self, j: usize, x: Vec3) -> Vec3 {
+            // As `primitiveWind` (and the first table test's `table_velocity`).
+            let at = self.prim(j);
+            let [kind, inv_decay, a, b] = self.texel(at);
+            let origin = self.xyz(at + 1);
+            let p = self.xyz(at + 2);
+            let q = self.xyz(at + 3);
+            let r = x - p;
+            let u = if kind == 1.0 {
+                let d2 = r.length_squared() + b;
+                r * (a / (d2 * d2.sqrt()))
+            } else if kind == 2.0 {
+                let c = q.cross(r);
+                c * (a / (c.length_squared() + b))
+            } else if kind == 3.0 {
+                let d = r.length();
+                let n = if d > 1e-6 { r / d } else { Vec3::Y };
+                if d < a {
+                    q + n * b
+                } else {
+                    let s = a / d;
+                    (n * (3.0 * q.dot(n)) - q) * (0.5 * s * s * s) + n * (b * s * s)
+                }
+            } else {
+                p
+            };
+            if inv_decay > 0.0 {
+                u * (-(x - origin).length() * inv_decay).exp()
+            } else {
+                u
+            }
+        }
+
+        fn ramp(s: f32) -> f32 {
+            let s = s.clamp(-1.0, 1.0);
+            let s2 = s * s;
+            s * (15.0 + s2 * (-10.0 + 3.0 * s2)) * 0.125
+        }
+
+        fn taper(s: f32) -> (f32, f32) {
+            if s <= 0.0 {
+                return (1.0, 0.0);
+            }
+            if s >= 1.0 {
+                return (0.0, 0.0);
+            }
+            let s2 = s * s;
+            (
+                1.0 - s2 * s * (10.0 + s * (-15.0 + 6.0 * s)),
+                -30.0 * s2 * (1.0 - s) * (1.0 - s),
+            )
+        }
+
+        fn perpendicular(a: Vec3) -> Vec3 {
+            let other = if a.x.abs() < 0.9 { Vec3::X } else { Vec3::Y };
+            a.cross(other).normalize()
+        }
+
+        /// (normal, distance) of solid j at x, rims rounded by `edge`.
+        pub fn distance(&self, j: usize, x: Vec3, edge: f32) -> (Vec3, f32) {
+            let at = self.solid_at(j);
+            let kind = self.texel(at)[0];
+            let (a, radius) = (self.xyz(at + 1), self.texel(at + 1)[3]);
+            let (b, height) = (self.xyz(at + 2), self.texel(at + 2)[3]);
+            if kind == SPHERE_SOLID_KIND {
+                let r = x - a;
+                let len = r.length();
+                return (if len > 1e-12 { r / len } else { Vec3::Y }, len - radius);
+            }
+            if kind == PLANE_SOLID_KIND {
+                return (b, (x - a).dot(b));
+            }
+            assert_eq!(kind, CYLINDER_SOLID_KIND);
+            let r = x - a;
+            let s = r.dot(b);
+            let radial = r - b * s;
+            let rho = radial.length();
+            let out = if rho > 1e-12 {
+                radial / rho
+            } else {
+                Self::perpendicular(b)
+            };
+            if edge <= 0.0 {
+                let dr = rho - radius;
+                let (cap, ds) = if s > 0.5 * height {
+                    (b, s - height)
+                } else {
+                    (-b, -s)
+                };
+                if dr > 0.0 && ds > 0.0 {
+                    let d = (dr * dr + ds * ds).sqrt();
+                    return ((out * dr + cap * ds) / d, d);
+                }
+                if dr > 0.0 {
+                    return (out, dr);
+                }
+                if ds > 0.0 {
+                    return (cap, ds);
+                }
+                return if dr > ds { (out, dr) } else { (cap, ds) };
+            }
+            let half = 0.5 * height;
+            let cap = if s > half { b } else { -b };
+            let e = edge.min(radius).min(half);
+            let (qx, qy) = (rho - (radius - e), (s - half).abs() - (half - e));
+            if qx > 0.0 && qy > 0.0 {
+                let q = (qx * qx + qy * qy).sqrt();
+                return ((out * qx + cap * qy) / q, q - e);
+            }
+            if qx > qy {
+                (out, qx - e)
+            } else {
+                (cap, qy - e)
+            }
+        }
+
+        fn edge(&self, j: usize) -> f32 {
+            let s0 = self.texel(self.solid_at(j));
+            if s0[0] == CYLINDER_SOLID_KIND {
+                EDGE_STEPS * s0[1]
+            } else {
+                0.0
+            }
+        }
+
+        fn doublet(&self, j: usize, x: Vec3) -> (Vec3, Vec3) {
+            let at = self.solid_at(j);
+            let s0 = self.texel(at);
+            let (a, radius) = (self.xyz(at + 1), self.texel(at + 1)[3]);
+            let (b, height) = (self.xyz(at + 2), self.texel(at + 2)[3]);
+            let d = self.xyz(at + 3);
+            if s0[2] == 1.0 {
+                let r = x - a;
+                let rho = r.length();
+                let span = (SPHERE_ZONE_OUTER - SPHERE_ZONE_INNER) * radius;
+                let (w, dw) = Self::taper((rho - SPHERE_ZONE_INNER * radius) / span);
+                if w == 0.0 {
+                    return (Vec3::ZERO, Vec3::ZERO);
+                }
+                let (p, u) = if rho >= radius {
+                    let n = r / rho;
+                    let q = radius / rho;
+                    let q3 = 0.5 * q * q * q;
+                    (d.cross(r) * -q3, (n * (3.0 * d.dot(n)) - d) * -q3)
+                } else {
+                    (d.cross(r) * -0.5, -d)
+                };
+                if dw == 0.0 {
+                    return (p * w, u * w);
+                }
+                let grad = r * (dw / (span * rho));
+                (p * w, u * w + grad.cross(p))
+            } else if s0[2] == 2.0 {
+                let r = x - a;
+                let s = r.dot(b);
+                let beyond = if s > height { s - height } else { -s };
+                let w_axial = Self::taper(beyond / radius).0;
+                if w_axial == 0.0 {
+                    return (Vec3::ZERO, Vec3::ZERO);
+                }
+                let rv = r - b * s;
+                let rho = rv.length();
+                let span = (CYLINDER_ZONE_OUTER - CYLINDER_ZONE_INNER) * radius;
+                let (wr, dwr) = Self::taper((rho - CYLINDER_ZONE_INNER * radius) / span);
+                if wr == 0.0 {
+                    return (Vec3::ZERO, Vec3::ZERO);
+                }
+                let r2 = radius * radius;
+                let md = d.dot(rv);
+                let (stream, grad) = if rho >= radius {
+                    let inv2 = 1.0 / (rho * rho);
+                    (-r2 * md * inv2, (d - rv * (2.0 * md * inv2)) * (-r2 * inv2))
+                } else {
+                    let q = rho * rho / r2;
+                    let p = 1.0 + q * (3.0 + q * (-5.0 + 2.0 * q));
+                    let dp = 3.0 + q * (-10.0 + 6.0 * q);
+                    (-md * p, -(d * p + rv * (md * dp * 2.0 / r2)))
+                };
+                let mut g = grad * wr;
+                if dwr != 0.0 {
+                    g += rv * (stream * dwr / (span * rho));
+                }
+                (b * (stream * wr * w_axial), g.cross(b) * w_axial)
+            } else {
+                (Vec3::ZERO, Vec3::ZERO)
+            }
+        }
+
+        fn projected(u: Vec3, n: Vec3, alpha: f32, keep: bool) -> Vec3 {
+            let un = u.dot(n);
+            let un = if keep { un.min(0.0) } else { un };
+            u - n * ((1.0 - alpha) * un)
+        }
+
+        fn image_of(&self, j: usize) -> i64 {
+            self.texel(self.prim(j) + 1)[3] as i64
+        }
+
+        fn exact_near(&self, n: usize, j: usize) -> bool {
+            if self.texel(self.solid_at(n))[0] != PLANE_SOLID_KIND {
+                return false;
+            }
+            let image = self.image_of(j);
+            if image == n as i64 {
+                return true;
+            }
+            let at = self.prim(j);
+            let (first, count) = (self.texel(at + 2)[3] as i64, self.texel(at + 3)[3] as i64);
+            image < 0 && (0..count).any(|k| self.image_of((first + k) as usize) == n as i64)
+        }
+
+        fn has_potential(&self, j: usize) -> bool {
+            let head = self.texel(self.prim(j));
+            head[0] == VORTEX_KIND && head[1] == 0.0
+        }
+
+        fn gauge(&self, n: usize, j: usize) -> Vec3 {
+            let at = self.solid_at(n);
+            let s0 = self.texel(at);
+            let (a, b, h) = (self.xyz(at + 1), self.xyz(at + 2), self.texel(at + 2)[3]);
+            if s0[0] == PLANE_SOLID_KIND {
+                let q = self.xyz(self.prim(j) + 2);
+                q - b * (q - a).dot(b)
+            } else if s0[0] == CYLINDER_SOLID_KIND {
+                a + b * (0.5 * h)
+            } else {
+                a
+            }
+        }
+
+        fn vortex_potential(&self, j: usize, y: Vec3, gauge: Vec3) -> Vec3 {
+            let at = self.prim(j);
+            let head = self.texel(at);
+            let (p, axis) = (self.xyz(at + 2), self.xyz(at + 3));
+            let (c, c0) = (axis.cross(y - p), axis.cross(gauge - p));
+            axis * (-0.5
+                * head[2]
+                * ((c.length_squared() + head[3]) / (c0.length_squared() + head[3])).ln())
+        }
+
+        fn ramped_potential(&self, n: usize, y: Vec3) -> Vec3 {
+            let mut psi = Vec3::ZERO;
+            for j in 0..self.texel(5)[0] as usize {
+                if j != n && self.texel(self.solid_at(j))[2] != 0.0 {
+                    psi += self.doublet(j, y).0;
+                }
+            }
+            for j in 0..self.texel(4)[3] as usize {
+                if !self.exact_near(n, j) && self.has_potential(j) {
+                    psi += self.vortex_potential(j, y, self.gauge(n, j));
+                }
+            }
+            psi
+        }
+
+        fn curl(a: &[Vec3; 6], points: &[Vec3; 6]) -> Vec3 {
+            let span = Vec3::new(
+                points[0].x - points[1].x,
+                points[2].y - points[3].y,
+                points[4].z - points[5].z,
+            );
+            let inv = span.recip();
+            let (dx, dy, dz) = (
+                (a[0] - a[1]) * inv.x,
+                (a[2] - a[3]) * inv.y,
+                (a[4] - a[5]) * inv.z,
+            );
+            Vec3::new(dy.z - dz.y, dz.x - dx.z, dx.y - dy.x)
+        }
+
+        fn near_solid(&self, n: usize, near: (Vec3, f32), x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
+            let at = self.solid_at(n);
+            let s0 = self.texel(at);
+            let axis = self.xyz(at + 2);
+            let width = self.texel(5)[1];
+            let (nrm, dist) = near;
+            let alpha = Self::ramp(dist / width);
+            let plane = s0[0] == PLANE_SOLID_KIND;
+            let u0 = self.xyz(4);
+            let mut large = if s0[0] == SPHERE_SOLID_KIND {
+                u0
+            } else if s0[0] == CYLINDER_SOLID_KIND {
+                let along = axis * u0.dot(axis);
+                (u0 - along) + Self::projected(along, nrm, alpha, false)
+            } else {
+                Self::projected(u0, nrm, alpha, true)
+            };
+            if s0[2] > 0.0 {
+                large += self.doublet(n, x).1;
+            }
+            let solids = self.texel(5)[0] as usize;
+            let others = (0..solids).any(|j| j != n && self.texel(self.solid_at(j))[2] > 0.0);
+            let mut vortices = false;
+            for j in 0..self.texel(4)[3] as usize {
+                if self.exact_near(n, j) {
+                    large += self.primitive(j, x);
+                } else if self.has_potential(j) {
+                    vortices = true;
+                } else {
+                    large += Self::projected(self.primitive(j, x), nrm, alpha, plane);
+                }
+            }
+            let has_field = self.texel(0)[0] > 0.5;
+            let has_psi = self.texel(5)[2] > 0.5;
+            let projected_small = || {
+                if has_field {
+                    Self::projected(self.small(x, o), nrm, alpha, false)
+                } else {
+                    Vec3::ZERO
+                }
+            };
+            if !(others || vortices || has_psi) {
+                return (large, projected_small());
+            }
+            let h = s0[1];
+            let c = if dist < -h { x + nrm * (-h - dist) } else { x };
+            let edge = self.edge(n);
+            let axes = [Vec3::X, Vec3::Y, Vec3::Z];
+            let points: [Vec3; 6] = std::array::from_fn(|k| {
+                c + axes[k / 2] * (if k % 2 == 0 { 1.0 } else { -1.0 } * h)
+            });
+            let geo: [(f32, Vec3); 6] = std::array::from_fn(|k| {
+                let (n, d) = self.distance(n, points[k], edge);
+                (Self::ramp(d / width), n)
+            });
+            let ramped = |psi: [Vec3; 6]| -> [Vec3; 6] {
+                std::array::from_fn(|k| {
+                    let (al, nk) = geo[k];
+                    psi[k] * al + nk * ((1.0 - al) * nk.dot(psi[k]))
+                })
+            };
+            if others || vortices {
+                let psi = std::array::from_fn(|k| self.ramped_potential(n, points[k]));
+                large += Self::curl(&ramped(psi), &points);
+            }
+            let small = if has_psi {
+                let scale = self.xyz(6);
+                let psi = std::array::from_fn(|k| self.blended(self.psi, points[k], scale, o));
+                Self::curl(&ramped(psi), &points)
+            } else {
+                projected_small()
+            };
+            (large, small)
+        }
+
+        /// The solids in the core's order: the finite ones, then the planes.
+        fn order(&self) -> Vec<usize> {
+            let solids = self.texel(5)[0] as usize;
+            let plane = |j: usize| self.texel(self.solid_at(j))[0] == PLANE_SOLID_KIND;
+            (0..solids)
+                .filter(|&j| !plane(j))
+                .chain((0..solids).filter(|&j| plane(j)))
+                .collect()
+        }
+
+        pub fn parts(&self, x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
+            let width = self.texel(5)[1];
+            let mut best: Option<(usize, (Vec3, f32))> = None;
+            for j in self.order() {
+                let dn = self.distance(j, x, self.edge(j));
+                if dn.1 < width && best.is_none_or(|b| dn.1 < b.1 .1) {
+                    best = Some((j, dn));
+                }
+            }
+            if let Some((n, near)) = best {
+                return self.near_solid(n, near, x, o);
+            }
+            let mut large = self.xyz(4);
+            for j in 0..self.texel(5)[0] as usize {
+                large += self.doublet(j, x).1;
+            }
+            for j in 0..self.texel(4)[3] as usize {
+                large += self.primitive(j, x);
+            }
+            (large, self.small(x, o))
+        }
+
+        pub fn push_out(&self, mut x: Vec3) -> Vec3 {
+            let gap = 1e-4 * self.texel(5)[1];
+            for _ in 0..4 {
+                let Some((n, d)) = self
+                    .order()
+                    .into_iter()
+                    .map(|j| self.distance(j, x, 0.0))
+                    .find(|dn| dn.1 < 0.0)
+                else {
+                    return x;
+                };
+                let g = gap + 4.0 * 1.192_092_9e-7 * x.abs().max_element();
+                x += n * (g - d);
+            }
+            x
+        }
+    }
+}
+
+#[test]
+fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the_cores_wind() {
+    let mut sim = Simulation::new(with_solids()).unwrap();
+    sim.hand_centres_to_gpu().unwrap();
+    let field = sim.field().unwrap().clone();
+    let psi = field.potential.clone().expect("a field with its potential");
+    let walls = sim.wind.walls().unwrap().solids.clone();
+    let (mut checked, mut near, mut resets) = (0, 0, 0);
+    for _ in 0..30 {
+        let steps = GpuSteps::run(&mut sim, 3);
+        for (k, frame) in sim.wind_frames().iter().enumerate() {
+            let at = steps.wind_offsets[steps.wind_offsets.len() - 2 + k] as usize;
+            let t = table::Table {
+                t: &steps.wind[at..],
+                u: &field.data,
+                psi: &psi,
+                n: field.lattice.size,
+            };
+            resets += steps.wind[at + 30..at + 32]
+                .iter()
+                .filter(|&&r| r >= 0.0)
+                .count();
+            for j in 0..400 {
+                let f = |k: f32| ((j as f32 + 0.5) * k).fract();
+                // Points all over the scene, a quarter of them in the layers of the solids.
+                let mut x = Vec3::new(
+                    2.4 * f(0.7548777) - 1.2,
+                    2.0 * f(0.5698403) - 0.5,
+                    1.6 * f(0.4301597) - 0.8,
+                );
+                if j % 4 == 0 {
+                    let b = j / 4 % 3;
+                    let (d, n) = walls.bodies[b].distance(x.into());
+                    x -= Vec3::from(n) * (d - 0.15 * f(0.1234567));
+                    near += 1;
+                }
+                let o = [
+                    Vec3::new(f(0.31), f(0.47), f(0.59)) * 0.3,
+                    Vec3::new(f(0.67), f(0.71), f(0.83)) * 0.3,
+                ];
+                let (gl, gs) = t.parts(x, o);
+                let (cl, cs) = frame.parts(x.into(), [o[0].into(), o[1].into()]);
+                let (cl, cs) = (Vec3::from(cl), Vec3::from(cs));
+                let tol = |w: Vec3| 2e-4 * w.length().max(1.0);
+                assert!(
+                    (gl - cl).length() <= tol(cl),
+                    "t = {}, x = {x}: large {gl} vs {cl}",
+                    frame.time
+                );
+                assert!(
+                    (gs - cs).length() <= tol(cs),
+                    "t = {}, x = {x}: small {gs} vs {cs}",
+                    frame.time
+                );
+                let (gp, cp) = (
+                    t.push_out(x),
+                    Vec3::from(walls.push_out(x.into(), sim.wind.walls().unwrap().gap())),
+                );
+                assert!((gp - cp).length() < 1e-6, "push out {x}: {gp} vs {cp}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(
+        checked == 24_000 && near > 5000,
+        "{checked} points, {near} near solids"
+    );
+    assert!(
+        resets > 5,
+        "{resets} resets of the carried phases in the tables"
+    );
+}

@@ -101,6 +101,7 @@ fn twin(list: &BlobList) -> Vec<f64> {
                         center,
                         radius,
                         color,
+                        ..
                     } => {
                         let c = DVec3::from_array(center.map(f64::from));
                         let oc = o - c;
@@ -119,6 +120,7 @@ fn twin(list: &BlobList) -> Vec<f64> {
                         point,
                         normal,
                         color,
+                        ..
                     } => {
                         let n = DVec3::from_array(normal.map(f64::from)).normalize();
                         let s = (DVec3::from_array(point.map(f64::from)) - o).dot(n) / d.dot(n);

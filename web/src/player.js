@@ -16,7 +16,7 @@ import { waitForGpu } from './views/gpu-sync.js';
 import { PointerStir } from './views/pointer-stir.js';
 import { SceneView } from './views/scene-view.js';
 import { VIEWS } from './views/modes.js';
-import { GpuStepper, gpuStepperUnsupported, MAX_GPU_LATTICE } from './stepper/gpu-stepper.js';
+import { GpuStepper, gpuStepperRefuses, gpuStepperUnsupported, MAX_GPU_LATTICE } from './stepper/gpu-stepper.js';
 import { SLICE_PLANES, SLICE_SAMPLES } from './views/wind-slice-layer.js';
 import { VOLUME_QUALITY } from './views/volume/volume-layer.js';
 
@@ -67,7 +67,7 @@ const recordingRefuses = (what) => new Error(`a recording is under way: ${what} 
 function sceneKeepsGpuAway(scene) {
   if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
   if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
-  return null;
+  return gpuStepperRefuses(scene);
 }
 
 /** Bytes that crossed from the worker for GPU steps `steps` (whole buffers). */
@@ -996,7 +996,7 @@ export class Player {
     const births = scene.emitters.reduce((n, e) => n + (e.enabled ? e.rate : 0), 0) * scene.simulation.dt;
     st.gpu ??= new GpuStepper(this.#view.renderer);
     st.gpu.start({ records: start.records, capacity: scene.gas.max_blobs + Math.ceil(4 * births) + 1024, time: start.time });
-    st.gpu.setLattice(start.lattice.data, start.lattice.size);
+    st.gpu.setLattice(start.lattice.data, start.lattice.size, start.lattice.potential);
     st.fieldVersion = start.lattice.version;
     st.active = 'gpu';
   }
@@ -1033,7 +1033,7 @@ export class Player {
     if (!st.gpu) return;
     if (steps.fieldVersion !== st.fieldVersion) {
       const lattice = await this.#engine.request('gpuLattice');
-      st.gpu.setLattice(lattice.data, lattice.size);
+      st.gpu.setLattice(lattice.data, lattice.size, lattice.potential);
       st.fieldVersion = lattice.version;
     }
     const { simulation, gas } = this.#state.scene;

@@ -28,4 +28,4 @@ pub mod velocity_spectrum;
 
 pub use synthesis::{Stage, Synthesis};
 pub use turbulent_field::{FieldParams, TurbulentField, MAX_SEED};
-pub use velocity_spectrum::hermitian_spectrum;
+pub use velocity_spectrum::{hermitian_potential_spectrum, hermitian_spectrum};

@@ -183,6 +183,11 @@ impl TurbulentField {
     pub fn generate(params: &FieldParams) -> Result<Self, ParamError> {
         Ok(Synthesis::new(params)?.finish())
     }
+
+    /// The field and its vector potential ψ ([`Synthesis::with_potential`]) in one call.
+    pub fn generate_with_potential(params: &FieldParams) -> Result<Self, ParamError> {
+        Ok(Synthesis::with_potential(params)?.finish())
+    }
 }
 
 /// Field synthesis, run one stage at a time so a caller can report progress.
@@ -196,6 +201,12 @@ pub struct Synthesis {
     /// Parts of the temporal and the spatial pass.
     parts: [usize; 2],
     next: usize,
+    /// Whether the vector potential follows, and once the velocity is done, its synthesis
+    /// (the same stages, the same noise, the potential's filter).
+    potential: bool,
+    psi: Option<Box<Synthesis>>,
+    /// The finished velocity, while the potential is synthesised.
+    velocity: Option<Vec<f32>>,
 }
 
 impl Synthesis {
@@ -211,16 +222,64 @@ impl Synthesis {
             storage: Storage::Filling(Box::new_uninit_slice(3 * lattice.points())),
             parts: [PARTS_PER_PASS.min(nz), PARTS_PER_PASS.min(nt)],
             next: 0,
+            potential: false,
+            psi: None,
+            velocity: None,
         })
+    }
+
+    /// The velocity, then its vector potential ψ̂ = i k × û / |k|² from the same noise (one
+    /// more pass of the filter and the inverse transform; twice the stages and, at the end,
+    /// twice the memory). The finished field carries ψ in `potential`.
+    pub fn with_potential(params: &FieldParams) -> Result<Self, ParamError> {
+        let mut s = Self::new(params)?;
+        s.potential = true;
+        Ok(s)
+    }
+
+    /// The synthesis of the potential alone (the velocity's stages, the potential's filter).
+    fn of_potential(params: &FieldParams) -> Result<Self, ParamError> {
+        let mut s = Self::new(params)?;
+        s.spectrum = s.spectrum.potential();
+        Ok(s)
+    }
+
+    /// Stages of the velocity alone.
+    fn own_stages(&self) -> usize {
+        self.parts[0] + self.parts[1]
     }
 
     /// Number of stages in all.
     pub fn stage_count(&self) -> usize {
-        self.parts[0] + self.parts[1]
+        self.own_stages() * if self.potential { 2 } else { 1 }
     }
 
-    /// The stage [`Self::run_stage`] will run next.
+    /// What the next stage does, for progress displays (the potential's stages say so).
+    pub fn describe(&self) -> String {
+        match &self.psi {
+            Some(psi) if self.next >= self.own_stages() => match psi.stage() {
+                Stage::Done => "done".into(),
+                s => format!("vector potential: {}", s.label()),
+            },
+            _ if self.potential && self.next >= self.own_stages() => {
+                "vector potential: starting".into()
+            }
+            _ => self.stage().label(),
+        }
+    }
+
+    /// The stage [`Self::run_stage`] will run next (of the velocity, then of the potential).
     pub fn stage(&self) -> Stage {
+        if self.next >= self.own_stages() {
+            return match &self.psi {
+                Some(psi) => psi.stage(),
+                None if self.potential => Stage::Temporal {
+                    part: 0,
+                    parts: self.parts[0],
+                },
+                None => Stage::Done,
+            };
+        }
         let [temporal, spatial] = self.parts;
         match self.next {
             i if i < temporal => Stage::Temporal {
@@ -237,12 +296,27 @@ impl Synthesis {
 
     /// Fraction of stages completed, in [0, 1].
     pub fn progress(&self) -> f64 {
-        self.next.min(self.stage_count()) as f64 / self.stage_count() as f64
+        let done = self.next.min(self.own_stages()) + self.psi.as_ref().map_or(0, |p| p.next);
+        done.min(self.stage_count()) as f64 / self.stage_count() as f64
     }
 
     /// Runs the next stage; returns whether any stage is left (false once only
     /// [`Self::finish`] remains).
     pub fn run_stage(&mut self) -> bool {
+        if self.next >= self.own_stages() {
+            if !self.potential {
+                return false;
+            }
+            if self.psi.is_none() {
+                // The velocity is done: keep it, free its work space, and start the potential.
+                self.velocity = Some(std::mem::take(self.storage.written()));
+                self.transforms.rows = Vec::new();
+                self.transforms.packed = Vec::new();
+                let psi = Self::of_potential(&self.params).expect("validated in new");
+                self.psi = Some(Box::new(psi));
+            }
+            return self.psi.as_mut().is_some_and(|p| p.run_stage());
+        }
         let [nx, ny, nz, nt] = self.lattice.size;
         let part_of =
             |n: usize, part: usize, parts: usize| part * n / parts..(part + 1) * n / parts;
@@ -310,10 +384,20 @@ impl Synthesis {
     /// Runs the remaining stages and returns the field.
     pub fn finish(mut self) -> TurbulentField {
         while self.run_stage() {}
+        let (data, potential) = match self.psi.take() {
+            Some(psi) => (
+                self.velocity
+                    .take()
+                    .expect("kept when the potential started"),
+                Some(psi.finish().data),
+            ),
+            None => (std::mem::take(self.storage.written()), None),
+        };
         TurbulentField {
             lattice: self.lattice,
             params: self.params,
-            data: std::mem::take(self.storage.written()),
+            data,
+            potential,
         }
     }
 }

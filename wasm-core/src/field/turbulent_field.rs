@@ -60,6 +60,10 @@ pub struct TurbulentField {
     pub lattice: Lattice,
     pub params: FieldParams,
     pub data: Vec<f32>,
+    /// The field's vector potential ψ (u = ∇ × ψ in field coordinates, ψ normal to every k),
+    /// stored as `data`, when it was synthesised with it (a scene with solid objects turns the
+    /// field along their surfaces through ψ).
+    pub potential: Option<Vec<f32>>,
 }
 
 impl TurbulentField {
@@ -114,7 +118,15 @@ impl TurbulentField {
             lattice,
             params,
             data,
+            potential: None,
         })
+    }
+
+    /// The vector potential ψ at lattice point `(x, y, z, t)` (field units: radians times
+    /// lattice velocity), if the field has it.
+    pub fn potential_at(&self, x: usize, y: usize, z: usize, t: usize) -> Option<[f32; 3]> {
+        let i = 3 * self.lattice.index(x, y, z, t);
+        self.potential.as_ref().map(|p| [p[i], p[i + 1], p[i + 2]])
     }
 
     /// Velocity at lattice point `(x, y, z, t)`.

@@ -34,6 +34,9 @@ pub struct VelocitySpectrum {
     /// into a complex Gaussian with E|X|² = 1); zero at the Nyquist ω (t = nt/2), which is
     /// left out of G's normalisation.
     amplitude: Vec<f32>,
+    /// Whether the columns are those of the vector potential ψ̂ = i k × û / |k|² (so that
+    /// u = ∇ × ψ, with k·ψ̂ = 0) rather than of û itself, from the same noise.
+    potential: bool,
 }
 
 impl VelocitySpectrum {
@@ -64,7 +67,16 @@ impl VelocitySpectrum {
             seed,
             ziggurat: Ziggurat::new(),
             amplitude,
+            potential: false,
         }
+    }
+
+    /// The same filter and noise giving the vector potential's columns: with û = a (X₁ e₁ +
+    /// X₂ e₂) and k × e₁ = |k| e₂, k × e₂ = −|k| e₁, ψ̂ = i k × û / |k|² = i a (X₁ e₂ − X₂ e₁)
+    /// / |k|, so that i k × ψ̂ = û exactly and ψ̂ is normal to k (the Coulomb gauge).
+    pub fn potential(mut self) -> Self {
+        self.potential = true;
+        self
     }
 
     /// û(k, ω) for the spatial wave vector `k` (integer wave numbers, each in `-n/2..n/2` for
@@ -186,10 +198,23 @@ impl VelocitySpectrum {
         let nt = self.size[3];
         let k2 = k.iter().map(|ki| ki * ki).sum::<i64>() as usize;
         let amplitude = &self.amplitude[k2 * nt..(k2 + 1) * nt];
-        let [e1, e2] = plane_basis(k).map(|e| e.map(|v| v as f32));
+        let [e1, e2] = plane_basis(k);
         // Component c in four lanes, [g₀a·e₁, g₁a·e₁, g₂a·e₂, g₃a·e₂] (rounded as complex
-        // arithmetic would: X₁e₁ + X₂e₂ with √2·X = g a), then the pairs summed.
-        let weights = [0, 1, 2].map(|c| Vec4::new(e1[c], e1[c], e2[c], e2[c]));
+        // arithmetic would: X₁e₁ + X₂e₂ with √2·X = g a), then the pairs summed. The potential
+        // takes the deviates pairwise swapped, [g₁, g₀, g₃, g₂], against
+        // [−e₂, e₂, e₁, −e₁]/|k|: re = (g₃e₁ − g₁e₂)a/|k|, im = (g₀e₂ − g₂e₁)a/|k|, which is
+        // i(X₁e₂ − X₂e₁)a/|k|.
+        let swap = self.potential;
+        let weights = if swap {
+            let inv = 1.0 / (k2 as f64).sqrt();
+            [0, 1, 2].map(|c| {
+                let (a, b) = ((e1[c] * inv) as f32, (e2[c] * inv) as f32);
+                Vec4::new(-b, b, a, -a)
+            })
+        } else {
+            let [e1, e2] = [e1, e2].map(|e| e.map(|v| v as f32));
+            [0, 1, 2].map(|c| Vec4::new(e1[c], e1[c], e2[c], e2[c]))
+        };
         let [u1, u2, u3] = u;
         assert!(normals.len() == nt && [&u1, &u2, &u3].iter().all(|uc| uc.len() == nt));
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
@@ -201,7 +226,13 @@ impl VelocitySpectrum {
             for (t, &a) in amplitude.iter().enumerate() {
                 // SAFETY: t < nt, the length of normals and of each component (asserted).
                 unsafe {
-                    let x = f32x4_mul(v128_load(g.add(t)), f32x4_splat(a));
+                    let g = v128_load(g.add(t));
+                    let g = if swap {
+                        i32x4_shuffle::<1, 0, 3, 2>(g, g)
+                    } else {
+                        g
+                    };
+                    let x = f32x4_mul(g, f32x4_splat(a));
                     let (p1, p2, p3) = (f32x4_mul(x, w1), f32x4_mul(x, w2), f32x4_mul(x, w3));
                     // Lanes 0, 1: (re, im) = (p.x + p.z, p.y + p.w).
                     let sum = |p: v128| f32x4_add(p, i64x2_shuffle::<1, 1>(p, p));
@@ -215,7 +246,8 @@ impl VelocitySpectrum {
         {
             let rows = u1.iter_mut().zip(u2.iter_mut()).zip(u3.iter_mut());
             for ((((v1, v2), v3), &a), g) in rows.zip(amplitude).zip(normals) {
-                let x = Vec4::from_array(*g) * a;
+                let g = if swap { [g[1], g[0], g[3], g[2]] } else { *g };
+                let x = Vec4::from_array(g) * a;
                 let [p1, p2, p3] = weights.map(|w| {
                     let p = x * w;
                     Complex32::new(p.x + p.z, p.y + p.w)
@@ -278,9 +310,25 @@ fn normalise(v: [f64; 3]) -> [f64; 3] {
 pub fn hermitian_spectrum(
     params: &crate::field::turbulent_field::FieldParams,
 ) -> Result<[Vec<Complex64>; 3], ParamError> {
+    spectrum_of(params, false)
+}
+
+/// The three Hermitian spectra of the vector potential, ψ̂ = i k × û / |k|², as
+/// [`hermitian_spectrum`] gives û's.
+pub fn hermitian_potential_spectrum(
+    params: &crate::field::turbulent_field::FieldParams,
+) -> Result<[Vec<Complex64>; 3], ParamError> {
+    spectrum_of(params, true)
+}
+
+fn spectrum_of(
+    params: &crate::field::turbulent_field::FieldParams,
+    potential: bool,
+) -> Result<[Vec<Complex64>; 3], ParamError> {
     let lattice = params.validate()?;
     let [nx, ny, nz, nt] = lattice.size;
-    let spectrum = VelocitySpectrum::new(&lattice, &params.spectrum, params.seed);
+    let mut spectrum = VelocitySpectrum::new(&lattice, &params.spectrum, params.seed);
+    spectrum.potential = potential;
     let zero = vec![Complex64::new(0.0, 0.0); lattice.points()];
     let mut s = [zero.clone(), zero.clone(), zero];
     let mut column = vec![Complex32::new(0.0, 0.0); 3 * nt];

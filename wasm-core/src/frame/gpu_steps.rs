@@ -12,14 +12,18 @@
 //! | 2 | own velocity at birth v0 x, y, z (m/s), 0 |
 //! | 3 | albedo Ω r, g, b (a negative r: the medium's), 0 |
 //! | 4 | emission Q r, g, b, 0 |
+//! | 5 | carried offset of phase a x, y, z (m), 0 (zeros unless the field is carried) |
+//! | 6 | carried offset of phase b x, y, z (m), 0 |
 
 use crate::frame::views::sphere_floats;
 use crate::gas::blobs::Blobs;
+use crate::gas::scene::Integrator;
 use crate::gas::simulation::Simulation;
 use crate::gas::slots::SlotChanges;
+use crate::gas::wind_table::{NO_RESET, RESET_AT};
 
 /// Floats per blob record.
-pub const BLOB_FLOATS: usize = 20;
+pub const BLOB_FLOATS: usize = 28;
 
 /// Steps for the GPU, whole buffers: `steps` steps' worth, one after another.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -64,6 +68,12 @@ pub fn write_blob(blobs: &Blobs, i: usize, t: f64, out: &mut Vec<f32>) {
     out.extend_from_slice(&rgb(&blobs.velocity0));
     out.extend_from_slice(&rgb(&blobs.albedo));
     out.extend_from_slice(&rgb(&blobs.emission));
+    if blobs.carries() {
+        let o = &blobs.carried[6 * i..6 * i + 6];
+        out.extend_from_slice(&[o[0], o[1], o[2], 0.0, o[3], o[4], o[5], 0.0]);
+    } else {
+        out.extend_from_slice(&[0.0; 8]);
+    }
 }
 
 /// The whole gas of `sim` as records in slot order (`high_water` records; empty slots are
@@ -101,9 +111,30 @@ impl GpuSteps {
                 out.birth_slots.push(b.slot[i]);
             }
             out.freed.extend_from_slice(&freed);
-            for frame in sim.wind_frames() {
-                out.wind_offsets.push(out.wind.len() as u32);
+            // The carried phases that reset during the step, with their ages at its end, in
+            // the table whose large-scale wind restarts them (the middle's; Euler: the start's).
+            let resets = sim.wind.phases().map(|p| {
+                let (before, after) = (p.resets(sim.wind_frames()[0].time), p.resets(t));
+                let ages = p.ages(t);
+                [0, 1].map(|k| {
+                    if before[k] != after[k] {
+                        ages[k] as f32
+                    } else {
+                        NO_RESET
+                    }
+                })
+            });
+            let late = match sim.scene.simulation.integrator {
+                Integrator::Rk2 => 1,
+                Integrator::Euler => 0,
+            };
+            for (k, frame) in sim.wind_frames().iter().enumerate() {
+                let at = out.wind.len();
+                out.wind_offsets.push(at as u32);
                 frame.write_gpu_table(&mut out.wind);
+                if let (Some(r), true) = (resets, k == late) {
+                    out.wind[at + RESET_AT..at + RESET_AT + 2].copy_from_slice(&r);
+                }
             }
         }
         out.spheres = sphere_floats(sim);

@@ -173,17 +173,19 @@ impl Gas {
         if integrator == Integrator::Rk2 {
             wind.frame_into(t + 0.5 * dt, fh);
         }
+        let late = if integrator == Integrator::Rk2 {
+            &*fh
+        } else {
+            &*f0
+        };
+        self.carry_offsets(wind, t, late);
         let factor = self.decay_factor(t1);
         let old = self.blobs.len();
         let mut flagged = self.advect_and_age(t, dt, integrator, f0, fh, factor);
-        self.emit(
-            t1,
-            if integrator == Integrator::Rk2 {
-                fh
-            } else {
-                f0
-            },
-        );
+        if !self.centres_elsewhere {
+            self.reset_phases(wind, t, t1, late, 0);
+        }
+        self.emit(t1, wind, late);
         flagged |= self.age_from(old, t1, factor);
         if flagged || self.blobs.len() > self.settings.max_blobs {
             self.split_remove_cap(t1);
@@ -207,9 +209,63 @@ impl Gas {
         self.age_from(0, t + dt, factor)
     }
 
+    /// Starts carrying offsets of carried coordinates when the wind carries its small scales
+    /// (from the first step, or after an edit turned it on), each blob's as a newborn's there;
+    /// stops when it no longer does.
+    fn carry_offsets(&mut self, wind: &Wind, t: f64, frame: &WindFrame) {
+        let carries = wind.phases().is_some();
+        if carries == self.blobs.carries() {
+            return;
+        }
+        let offsets: Vec<[f32; 6]> = match wind.phases() {
+            Some(phases) => (0..self.blobs.len())
+                .map(|i| newborn_offsets(phases.ages(t), frame, self.blobs.center(i).into()))
+                .collect(),
+            None => Vec::new(),
+        };
+        self.blobs.set_carries(carries, |i| offsets[i]);
+    }
+
+    /// The centres taken back from elsewhere (the GPU): carried offsets as a newborn's.
+    pub fn offsets_as_newborn(&mut self, wind: &Wind, t: f64, frame: &WindFrame) {
+        if let Some(phases) = wind.phases() {
+            let offsets: Vec<[f32; 6]> = (0..self.blobs.len())
+                .map(|i| newborn_offsets(phases.ages(t), frame, self.blobs.center(i).into()))
+                .collect();
+            self.blobs.set_carries(true, |i| offsets[i]);
+        }
+    }
+
+    /// A phase that reset between `t0` and `t1` starts again from every blob from index
+    /// `first` on: its offset is −u_l(x)·τ, u_l the large-scale wind of `frame` (the step's
+    /// middle) at the blob's new place, τ the phase's age at `t1`.
+    fn reset_phases(&mut self, wind: &Wind, t0: f64, t1: f64, frame: &WindFrame, first: usize) {
+        let Some(phases) = wind.phases() else {
+            return;
+        };
+        let (before, after) = (phases.resets(t0), phases.resets(t1));
+        let ages = phases.ages(t1);
+        for k in 0..2 {
+            if before[k] == after[k] {
+                continue;
+            }
+            let tau = ages[k] as f32;
+            let b = &mut self.blobs;
+            for i in first..b.len() {
+                let x = Vec3A::from_slice(&b.position[3 * i..3 * i + 3]);
+                let o = frame.parts(x, [Vec3A::ZERO; 2]).0 * -tau;
+                b.carried[6 * i + 3 * k..6 * i + 3 * k + 3].copy_from_slice(&o.to_array());
+            }
+        }
+    }
+
     /// Eq. 14: every centre from t to t + dt through the wind plus the blob's own relaxing
     /// velocity, by Euler or the RK2 midpoint rule.
     fn advect(&mut self, t: f64, dt: f64, integrator: Integrator, f0: &WindFrame, fh: &WindFrame) {
+        if !f0.is_plain() {
+            self.advect_deflected(t, dt, integrator, f0, fh);
+            return;
+        }
         let b = &mut self.blobs;
         let n = b.len();
         let own_velocity = b.has_own_velocity();
@@ -245,6 +301,65 @@ impl Gas {
         }
     }
 
+    /// [`Self::advect`] where the wind goes round solids or carries its small scales: each
+    /// blob's carried coordinates move with it less the large-scale wind, so its offsets by
+    /// −u_l dt ([`crate::gas::carried`]), and a blob a step carried into a solid is put back on
+    /// its surface, just outside.
+    fn advect_deflected(
+        &mut self,
+        t: f64,
+        dt: f64,
+        integrator: Integrator,
+        f0: &WindFrame,
+        fh: &WindFrame,
+    ) {
+        let b = &mut self.blobs;
+        let n = b.len();
+        let carries = b.carries();
+        let dtf = dt as f32;
+        let walls = f0.walls();
+        let own = OwnVelocity {
+            birth: &b.birth[..n],
+            velocity0: &b.velocity0[..3 * n],
+            velocity_time: &b.velocity_time[..n],
+        };
+        let position = &mut b.position[..3 * n];
+        let carried = &mut b.carried;
+        own.each(t, dtf, |i, v, to_half| {
+            let x = load3(position, 3 * i);
+            let mut o = [Vec3A::ZERO; 2];
+            if carries {
+                o = [0, 1].map(|k| Vec3A::from_slice(&carried[6 * i + 3 * k..6 * i + 3 * k + 3]));
+            }
+            // The carried coordinates X = x + o move with the blob less the large-scale wind,
+            // so the offsets move against the large-scale wind: o ← o − u_l dt.
+            let (x1, moved) = match integrator {
+                Integrator::Euler => {
+                    let (l, s) = f0.parts(x, o);
+                    (x + (l + s + v) * dtf, l * -dtf)
+                }
+                Integrator::Rk2 => {
+                    let (l, s) = f0.parts(x, o);
+                    let half = l * (-0.5 * dtf);
+                    let xm = x + (l + s + v) * (0.5 * dtf);
+                    let (lm, sm) = fh.parts(xm, [o[0] + half, o[1] + half]);
+                    let vh = v * to_half;
+                    (x + (lm + sm + vh) * dtf, lm * -dtf)
+                }
+            };
+            let x1 = match walls {
+                Some(w) => w.solids.push_out(x1, w.gap()),
+                None => x1,
+            };
+            x1.write_to_slice(&mut position[3 * i..3 * i + 3]);
+            if carries {
+                for k in 0..2 {
+                    (o[k] + moved).write_to_slice(&mut carried[6 * i + 3 * k..6 * i + 3 * k + 3]);
+                }
+            }
+        });
+    }
+
     /// κ, the split σ (or infinity) and the removal mass, in f32.
     fn limits(&self) -> (f64, f32, f32) {
         let s = &self.settings;
@@ -256,8 +371,11 @@ impl Gas {
     }
 
     /// Births in (t1 − dt, t1]: each blob is advanced from its birth time to `t1` by one
-    /// Euler step in `frame`.
-    fn emit(&mut self, t1: f64, frame: &WindFrame) {
+    /// Euler step in `frame`, put back outside a solid it was born in or carried into, and
+    /// given carried offsets as the large-scale wind at its birth place makes them.
+    fn emit(&mut self, t1: f64, wind: &Wind, frame: &WindFrame) {
+        let phases = wind.phases().copied();
+        let walls = frame.walls();
         for e in 0..self.emitters.len() {
             while self.emitters[e].next_birth() < t1 {
                 let birth = self.emitters[e].next_birth();
@@ -267,10 +385,25 @@ impl Gas {
                 let em = &state.emitter;
                 let v0 = Vec3::from_array(em.velocity);
                 let age = (t1 - birth) as f32;
-                let position = x + (frame.velocity(x) + v0) * age;
+                let carried = match &phases {
+                    Some(p) => newborn_offsets(p.ages(t1), frame, x.into()),
+                    None => [0.0; 6],
+                };
+                let u = if frame.is_plain() {
+                    frame.velocity(x)
+                } else {
+                    let o = [0, 1].map(|k| Vec3A::from_slice(&carried[3 * k..3 * k + 3]));
+                    let (l, s) = frame.parts(x.into(), o);
+                    Vec3::from(l + s)
+                };
+                let mut position = x + (u + v0) * age;
+                if let Some(w) = walls {
+                    position = w.solids.push_out(position.into(), w.gap()).into();
+                }
                 let blob = Blob {
                     velocity0: v0,
                     velocity_time: em.velocity_time,
+                    carried,
                     ..Blob::new(position, em.sigma0, em.mass0, birth)
                 }
                 .coloured(em.albedo, em.emission);
@@ -435,6 +568,7 @@ impl Gas {
         // A child's factor is its mass now, carried back to the epoch.
         let to_epoch = (self.settings.dissipation * (t - self.epoch)).exp() as f32;
         let mut out = Blobs::default();
+        out.set_carries(old.carries(), |_| [0.0; 6]);
         for (i, &c) in counts.iter().enumerate().skip(cutoff) {
             match c {
                 0 => self.counts.dissipated += 1,
@@ -523,6 +657,14 @@ impl Gas {
         )
         .normalize()
     }
+}
+
+/// The carried offsets of a blob at `x` whose phases are `ages` old (s): −u_l(x)·τ for each,
+/// u_l the large-scale wind of `frame` ([`crate::gas::carried`]).
+fn newborn_offsets(ages: [f64; 2], frame: &WindFrame, x: Vec3A) -> [f32; 6] {
+    let u = frame.parts(x, [Vec3A::ZERO; 2]).0;
+    let (a, b) = (u * -(ages[0] as f32), u * -(ages[1] as f32));
+    [a.x, a.y, a.z, b.x, b.y, b.z]
 }
 
 #[cfg(test)]

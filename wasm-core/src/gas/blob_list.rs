@@ -150,6 +150,9 @@ pub enum Object {
         radius: f32,
         #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
+        /// A solid sphere deflects the wind and the gas; absent means not solid.
+        #[serde(default, skip_serializing_if = "is_false")]
+        solid: bool,
     },
     Plane {
         #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
@@ -158,6 +161,10 @@ pub enum Object {
         normal: [f32; 3],
         #[schemars(inner(range(min = 0, max = 1)))]
         color: [f32; 3],
+        /// A solid plane bounds the half-space behind it (opposite its normal), which deflects
+        /// the wind and the gas; absent means not solid.
+        #[serde(default, skip_serializing_if = "is_false")]
+        solid: bool,
     },
     Cylinder {
         #[schemars(inner(range(min = -MAX_COORD, max = MAX_COORD)))]
@@ -174,7 +181,26 @@ pub enum Object {
         /// cylinder as its stand-in).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         model: Option<Model>,
+        /// A solid cylinder (closed by its caps; a model keeps the cylinder as its solid)
+        /// deflects the wind and the gas; absent means not solid.
+        #[serde(default, skip_serializing_if = "is_false")]
+        solid: bool,
     },
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+impl Object {
+    /// Whether the object deflects the wind and the gas.
+    pub fn solid(&self) -> bool {
+        match self {
+            Self::Sphere { solid, .. }
+            | Self::Plane { solid, .. }
+            | Self::Cylinder { solid, .. } => *solid,
+        }
+    }
 }
 
 /// Meshes the browser may draw in place of a cylinder stand-in.

@@ -33,6 +33,10 @@ pub struct Blobs {
     /// Where each blob lives in the page's GPU state while the GPU steps the gas
     /// ([`NO_SLOT`] when it has none): see [`super::slots`].
     pub slot: Vec<u32>,
+    /// The offsets X − x (m) of each blob's carried coordinates, phase a's xyz then phase
+    /// b's ([`super::carried`]), while `carries` (empty otherwise).
+    pub carried: Vec<f32>,
+    carries: bool,
     /// Whether any blob pushed since the arrays were built has a velocity of its own (saves a
     /// scan of `velocity0` per step; a zero velocity adds exactly nothing either way).
     own_velocity: bool,
@@ -49,6 +53,8 @@ pub struct Blob {
     pub emission: [f32; 3],
     pub velocity0: Vec3,
     pub velocity_time: f32,
+    /// Carried offsets of phases a and b (m), when the gas carries them.
+    pub carried: [f32; 6],
 }
 
 impl Blob {
@@ -64,6 +70,7 @@ impl Blob {
             emission: [0.0; 3],
             velocity0: Vec3::ZERO,
             velocity_time: 1.0,
+            carried: [0.0; 6],
         }
     }
 
@@ -91,6 +98,22 @@ impl Blobs {
         Vec3::from_slice(&self.position[3 * i..3 * i + 3])
     }
 
+    /// Whether the blobs carry offsets of carried coordinates.
+    pub fn carries(&self) -> bool {
+        self.carries
+    }
+
+    /// Starts or stops carrying offsets: started, every blob's are `offsets(i)`.
+    pub fn set_carries(&mut self, on: bool, offsets: impl Fn(usize) -> [f32; 6]) {
+        self.carries = on;
+        self.carried.clear();
+        if on {
+            for i in 0..self.len() {
+                self.carried.extend_from_slice(&offsets(i));
+            }
+        }
+    }
+
     /// Appends a blob with its current σ and mass.
     pub fn push(&mut self, b: &Blob, sigma: f32, mass: f32) {
         self.position.extend_from_slice(&b.position.to_array());
@@ -104,6 +127,9 @@ impl Blobs {
         self.velocity0.extend_from_slice(&b.velocity0.to_array());
         self.velocity_time.push(b.velocity_time);
         self.slot.push(NO_SLOT);
+        if self.carries {
+            self.carried.extend_from_slice(&b.carried);
+        }
         self.own_velocity |= b.velocity0 != Vec3::ZERO;
     }
 
@@ -120,6 +146,14 @@ impl Blobs {
         self.velocity0.extend_from_slice(&other.velocity0);
         self.velocity_time.extend_from_slice(&other.velocity_time);
         self.slot.extend(std::iter::repeat_n(NO_SLOT, other.len()));
+        if self.carries {
+            if other.carries {
+                self.carried.extend_from_slice(&other.carried);
+            } else {
+                self.carried
+                    .extend(std::iter::repeat_n(0.0, 6 * other.len()));
+            }
+        }
         self.own_velocity |= other.own_velocity;
     }
 
@@ -149,6 +183,9 @@ impl Blobs {
         compact(&mut self.velocity0, 3, keep);
         compact(&mut self.velocity_time, 1, keep);
         compact(&mut self.slot, 1, keep);
+        if self.carries {
+            compact(&mut self.carried, 6, keep);
+        }
     }
 
     /// Removes the `count` oldest blobs (the first `count`), moving the rest down.
@@ -167,6 +204,9 @@ impl Blobs {
         drop(&mut self.velocity0, 3, count);
         drop(&mut self.velocity_time, 1, count);
         drop(&mut self.slot, 1, count);
+        if self.carries {
+            drop(&mut self.carried, 6, count);
+        }
     }
 
     /// The full state of blob `i`.
@@ -181,6 +221,11 @@ impl Blobs {
             emission: rgb(&self.emission),
             velocity0: Vec3::from_array(rgb(&self.velocity0)),
             velocity_time: self.velocity_time[i],
+            carried: if self.carries {
+                std::array::from_fn(|k| self.carried[6 * i + k])
+            } else {
+                [0.0; 6]
+            },
         }
     }
 

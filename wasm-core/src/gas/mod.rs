@@ -18,19 +18,25 @@
 //!
 //! - [`wind`]: the wind u = u_l + u_s (Eq. 3), the large-scale primitives over the
 //!   small-scale field ([`crate::field`]); [`spline`] moves the repulsors; [`wind_slice`]
-//!   samples it on a plane.
+//!   samples it on a plane; [`frozen`] holds the primitives frozen at one time and
+//!   [`wind_table`] the frozen wind as the GPU reads it. [`solids`]: the solid objects it
+//!   goes round, and [`walls`] how it goes round them; [`carried`]: the small scales carried
+//!   by the large ones (§7).
 //! - [`emitter`], [`shapes`]: where blobs are born (§6), drawing from [`random`].
 //! - [`blobs`]: the blobs' state (Eq. 13); [`blob_gas`]: advection (Eq. 14), diffusion
 //!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
 //! - [`simulation`]: the scene's field, wind and gas advanced together, live edits, and the
 //!   blob list of the current state; [`slots`]: where each blob lives while the GPU advects it.
-//! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model.
+//! - [`figure1`]: the paper's Figure 1, a grid solution of Eq. 12 beside the blob model;
+//!   [`sphere_flow`]: streamlines past a solid sphere beside the potential flow.
 
 pub mod blob_gas;
 pub mod blob_list;
 pub mod blobs;
+pub mod carried;
 pub mod emitter;
 pub mod figure1;
+pub mod frozen;
 pub mod json_errors;
 pub mod limits;
 pub mod list_budget;
@@ -40,10 +46,14 @@ pub mod scene;
 pub mod shapes;
 pub mod simulation;
 pub mod slots;
+pub mod solids;
+pub mod sphere_flow;
 pub mod spline;
 pub mod validate;
+pub mod walls;
 pub mod wind;
 pub mod wind_slice;
+pub mod wind_table;
 
 pub use blob_gas::{Gas, GasCounts};
 pub use blob_list::BlobList;

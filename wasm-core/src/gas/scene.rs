@@ -110,10 +110,34 @@ pub struct FieldSettings {
     /// Scale of the small-scale velocity; 0 turns the turbulence off.
     #[schemars(range(min = 0, max = 1e3))]
     pub amplitude: f64,
-    /// Sample the field at x − U·t, U the sum of the uniform winds: eddies carried by the
-    /// mean wind (the paper's suggested remedy for its independence assumption, §7).
+    /// Sample the field at x − U·t, U the sum of the uniform winds: the whole field translated
+    /// by the mean wind (the simplest form of the paper's remedy for its independence
+    /// assumption, §7). `carried` is the general form and supersedes it when both are set.
     pub carried_by_wind: bool,
+    /// Width d₀ (m) of the layer over every solid object in which the wind is turned along
+    /// the surface (the ramp α = r(d/d₀)); in (0, min(period)/2].
+    #[schemars(range(max = 5e3), extend("exclusiveMinimum" = 0))]
+    pub boundary_width: f64,
+    /// Sample the field at coordinates advected by the large-scale wind (deflected by the
+    /// solids): eddies ride with the flow (paper §7), in two phases cross-faded as Neyret's
+    /// advected textures.
+    pub carried: bool,
+    /// Seconds between the resets of each phase of the carried coordinates; none means
+    /// `time_period` / 8.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(range(max = 1e6), extend("exclusiveMinimum" = 0))]
+    pub carry_time: Option<f64>,
 }
+
+impl FieldSettings {
+    /// Seconds between the resets of each carried phase: `carry_time`, else `time_period` / 8.
+    pub fn carry_period(&self) -> f64 {
+        self.carry_time.unwrap_or(self.time_period / 8.0)
+    }
+}
+
+/// The default width of the layer over solid objects (m).
+pub const DEFAULT_BOUNDARY_WIDTH: f64 = 0.1;
 
 impl Default for FieldSettings {
     fn default() -> Self {
@@ -124,6 +148,9 @@ impl Default for FieldSettings {
             time_period: 8.0,
             amplitude: 1.0,
             carried_by_wind: false,
+            boundary_width: DEFAULT_BOUNDARY_WIDTH,
+            carried: false,
+            carry_time: None,
         }
     }
 }
@@ -397,6 +424,17 @@ impl Scene {
         }
     }
 
+    /// Whether any object of `render.objects` is solid (the wind and the gas go round it).
+    pub fn has_solids(&self) -> bool {
+        self.render.objects.iter().any(|o| o.solid())
+    }
+
+    /// Whether the scene's small-scale field needs its vector potential ψ beside it: it has a
+    /// field (amplitude > 0) and solid objects the field must go round.
+    pub fn needs_potential(&self) -> bool {
+        self.field.amplitude > 0.0 && self.has_solids()
+    }
+
     /// Serialises to pretty JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("scenes serialise")
@@ -424,7 +462,9 @@ pub fn json_schema() -> String {
              reversed shape's run (reverse_from / simulation.dt) and render.time / \
              simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most \
              100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits \
-             counting max(count, gas.max_blobs) a step)."
+             counting max(count, gas.max_blobs) a step); field.boundary_width is at most half \
+             the shortest field.period; no emitter's center (or path key) lies inside a solid \
+             object."
                 .into(),
         );
     }

@@ -57,7 +57,12 @@ impl Simulation {
     pub fn new(scene: Scene) -> Result<Self, ParamError> {
         scene.validate()?;
         let field = if scene.field.amplitude > 0.0 {
-            Some(Arc::new(TurbulentField::generate(&scene.field_params())?))
+            let params = scene.field_params();
+            Some(Arc::new(if scene.needs_potential() {
+                TurbulentField::generate_with_potential(&params)?
+            } else {
+                TurbulentField::generate(&params)?
+            }))
         } else {
             None
         };
@@ -65,7 +70,8 @@ impl Simulation {
     }
 
     /// Validates `scene` and runs it on an already synthesised field, which must have the
-    /// scene's field parameters (a scene of amplitude 0 leaves it unused).
+    /// scene's field parameters, and its vector potential when the scene has solid objects
+    /// (a scene of amplitude 0 leaves it unused).
     pub fn with_field(
         scene: Scene,
         field: Option<Arc<TurbulentField>>,
@@ -366,6 +372,10 @@ impl Simulation {
             b.slot
                 .iter_mut()
                 .for_each(|s| *s = crate::gas::blobs::NO_SLOT);
+            // The GPU kept the carried offsets: start them again here as a newborn's.
+            let t = self.time();
+            let frame = self.wind.large_frame(t);
+            self.gas.offsets_as_newborn(&self.wind, t, &frame);
         }
     }
 
@@ -402,6 +412,7 @@ impl Simulation {
                 center: center.to_array(),
                 radius,
                 color,
+                solid: false,
             });
         }
         settings
@@ -436,12 +447,18 @@ impl Simulation {
     }
 }
 
-/// Ok unless `field` was synthesised for other field parameters than `scene`'s.
+/// Ok unless `field` was synthesised for other field parameters than `scene`'s, or without
+/// the vector potential a scene with solid objects needs.
 fn check_field(scene: &Scene, field: Option<&TurbulentField>) -> Result<(), ParamError> {
     match field {
         Some(f) if f.params != scene.field_params() => Err(ParamError::new(
             "field",
             "the given field was made with other parameters",
+        )),
+        Some(f) if scene.needs_potential() && f.potential.is_none() => Err(ParamError::new(
+            "field",
+            "a scene with solid objects needs the field's vector potential (synthesise it \
+             with the field)",
         )),
         _ => Ok(()),
     }

@@ -22,6 +22,7 @@ use crate::gas::limits::{
 };
 use crate::gas::scene::{Emitter, GasSettings, Primitive, Scene, SCENE_VERSION};
 use crate::gas::shapes::{Shape, Solid};
+use crate::gas::solids::Body;
 
 impl Scene {
     /// Checks every value against its range, section by section in the order of the format:
@@ -54,6 +55,7 @@ impl Scene {
             check::range("render.time", t, 0.0, MAX_SECONDS)?;
         }
         view(&self.render, "render.", MAX_OBJECTS)?;
+        emitters_outside_solids(self)?;
         if let Some(t) = self.render.time {
             // A still at `render.time` is a run like any other (docs/FORMATS.md, the command line).
             self.simulation.budgeted_steps(t)?;
@@ -112,7 +114,77 @@ fn field(scene: &Scene) -> Result<(), ParamError> {
         check::range(&format!("field.period[{i}]"), l, 1e-3, 1e4)?;
     }
     check::range("field.time_period", f.time_period, 1e-3, 1e6)?;
-    check::range("field.amplitude", f.amplitude, 0.0, 1e3)
+    check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
+    // The layer over a solid: thinner than half the field's shortest period, so the ramp never
+    // spans a whole period of the eddies it turns.
+    let half = 0.5 * f.period.iter().copied().fold(f64::INFINITY, f64::min);
+    if !(f.boundary_width.is_finite() && f.boundary_width > 0.0 && f.boundary_width <= half) {
+        return Err(ParamError::new(
+            "field.boundary_width",
+            format!(
+                "must be a finite number greater than 0 and at most half the field's shortest \
+                 period, {half} m (got {})",
+                f.boundary_width
+            ),
+        ));
+    }
+    if let Some(t) = f.carry_time {
+        check::positive("field.carry_time", t, 1e6)?;
+    }
+    Ok(())
+}
+
+/// No emitter is centred inside a solid object (its blobs could never leave it): the centre,
+/// or every key of a moving emitter's path.
+fn emitters_outside_solids(scene: &Scene) -> Result<(), ParamError> {
+    let bodies: Vec<(usize, Body)> = scene
+        .render
+        .objects
+        .iter()
+        .enumerate()
+        .filter_map(|(j, o)| Body::of(o).map(|b| (j, b)))
+        .collect();
+    if bodies.is_empty() {
+        return Ok(());
+    }
+    for (i, e) in scene.emitters.iter().enumerate() {
+        let places: Vec<(String, [f32; 3])> = if e.path.is_empty() {
+            vec![(format!("emitters[{i}].center"), e.center)]
+        } else {
+            e.path
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    (
+                        format!("emitters[{i}].path[{k}]"),
+                        [p[1] as f32, p[2] as f32, p[3] as f32],
+                    )
+                })
+                .collect()
+        };
+        for (path, x) in places {
+            for (j, body) in &bodies {
+                let (d, _) = body.distance(glam::Vec3A::from_array(x));
+                if d < 0.0 {
+                    let kind = match body {
+                        Body::Sphere { .. } => "sphere",
+                        Body::Plane { .. } => "plane",
+                        Body::Cylinder { .. } => "cylinder",
+                    };
+                    return Err(ParamError::new(
+                        path,
+                        format!(
+                            "lies inside the solid {kind} render.objects[{j}] ({:.3} m below \
+                             its surface): move the emitter out of it, or make the object not \
+                             solid (render.objects[{j}].solid: false)",
+                            -d
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 fn decay(path: &str, decay: Option<f32>) -> Result<(), ParamError> {
@@ -440,6 +512,7 @@ fn object(path: &str, object: &Object) -> Result<(), ParamError> {
             center,
             radius,
             color,
+            ..
         } => {
             check::vector(&p("center"), *center, MAX_COORD)?;
             check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
@@ -449,6 +522,7 @@ fn object(path: &str, object: &Object) -> Result<(), ParamError> {
             point,
             normal,
             color,
+            ..
         } => {
             check::vector(&p("point"), *point, MAX_COORD)?;
             check::direction(&p("normal"), *normal)?;

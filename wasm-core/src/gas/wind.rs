@@ -1,28 +1,39 @@
 //! The wind u = u_l + u_s (paper Eq. 3): large-scale primitives superposed on the small-scale
-//! field, in world units (m, s, m/s).
+//! field, in world units (m, s, m/s), turned along the scene's solid objects.
 //!
 //! World mapping (docs/FORMATS.md, the field): one spatial period of the field spans `period` metres per axis and
 //! one temporal period `time_period` seconds, so the lattice coordinate of x is x·n/L and world
-//! velocity is `amplitude · u_field · L / time_period` per axis.
+//! velocity is `amplitude · u_field · L / time_period` per axis. The field's vector potential ψ
+//! (u = ∇ × ψ in field coordinates) maps to world units by `amplitude · Lx Ly Lz / (2π T L_k)`
+//! for its component k, so that the world wind is the world curl of the world ψ.
 //!
 //! A [`WindFrame`] freezes the wind at one time: repulsor paths are evaluated once and the two
 //! field time slices bracketing t are blended into one 3-D slice, so sampling a blob costs one
-//! trilinear lookup (equal to the quadrilinear sample, since both are linear in t).
+//! trilinear lookup (equal to the quadrilinear sample, since both are linear in t). With solid
+//! objects ([`crate::gas::walls`]) the frame also holds the potential's slice, the mirror
+//! images and the doublets; with carried turbulence ([`crate::gas::carried`]) the blend of the
+//! two phases.
 
 use crate::field::TurbulentField;
+use crate::gas::carried::{Blend, Phases};
+use crate::gas::frozen::{freeze, Frozen, FrozenPrimitive, NOT_AN_IMAGE};
 use crate::gas::scene::{Primitive, Scene};
+use crate::gas::solids::{Body, Nearest, Solids};
 use crate::gas::spline::Path;
+use crate::gas::walls::{project, ramp, Doublet, Stencil};
 use crate::lanes::load4;
 use glam::{Vec3, Vec3A, Vec4};
-use std::f32::consts::PI;
+use std::f32::consts::TAU;
 use std::sync::Arc;
+
+pub use crate::gas::frozen::repulsor_velocity;
+pub use crate::gas::wind_table::{
+    REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
+    WIND_TABLE_SOLID,
+};
 
 fn v3(a: [f32; 3]) -> Vec3 {
     Vec3::from_array(a)
-}
-
-fn v3a(a: [f32; 3]) -> Vec3A {
-    Vec3A::from_array(a)
 }
 
 /// The small-scale field with its world mapping.
@@ -33,9 +44,11 @@ pub struct SmallScale {
     cells_per_metre: Vec3,
     /// World velocity per unit field velocity, per axis (m/s).
     velocity_scale: Vec3,
+    /// World potential per unit field potential, per component (m²/s).
+    potential_scale: Vec3,
     /// Lattice time steps per second.
     steps_per_second: f64,
-    /// Mean wind that carries the eddies (zero unless `carried_by_wind`).
+    /// Mean wind that carries the eddies (zero unless `carried_by_wind` without `carried`).
     carry: Vec3,
 }
 
@@ -48,7 +61,7 @@ impl SmallScale {
             fs.period[1] as f32,
             fs.period[2] as f32,
         );
-        let carry = if fs.carried_by_wind {
+        let carry = if fs.carried_by_wind && !fs.carried {
             scene
                 .wind
                 .iter()
@@ -64,9 +77,12 @@ impl SmallScale {
         } else {
             Vec3::ZERO
         };
+        let scale = (fs.amplitude / fs.time_period) as f32;
+        let volume = l.x * l.y * l.z;
         Self {
             cells_per_metre: Vec3::new(nx as f32, ny as f32, nz as f32) / l,
-            velocity_scale: l * (fs.amplitude / fs.time_period) as f32,
+            velocity_scale: l * scale,
+            potential_scale: Vec3::splat(volume * scale / TAU) / l,
             steps_per_second: nt as f64 / fs.time_period,
             carry,
             field,
@@ -85,8 +101,34 @@ impl SmallScale {
         Vec3::from_array(u) * self.velocity_scale
     }
 
+    /// Whether the field has its vector potential.
+    pub fn has_potential(&self) -> bool {
+        self.field.potential.is_some()
+    }
+
+    /// The smallest lattice spacing (m): the smallest eddy.
+    pub fn spacing(&self) -> f32 {
+        1.0 / self.cells_per_metre.max_element()
+    }
+
     /// The field at time `t` as one 3-D slice (world velocities), written into `slice`.
     pub fn slice_into(&self, t: f64, slice: &mut FieldSlice) {
+        self.slice_of(&self.field.data, self.velocity_scale, t, slice);
+    }
+
+    /// The vector potential at time `t` as one 3-D slice (world units, m²/s), if the field
+    /// has it.
+    pub fn potential_slice_into(&self, t: f64, slice: &mut FieldSlice) -> bool {
+        match &self.field.potential {
+            Some(psi) => {
+                self.slice_of(psi, self.potential_scale, t, slice);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn slice_of(&self, data: &[f32], scale: Vec3, t: f64, slice: &mut FieldSlice) {
         let [nx, ny, nz, nt] = self.field.lattice.size;
         let per = nx * ny * nz * 3;
         let tl = t * self.steps_per_second;
@@ -94,9 +136,9 @@ impl SmallScale {
         let f = (tl - fl) as f32;
         let i0 = (fl as i64).rem_euclid(nt as i64) as usize;
         let i1 = (i0 + 1) % nt;
-        let a = &self.field.data[i0 * per..(i0 + 1) * per];
-        let b = &self.field.data[i1 * per..(i1 + 1) * per];
-        let scale = self.velocity_scale.to_array();
+        let a = &data[i0 * per..(i0 + 1) * per];
+        let b = &data[i1 * per..(i1 + 1) * per];
+        let scale = scale.to_array();
         let (sx, sy, sz) = (nx + 1, ny + 1, nz + 1);
         // One float of padding: the last row's four-wide load reads one past its end.
         slice.data.resize(3 * sx * sy * sz + 1, 0.0);
@@ -124,7 +166,7 @@ impl SmallScale {
         slice.cells_per_metre = self.cells_per_metre.into();
         slice.offset = (self.carry * t as f32).into();
         slice.time_slices = (i0 as u32, i1 as u32, f);
-        slice.velocity_scale = self.velocity_scale.into();
+        slice.velocity_scale = scale.into();
     }
 }
 
@@ -138,12 +180,12 @@ pub struct FieldSlice {
     extent: Vec3A,
     inv_extent: Vec3A,
     data: Vec<f32>,
-    cells_per_metre: Vec3A,
-    offset: Vec3A,
+    pub(crate) cells_per_metre: Vec3A,
+    pub(crate) offset: Vec3A,
     /// The lattice's two bracketing time slices and the blend between them: the slice is
     /// `(1 − f)·u[i0] + f·u[i1]`, times `velocity_scale` (for the GPU's own sampling).
-    time_slices: (u32, u32, f32),
-    velocity_scale: Vec3A,
+    pub(crate) time_slices: (u32, u32, f32),
+    pub(crate) velocity_scale: Vec3A,
 }
 
 impl FieldSlice {
@@ -190,91 +232,6 @@ impl FieldSlice {
     }
 }
 
-/// A primitive frozen at one time, with its constants folded.
-#[derive(Debug, Clone, Copy)]
-enum Frozen {
-    Uniform {
-        velocity: Vec3A,
-    },
-    /// k = s/(4π), a² the squared core radius.
-    Source {
-        position: Vec3A,
-        k: f32,
-        a2: f32,
-    },
-    /// g = Γ/(2π).
-    Vortex {
-        position: Vec3A,
-        axis: Vec3A,
-        g: f32,
-        a2: f32,
-    },
-    Repulsor {
-        center: Vec3A,
-        velocity: Vec3A,
-        radius: f32,
-        strength: f32,
-    },
-}
-
-#[derive(Debug, Clone, Copy)]
-struct FrozenPrimitive {
-    kind: Frozen,
-    /// Where decay is measured from, and 1/L (0 for no decay).
-    origin: Vec3A,
-    inv_decay: f32,
-}
-
-impl FrozenPrimitive {
-    #[inline]
-    fn velocity(&self, x: Vec3A) -> Vec3A {
-        let u = match self.kind {
-            Frozen::Uniform { velocity } => velocity,
-            Frozen::Source { position, k, a2 } => {
-                let r = x - position;
-                let d2 = r.length_squared() + a2;
-                r * (k / (d2 * d2.sqrt()))
-            }
-            Frozen::Vortex {
-                position,
-                axis,
-                g,
-                a2,
-            } => {
-                // â × (x − p) is the distance from the axis turned a quarter round it, so
-                // its length is that distance: u = g (â × r) / (|â × r|² + a²).
-                let c = axis.cross(x - position);
-                c * (g / (c.length_squared() + a2))
-            }
-            Frozen::Repulsor {
-                center,
-                velocity,
-                radius,
-                strength,
-            } => repulsor_velocity(x - center, velocity, radius, strength),
-        };
-        if self.inv_decay > 0.0 {
-            u * (-(x - self.origin).length() * self.inv_decay).exp()
-        } else {
-            u
-        }
-    }
-}
-
-/// Flow around a sphere of `radius` moving at `v`, at offset `r` from its centre: the potential
-/// flow of a moving sphere (a dipole; normal velocity v·n at the surface) plus a radial push of
-/// speed `s` at the surface, falling as 1/r². Inside, the sphere carries and expels gas.
-#[inline]
-pub fn repulsor_velocity(r: Vec3A, v: Vec3A, radius: f32, s: f32) -> Vec3A {
-    let d = r.length();
-    let n = if d > 1e-6 { r / d } else { Vec3A::Y };
-    if d < radius {
-        return v + n * s;
-    }
-    let q = radius / d;
-    (n * (3.0 * v.dot(n)) - v) * (0.5 * q * q * q) + n * (s * q * q)
-}
-
 /// A primitive with its path resolved.
 #[derive(Debug, Clone)]
 struct Large {
@@ -292,6 +249,85 @@ impl Large {
     }
 }
 
+/// The scene's solid objects as the wind meets them: the bodies with their grid, the layer's
+/// width d₀, each body's difference step h for the ramped curl, and each body's doublet in the
+/// uniform wind U (the sum of the uniform winds without decay).
+#[derive(Debug, Clone)]
+pub struct WallSet {
+    pub solids: Solids,
+    pub width: f32,
+    pub steps: Vec<f32>,
+    pub uniform: Vec3A,
+    pub doublets: Vec<Option<Doublet>>,
+}
+
+/// Of a difference step for the ramped curl: this fraction of the smallest of the layer's
+/// width, the field's lattice spacing and the solid's size, the scales the potential varies
+/// over.
+pub const CURL_STEP_FRACTION: f32 = 1.0 / 64.0;
+
+/// The rounding of a cylinder's rims the wind sees, in difference steps.
+pub const EDGE_STEPS: f32 = 3.0;
+
+impl WallSet {
+    fn new(scene: &Scene, spacing: f32) -> Option<Self> {
+        let bodies: Vec<Body> = scene.render.objects.iter().filter_map(Body::of).collect();
+        if bodies.is_empty() {
+            return None;
+        }
+        let width = scene.field.boundary_width as f32;
+        let uniform: Vec3A = scene
+            .wind
+            .iter()
+            .filter_map(|w| match w {
+                Primitive::Uniform {
+                    velocity,
+                    decay: None,
+                    enabled: true,
+                    ..
+                } => Some(Vec3A::from_array(*velocity)),
+                _ => None,
+            })
+            .sum();
+        let doublets: Vec<Option<Doublet>> =
+            bodies.iter().map(|b| Doublet::of(b, uniform)).collect();
+        let reach: Vec<f32> = bodies
+            .iter()
+            .zip(&doublets)
+            .map(|(b, d)| {
+                let zone = if d.is_some() { Doublet::reach(b) } else { 0.0 };
+                zone.max(width) * 1.001
+            })
+            .collect();
+        let steps: Vec<f32> = bodies
+            .iter()
+            .map(|b| CURL_STEP_FRACTION * width.min(spacing).min(b.size()))
+            .collect();
+        // A cylinder's rims rounded by three difference steps: no stencil about a point
+        // outside (or less than a step inside) reaches across the jump of the normal inside.
+        let edges = bodies
+            .iter()
+            .zip(&steps)
+            .map(|(b, h)| match b {
+                Body::Cylinder { .. } => EDGE_STEPS * h,
+                _ => 0.0,
+            })
+            .collect();
+        Some(Self {
+            solids: Solids::with_edges(bodies, edges, &reach),
+            width,
+            steps,
+            uniform,
+            doublets,
+        })
+    }
+
+    /// The gap (m) a blob put back on a surface keeps from it.
+    pub fn gap(&self) -> f32 {
+        1e-4 * self.width
+    }
+}
+
 /// The whole wind of a scene.
 #[derive(Debug, Clone)]
 pub struct Wind {
@@ -300,6 +336,8 @@ pub struct Wind {
     /// A primitive outside the scene that acts until it is replaced or removed (the pointer
     /// stirring the gas in the playground).
     transient: Option<Large>,
+    walls: Option<Arc<WallSet>>,
+    phases: Option<Phases>,
 }
 
 impl Wind {
@@ -314,10 +352,21 @@ impl Wind {
             .filter(|w| w.enabled())
             .map(|w| Large::new(w.clone()))
             .collect();
+        let spacing = small.as_ref().map_or(f32::INFINITY, SmallScale::spacing);
+        let walls = WallSet::new(scene, spacing).map(Arc::new);
+        let phases = (scene.field.carried && small.is_some()).then(|| {
+            let p = scene.field.period;
+            Phases {
+                period: scene.field.carry_period(),
+                shift: Vec3A::new(p[0] as f32, p[1] as f32, p[2] as f32) * 0.5,
+            }
+        });
         Self {
             small,
             large,
             transient: None,
+            walls,
+            phases,
         }
     }
 
@@ -341,23 +390,74 @@ impl Wind {
         self.small.as_ref()
     }
 
+    /// The solid objects the wind goes round, if any.
+    pub fn walls(&self) -> Option<&WallSet> {
+        self.walls.as_deref()
+    }
+
+    /// The carried phases, if the small-scale field is carried by the large scales.
+    pub fn phases(&self) -> Option<&Phases> {
+        self.phases.as_ref()
+    }
+
     /// Freezes the wind at time `t` into `frame` (reusing its allocations). Uniform winds
     /// without decay fold into one constant.
     pub fn frame_into(&self, t: f64, frame: &mut WindFrame) {
+        self.freeze_into(t, frame, true);
+    }
+
+    /// The large-scale wind alone at time `t` (no field slices): what carries the eddies.
+    pub fn large_frame(&self, t: f64) -> WindFrame {
+        let mut f = WindFrame::default();
+        self.freeze_into(t, &mut f, false);
+        f
+    }
+
+    fn freeze_into(&self, t: f64, frame: &mut WindFrame, with_field: bool) {
         frame.time = t;
         frame.has_slice = false;
-        if let Some(s) = &self.small {
+        frame.has_psi = false;
+        if let (Some(s), true) = (&self.small, with_field) {
             s.slice_into(t, &mut frame.slice);
             frame.has_slice = true;
+            if self.walls.is_some() {
+                frame.has_psi = s.potential_slice_into(t, &mut frame.psi);
+            }
         }
         frame.constant = Vec3A::ZERO;
         frame.primitives.clear();
-        for p in self.acting().map(|l| freeze(l, t)) {
+        frame.images.clear();
+        for l in self.acting() {
+            let p = freeze(
+                &l.primitive,
+                l.path.as_ref(),
+                t,
+                frame.primitives.len() as u32,
+            );
             match p.kind {
                 Frozen::Uniform { velocity } if p.inv_decay == 0.0 => frame.constant += velocity,
                 _ => frame.primitives.push(p),
             }
         }
+        frame.originals = frame.primitives.len();
+        if let Some(w) = &self.walls {
+            // Mirror images in the solid planes, after the primitives, each original's together.
+            for i in 0..frame.originals {
+                let first = frame.primitives.len();
+                for (j, body) in w.solids.bodies.iter().enumerate() {
+                    if let Body::Plane { point, normal } = *body {
+                        if let Some(image) = frame.primitives[i].mirrored(j as u32, point, normal) {
+                            frame.primitives.push(image);
+                        }
+                    }
+                }
+                frame
+                    .images
+                    .push((first as u32, frame.primitives.len() as u32));
+            }
+        }
+        frame.walls = self.walls.clone();
+        frame.blend = self.phases.map(|p| p.blend(t));
     }
 
     /// A new frame at time `t`.
@@ -367,14 +467,64 @@ impl Wind {
         f
     }
 
-    /// Reference evaluation without a frame (quadrilinear field sample), for tests and probes.
+    /// Reference evaluation (quadrilinear field sample), for tests and probes. With solid
+    /// objects or carried turbulence it is the frame's wind (and the carried coordinates traced
+    /// back through the large-scale wind in steps of at most `1/60` s).
     pub fn velocity(&self, x: Vec3, t: f64) -> Vec3 {
+        if self.walls.is_some() || self.phases.is_some() {
+            return self.sample(&[x], t, 1.0 / 60.0)[0];
+        }
         let small = self.small.as_ref().map_or(Vec3::ZERO, |s| s.velocity(x, t));
         small
             + self
                 .acting()
-                .map(|l| Vec3::from(freeze(l, t).velocity(x.into())))
+                .map(|l| Vec3::from(freeze(&l.primitive, l.path.as_ref(), t, 0).velocity(x.into())))
                 .sum::<Vec3>()
+    }
+
+    /// The whole wind (m/s) at `points` at time `t`: the frame's wind, with carried
+    /// coordinates traced back through the large-scale wind to each phase's reset in RK2 steps
+    /// of at most `dt` (s).
+    pub fn sample(&self, points: &[Vec3], t: f64, dt: f64) -> Vec<Vec3> {
+        let frame = self.frame(t);
+        let offsets = self.carried_offsets(points, t, dt);
+        points
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let o = offsets.as_ref().map_or([Vec3A::ZERO; 2], |o| o[i]);
+                let (l, s) = frame.parts(Vec3A::from(*x), o);
+                Vec3::from(l + s)
+            })
+            .collect()
+    }
+
+    /// The carried offsets X − x of `points` at time `t` (none unless the field is carried):
+    /// for each phase, x traced back through the large-scale wind to the phase's reset, by
+    /// the midpoint rule in equal steps of at most `dt` (s).
+    pub fn carried_offsets(&self, points: &[Vec3], t: f64, dt: f64) -> Option<Vec<[Vec3A; 2]>> {
+        let phases = self.phases?;
+        let mut out = vec![[Vec3A::ZERO; 2]; points.len()];
+        for (k, age) in phases.ages(t).into_iter().enumerate() {
+            let steps = (age / dt).ceil().max(0.0) as usize;
+            if steps == 0 {
+                continue;
+            }
+            let h = age / steps as f64;
+            let mut x: Vec<Vec3A> = points.iter().map(|&p| p.into()).collect();
+            for s in 0..steps {
+                let t1 = t - s as f64 * h;
+                let (f1, fm) = (self.large_frame(t1), self.large_frame(t1 - 0.5 * h));
+                for p in &mut x {
+                    let xm = *p - f1.parts(*p, [Vec3A::ZERO; 2]).0 * (0.5 * h as f32);
+                    *p -= fm.parts(xm, [Vec3A::ZERO; 2]).0 * h as f32;
+                }
+            }
+            for (o, (p, x0)) in out.iter_mut().zip(x.iter().zip(points)) {
+                o[k] = *p - Vec3A::from(*x0);
+            }
+        }
+        Some(out)
     }
 
     /// Centres, radii and colours of the visible repulsor spheres at time `t`.
@@ -396,154 +546,48 @@ impl Wind {
     }
 }
 
-fn freeze(l: &Large, t: f64) -> FrozenPrimitive {
-    let inv = |d: &Option<f32>| d.map_or(0.0, |l| 1.0 / l);
-    match &l.primitive {
-        Primitive::Uniform {
-            velocity,
-            position,
-            decay,
-            ..
-        } => FrozenPrimitive {
-            kind: Frozen::Uniform {
-                velocity: v3a(*velocity),
-            },
-            origin: v3a(*position),
-            inv_decay: inv(decay),
-        },
-        Primitive::Source {
-            position,
-            strength,
-            radius,
-            decay,
-            ..
-        } => FrozenPrimitive {
-            kind: Frozen::Source {
-                position: v3a(*position),
-                k: strength / (4.0 * PI),
-                a2: radius * radius,
-            },
-            origin: v3a(*position),
-            inv_decay: inv(decay),
-        },
-        Primitive::Vortex {
-            position,
-            axis,
-            strength,
-            radius,
-            decay,
-            ..
-        } => FrozenPrimitive {
-            kind: Frozen::Vortex {
-                position: v3a(*position),
-                axis: v3a(*axis).normalize(),
-                g: strength / (2.0 * PI),
-                a2: radius * radius,
-            },
-            origin: v3a(*position),
-            inv_decay: inv(decay),
-        },
-        Primitive::Repulsor {
-            radius,
-            strength,
-            decay,
-            ..
-        } => {
-            let (c, v) = l.path.as_ref().expect("repulsors have paths").at(t);
-            FrozenPrimitive {
-                kind: Frozen::Repulsor {
-                    center: c.as_vec3a(),
-                    velocity: v.as_vec3a(),
-                    radius: *radius,
-                    strength: *strength,
-                },
-                origin: c.as_vec3a(),
-                inv_decay: inv(decay),
-            }
-        }
-    }
-}
-
 /// The wind frozen at one time.
 #[derive(Debug, Clone, Default)]
 pub struct WindFrame {
     pub time: f64,
     /// Sum of the uniform winds without decay (m/s).
-    constant: Vec3A,
-    has_slice: bool,
-    slice: FieldSlice,
-    primitives: Vec<FrozenPrimitive>,
+    pub(crate) constant: Vec3A,
+    pub(crate) has_slice: bool,
+    pub(crate) slice: FieldSlice,
+    /// The scene's primitives (their first `originals`), then their mirror images in the
+    /// solid planes; `images[i]` is the range of primitive i's images.
+    pub(crate) primitives: Vec<FrozenPrimitive>,
+    pub(crate) originals: usize,
+    pub(crate) images: Vec<(u32, u32)>,
+    /// The field's vector potential at this time (with solids whose field has it).
+    pub(crate) has_psi: bool,
+    pub(crate) psi: FieldSlice,
+    pub(crate) walls: Option<Arc<WallSet>>,
+    /// The carried phases' blend at this time.
+    pub(crate) blend: Option<Blend>,
 }
 
-/// Floats of a wind table's header ([`WindFrame::write_gpu_table`]).
-pub const WIND_TABLE_HEADER: usize = 20;
-/// Floats per frozen primitive in a wind table.
-pub const WIND_TABLE_PRIMITIVE: usize = 16;
-/// A frozen primitive's kind in a wind table.
-pub const UNIFORM_KIND: f32 = 0.0;
-pub const SOURCE_KIND: f32 = 1.0;
-pub const VORTEX_KIND: f32 = 2.0;
-pub const REPULSOR_KIND: f32 = 3.0;
-
 impl WindFrame {
-    /// The wind frozen at this frame's time as the GPU stepper reads it, appended to `out`:
-    ///
-    /// - header ([`WIND_TABLE_HEADER`] floats): `[has_field, i0, i1, f]` (the small-scale
-    ///   field's two lattice time slices and their blend), `[offset xyz (m), 0]` (the carried
-    ///   eddies' shift), `[lattice cells per metre xyz, 0]`, `[velocity scale xyz (m/s per
-    ///   lattice unit), 0]`, `[constant wind xyz (m/s), primitive count]`;
-    /// - per primitive ([`WIND_TABLE_PRIMITIVE`] floats, four vec4):
-    ///   `[kind, 1/decay (1/m; 0: none), a, b]`, `[decay origin xyz (m), 0]`, `[p xyz, 0]`,
-    ///   `[q xyz, 0]`, where uniform: p = velocity; source: p = position, a = s/(4π),
-    ///   b = core²; vortex: p = position, q = unit axis, a = Γ/(2π), b = core²; repulsor:
-    ///   p = centre, q = velocity, a = radius, b = strength.
-    pub fn write_gpu_table(&self, out: &mut Vec<f32>) {
-        let s = &self.slice;
-        let (i0, i1, f) = s.time_slices;
-        let v = |v: Vec3A, w: f32| [v.x, v.y, v.z, w];
-        out.extend_from_slice(&[
-            if self.has_slice { 1.0 } else { 0.0 },
-            i0 as f32,
-            i1 as f32,
-            f,
-        ]);
-        out.extend_from_slice(&v(s.offset, 0.0));
-        out.extend_from_slice(&v(s.cells_per_metre, 0.0));
-        out.extend_from_slice(&v(s.velocity_scale, 0.0));
-        out.extend_from_slice(&v(self.constant, self.primitives.len() as f32));
-        for p in &self.primitives {
-            let (kind, a, b, pos, q) = match p.kind {
-                Frozen::Uniform { velocity } => (UNIFORM_KIND, 0.0, 0.0, velocity, Vec3A::ZERO),
-                Frozen::Source { position, k, a2 } => (SOURCE_KIND, k, a2, position, Vec3A::ZERO),
-                Frozen::Vortex {
-                    position,
-                    axis,
-                    g,
-                    a2,
-                } => (VORTEX_KIND, g, a2, position, axis),
-                Frozen::Repulsor {
-                    center,
-                    velocity,
-                    radius,
-                    strength,
-                } => (REPULSOR_KIND, radius, strength, center, velocity),
-            };
-            out.extend_from_slice(&[kind, p.inv_decay, a, b]);
-            out.extend_from_slice(&v(p.origin, 0.0));
-            out.extend_from_slice(&v(pos, 0.0));
-            out.extend_from_slice(&v(q, 0.0));
-        }
-    }
-
     /// u(x) = u_s(x) + Σ primitives (m/s).
     #[inline]
     pub fn velocity(&self, x: Vec3) -> Vec3 {
         self.velocity_a(x.into()).into()
     }
 
-    /// [`Self::velocity`] in four-wide vectors, for the per-blob loop.
+    /// Whether the wind is the plain sum (no solids, nothing carried): the fast path.
+    #[inline]
+    pub fn is_plain(&self) -> bool {
+        self.walls.is_none() && self.blend.is_none()
+    }
+
+    /// [`Self::velocity`] in four-wide vectors, for the per-blob loop. Carried coordinates are
+    /// taken as just reset (offsets zero).
     #[inline]
     pub fn velocity_a(&self, x: Vec3A) -> Vec3A {
+        if !self.is_plain() {
+            let (l, s) = self.parts(x, [Vec3A::ZERO; 2]);
+            return l + s;
+        }
         let mut u = self.constant;
         if self.has_slice {
             u += self.slice.sample(x);
@@ -552,5 +596,182 @@ impl WindFrame {
             u += p.velocity(x);
         }
         u
+    }
+
+    /// The small-scale field's slice sampled at `x`, with the carried coordinates' offsets
+    /// `o` (ignored unless carried).
+    #[inline]
+    fn blended(&self, slice: &FieldSlice, x: Vec3A, o: [Vec3A; 2]) -> Vec3A {
+        match self.blend {
+            None => slice.sample(x),
+            Some(b) => {
+                let [wa, wb] = b.weights;
+                let mut u = Vec3A::ZERO;
+                if wa != 0.0 {
+                    u += slice.sample(x + o[0]) * wa;
+                }
+                if wb != 0.0 {
+                    u += slice.sample(x + o[1] + b.shift) * wb;
+                }
+                u
+            }
+        }
+    }
+
+    /// The wind at `x` in its two parts, the large-scale wind u_l (the primitives and what the
+    /// solids make of them) and the small-scale u_s, with the carried offsets `o` (m) of the
+    /// two phases (ignored unless the field is carried).
+    #[inline]
+    pub fn parts(&self, x: Vec3A, o: [Vec3A; 2]) -> (Vec3A, Vec3A) {
+        let small = |f: &Self| {
+            if f.has_slice {
+                f.blended(&f.slice, x, o)
+            } else {
+                Vec3A::ZERO
+            }
+        };
+        let Some(w) = &self.walls else {
+            let mut u = self.constant;
+            for p in &self.primitives {
+                u += p.velocity(x);
+            }
+            return (u, small(self));
+        };
+        if let Some(near) = w.solids.nearest(x, w.width) {
+            return self.near_solid(w, x, near, o);
+        }
+        let mut u = self.constant;
+        for j in w.solids.candidates(x) {
+            if let Some(d) = &w.doublets[j] {
+                u += d.at(x).1;
+            }
+        }
+        for p in &self.primitives {
+            u += p.velocity(x);
+        }
+        (u, small(self))
+    }
+
+    /// The wind within the layer of the solid `near` (docs/CONVENTIONS.md, solid objects).
+    fn near_solid(&self, w: &WallSet, x: Vec3A, near: Nearest, o: [Vec3A; 2]) -> (Vec3A, Vec3A) {
+        let n_index = near.index;
+        let body = w.solids.bodies[n_index];
+        let n = near.normal;
+        let alpha = ramp(near.distance / w.width);
+        let plane = matches!(body, Body::Plane { .. });
+        // The uniform wind: exact past a sphere and along a cylinder's side (its cross-flow by
+        // the doublet); a cylinder's caps stop its axial part, a plane what blows into it (and
+        // keeps what blows away).
+        let u0 = self.constant;
+        let mut large = match body {
+            Body::Sphere { .. } => u0,
+            Body::Cylinder { axis, .. } => {
+                let along = axis * u0.dot(axis);
+                (u0 - along) + project(along, n, alpha, false)
+            }
+            Body::Plane { .. } => project(u0, n, alpha, true),
+        };
+        if let Some(d) = &w.doublets[n_index] {
+            large += d.at(x).1;
+        }
+        let gauge = |p: &FrozenPrimitive| match body {
+            Body::Plane { point, normal } => {
+                let q = p.place();
+                q - normal * (q - point).dot(normal)
+            }
+            _ => body.centre(),
+        };
+        // Other solids' doublets and vortices go round this one by the ramped curl.
+        let mut others = false;
+        for j in w.solids.candidates(x) {
+            others |= j != n_index && w.doublets[j].is_some();
+        }
+        let mut vortices = false;
+        for (i, p) in self.primitives.iter().enumerate() {
+            let exact = plane
+                && (p.image_of == n_index as u32
+                    || (p.image_of == NOT_AN_IMAGE && self.has_image_in(i, n_index as u32)));
+            if exact {
+                large += p.velocity(x);
+            } else if p.has_potential() {
+                vortices = true;
+            } else {
+                large += project(p.velocity(x), n, alpha, plane);
+            }
+        }
+        let need_stencil = others || vortices || self.has_psi;
+        if !need_stencil {
+            let small = if self.has_slice {
+                project(self.blended(&self.slice, x, o), n, alpha, false)
+            } else {
+                Vec3A::ZERO
+            };
+            return (large, small);
+        }
+        // Deeper inside than a step (a midpoint of a step into the solid), the wind is the one
+        // a step deep: the normal there is continuous.
+        let h = w.steps[n_index];
+        let x = if near.distance < -h {
+            x + n * (-h - near.distance)
+        } else {
+            x
+        };
+        let stencil = Stencil::new(&body, w.solids.edges[n_index], x, h, 1.0 / w.width);
+        if others || vortices {
+            let psi: [Vec3A; 6] = std::array::from_fn(|k| {
+                let y = stencil.points[k];
+                let mut psi = Vec3A::ZERO;
+                for j in w.solids.candidates(x) {
+                    if j != n_index {
+                        if let Some(d) = &w.doublets[j] {
+                            psi += d.at(y).0;
+                        }
+                    }
+                }
+                for (i, p) in self.primitives.iter().enumerate() {
+                    let exact = plane
+                        && (p.image_of == n_index as u32
+                            || (p.image_of == NOT_AN_IMAGE
+                                && self.has_image_in(i, n_index as u32)));
+                    if !exact && p.has_potential() {
+                        psi += p.vortex_potential(y, gauge(p));
+                    }
+                }
+                psi
+            });
+            large += stencil.ramped_curl(&psi);
+        }
+        let small = if self.has_psi {
+            let psi: [Vec3A; 6] =
+                std::array::from_fn(|k| self.blended(&self.psi, stencil.points[k], o));
+            stencil.ramped_curl(&psi)
+        } else if self.has_slice {
+            // The field's potential is still being synthesised: project meanwhile.
+            project(self.blended(&self.slice, x, o), n, alpha, false)
+        } else {
+            Vec3A::ZERO
+        };
+        (large, small)
+    }
+
+    /// Whether the scene's primitive `i` has a mirror image in the solid `plane`.
+    #[inline]
+    fn has_image_in(&self, i: usize, plane: u32) -> bool {
+        let Some(&(a, b)) = self.images.get(i) else {
+            return false;
+        };
+        self.primitives[a as usize..b as usize]
+            .iter()
+            .any(|p| p.image_of == plane)
+    }
+
+    /// The solids the frame's wind goes round, if any.
+    pub fn walls(&self) -> Option<&WallSet> {
+        self.walls.as_deref()
+    }
+
+    /// The difference step (m) of the ramped curl near solid `index`, for checks of it.
+    pub fn curl_step(&self, index: usize) -> Option<f32> {
+        self.walls.as_ref().map(|w| w.steps[index])
     }
 }

@@ -82,6 +82,7 @@ fn intersect(o: &Object, origin: Vec3, dir: Vec3) -> Option<Hit> {
             center,
             radius,
             color,
+            ..
         } => {
             let c = Vec3::from_array(*center);
             let oc = origin - c;
@@ -107,6 +108,7 @@ fn intersect(o: &Object, origin: Vec3, dir: Vec3) -> Option<Hit> {
             point,
             normal,
             color,
+            ..
         } => {
             let n = Vec3::from_array(*normal).normalize();
             let denom = dir.dot(n);
@@ -213,12 +215,14 @@ mod tests {
             center: [0.0, 0.5, 0.0],
             radius: 1.0,
             color: [1.0; 3],
+            solid: false,
         };
         assert!((nearest_hit(&[sphere], o, d).unwrap().s - 4.0).abs() < 1e-5);
         let plane = Object::Plane {
             point: [0.0, 0.0, -2.0],
             normal: [0.0, 0.0, 1.0],
             color: [1.0; 3],
+            solid: false,
         };
         assert!((nearest_hit(&[plane], o, d).unwrap().s - 7.0).abs() < 1e-5);
         let cyl = Object::Cylinder {
@@ -228,6 +232,7 @@ mod tests {
             height: 1.0,
             color: [1.0; 3],
             model: None,
+            solid: false,
         };
         let h = nearest_hit(std::slice::from_ref(&cyl), o, d).unwrap();
         assert!((h.s - 4.5).abs() < 1e-5 && (h.normal - Vec3::Z).length() < 1e-5);

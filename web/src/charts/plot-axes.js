@@ -115,7 +115,9 @@ function spacedLabels(ticks, place, size, gap) {
 /**
  * Draws a chart into `canvas`: `x` and `y` are axes (from `linearAxis` or `logAxis`) with a
  * `title` (name and unit); `series` is a list of `{ points: [[x, y], …], style: 'dots' | 'line',
- * colour, label }`; `key` is where the series' key goes: 'top-right' or 'bottom-right'.
+ * colour, label }` (a line series may give `lines`, several polylines of one colour and one row
+ * of the key, instead of `points`); `key` is where the series' key goes: 'top-right' or
+ * 'bottom-right'.
  */
 export function drawChart(canvas, { x, y, series, key = 'top-right' }) {
   const { ctx, width: w, height: h } = fitCanvas(canvas);
@@ -189,14 +191,17 @@ export function drawChart(canvas, { x, y, series, key = 'top-right' }) {
   ctx.rect(left, top, plotW, plotH);
   ctx.clip();
   for (const s of series) {
-    const pts = s.points.filter(([a, b]) => (!x.log || a > 0) && (!y.log || b > 0));
+    const shown = (points) => points.filter(([a, b]) => (!x.log || a > 0) && (!y.log || b > 0));
+    const pts = shown(s.points ?? []);
     ctx.fillStyle = s.colour;
     ctx.strokeStyle = s.colour;
     if (s.style === 'line') {
       ctx.lineWidth = 2;
-      ctx.beginPath();
-      pts.forEach(([a, b], i) => (i ? ctx.lineTo(px(a), py(b)) : ctx.moveTo(px(a), py(b))));
-      ctx.stroke();
+      for (const line of s.lines ? s.lines.map(shown) : [pts]) {
+        ctx.beginPath();
+        line.forEach(([a, b], i) => (i ? ctx.lineTo(px(a), py(b)) : ctx.moveTo(px(a), py(b))));
+        ctx.stroke();
+      }
     } else {
       for (const p of pts.filter(inside)) {
         ctx.beginPath();

@@ -177,11 +177,11 @@ export function createHandlers(core, progress, memory = () => 0) {
       const records = sim().handCentresToGpu();
       const lattice = session.lattice();
       const result = { records, lattice, time: sim().time() };
-      return { result, transfer: [records.buffer, ...(lattice.data ? [lattice.data.buffer] : [])] };
+      return { result, transfer: [records.buffer, ...latticeBuffers(lattice)] };
     },
     gpuLattice: () => {
       const lattice = session.lattice();
-      return { result: lattice, transfer: lattice.data ? [lattice.data.buffer] : [] };
+      return { result: lattice, transfer: latticeBuffers(lattice) };
     },
     gpuAdvance: ({ steps }) => {
       const s = sim();
@@ -241,4 +241,9 @@ export function createHandlers(core, progress, memory = () => 0) {
     sample: ({ x, y, z, t }) => ({ result: Array.from(session.requireField().sample(x, y, z, t)) }),
     fieldStats: ({ spectrum }) => ({ result: JSON.parse(session.requireField().stats(spectrum ? JSON.stringify(spectrum) : '')) }),
   };
+}
+
+/** The buffers of a lattice to transfer: the velocity's and the potential's, where present. */
+function latticeBuffers(lattice) {
+  return [lattice.data, lattice.potential].filter(Boolean).map((a) => a.buffer);
 }

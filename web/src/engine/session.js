@@ -332,11 +332,19 @@ export class Session {
 
   /**
    * The lattice of the field the simulation runs on, for the GPU stepper: {data (xyz per point,
-   * `[t][z][y][x]`), size, version}, or no data for a scene without one.
+   * `[t][z][y][x]`), size, potential (ψ laid out as data, or null), version}, or no data for a
+   * scene without one.
    */
   lattice() {
     const f = this.simField;
-    return { data: f ? f.data() : null, size: f ? Array.from(f.size()) : null, version: this.fieldVersion };
+    const potential = f ? f.potential() : null;
+    return {
+      data: f ? f.data() : null,
+      size: f ? Array.from(f.size()) : null,
+      // The field's vector potential (scenes with solid objects), else empty.
+      potential: potential?.length ? potential : null,
+      version: this.fieldVersion,
+    };
   }
 
   /**

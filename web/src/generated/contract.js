@@ -60,14 +60,41 @@ export const SHADOW_GRID_HEADER = 8;
 
 // The GPU stepper (the gas advected on the GPU)
 
-/** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
-export const BLOB_FLOATS = 20;
+/** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
+export const BLOB_FLOATS = 28;
 
-/** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count. (`gas::wind::WIND_TABLE_HEADER`) */
-export const WIND_TABLE_HEADER = 20;
+/** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets. (`gas::wind_table::WIND_TABLE_HEADER`) */
+export const WIND_TABLE_HEADER = 32;
 
-/** Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin; p; q. (`gas::wind::WIND_TABLE_PRIMITIVE`) */
+/** Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images. (`gas::wind_table::WIND_TABLE_PRIMITIVE`) */
 export const WIND_TABLE_PRIMITIVE = 16;
+
+/** Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector. (`gas::wind_table::WIND_TABLE_SOLID`) */
+export const WIND_TABLE_SOLID = 16;
+
+/** A solid sphere's kind in a wind table. (`gas::wind_table::SPHERE_SOLID_KIND`) */
+export const SPHERE_SOLID_KIND = 0;
+
+/** A solid plane's kind in a wind table. (`gas::wind_table::PLANE_SOLID_KIND`) */
+export const PLANE_SOLID_KIND = 1;
+
+/** A solid cylinder's kind in a wind table. (`gas::wind_table::CYLINDER_SOLID_KIND`) */
+export const CYLINDER_SOLID_KIND = 2;
+
+/** A cylinder's rims are rounded by this many difference steps for the wind. (`gas::wind::EDGE_STEPS`) */
+export const EDGE_STEPS = 3;
+
+/** A sphere's doublet is exact within this many radii of its centre. (`gas::walls::SPHERE_ZONE_INNER`) */
+export const SPHERE_ZONE_INNER = 4;
+
+/** A sphere's doublet has faded to nothing at this many radii. (`gas::walls::SPHERE_ZONE_OUTER`) */
+export const SPHERE_ZONE_OUTER = 8;
+
+/** A cylinder's doublet is exact within this many radii of its axis. (`gas::walls::CYLINDER_ZONE_INNER`) */
+export const CYLINDER_ZONE_INNER = 6;
+
+/** A cylinder's doublet has faded to nothing at this many radii. (`gas::walls::CYLINDER_ZONE_OUTER`) */
+export const CYLINDER_ZONE_OUTER = 12;
 
 /** A uniform wind's kind in a wind table. (`gas::wind::UNIFORM_KIND`) */
 export const UNIFORM_KIND = 0;

@@ -1,12 +1,13 @@
 // The classroom page: the field's measured spectrum and temporal spread against the paper's
-// laws, a slice of the field, the Figure 1 demo (grid against blobs), and one plume shown with
-// turbulence off, on, and carried by the mean wind. `window.classroom` exposes the plotted data
-// (`ready`: the plots and Figure 1 drawn; `axes`: each chart's tick values as drawn;
-// `snapshots`: Figure 1's row filled; `sideBySide`: the three players, which load as they near
-// the viewport, running their variants).
+// laws, a slice of the field, the Figure 1 demo (grid against blobs), one plume shown with
+// turbulence off, on, and carried by the large scales, and the wind's streamlines round a solid
+// sphere beside the closed form. `window.classroom` exposes the plotted data (`ready`: the plots,
+// Figure 1 and the sphere drawn; `axes`: each chart's tick values as drawn; `snapshots`:
+// Figure 1's row filled; `sphere`: the sphere's streamlines; `sideBySide`: the three players,
+// which load as they near the viewport, running their variants).
 
 import '../embed.js';
-import init, { Figure1Demo } from '../../pkg/windfield.js';
+import init, { Figure1Demo, sphereFlow } from '../../pkg/windfield.js';
 import { viridis } from '../charts/colormap.js';
 import { ColourBar } from '../charts/colour-bar.js';
 import { CHART, drawChart, linearAxis, logAxis } from '../charts/plot-axes.js';
@@ -29,7 +30,7 @@ export function spectrumSeries(report) {
   };
 }
 
-const classroom = { report: null, series: null, axes: {}, figure1: null, figure1Loops: 0, ready: null, snapshots: null, sideBySide: null };
+const classroom = { report: null, series: null, axes: {}, figure1: null, figure1Loops: 0, ready: null, snapshots: null, sphere: null, sideBySide: null };
 window.classroom = classroom;
 
 /**
@@ -207,6 +208,48 @@ async function figure1Lesson() {
   schedule();
 }
 
+/** Streamlines and the sphere's outline per panel: the core's wind, and the closed form. */
+export const SPHERE_LINES = 13;
+const SPHERE_POINTS = 240;
+
+/** `flat` (x, y pairs, `points` a line) as polylines of [x, y]. */
+export function polylines(flat, points) {
+  const lines = [];
+  for (let i = 0; i < flat.length; i += 2 * points) {
+    lines.push(Array.from({ length: points }, (_, k) => [flat[i + 2 * k], flat[i + 2 * k + 1]]));
+  }
+  return lines;
+}
+
+/**
+ * The wind round a solid sphere: streamlines of the core's wind (computed by the core,
+ * `sphereFlow`) beside those of the potential flow around a sphere.
+ */
+async function sphereLesson() {
+  await init();
+  const flow = sphereFlow(SPHERE_LINES, SPHERE_POINTS);
+  const outline = Array.from({ length: 121 }, (_, k) => [Math.cos((k * Math.PI) / 60), Math.sin((k * Math.PI) / 60)]);
+  classroom.sphere = {
+    core: polylines(flow.core, flow.points),
+    closedForm: polylines(flow.closedForm, flow.points),
+    largestGap: flow.largestGap,
+  };
+  const axes = {
+    x: { ...linearAxis(-3.5, 3.5, { fixed: true }), title: 'x / a (along the wind)' },
+    y: { ...linearAxis(-2.5, 2.5, { fixed: true }), title: 'y / a' },
+  };
+  const panel = (id, lines, label) => chart(id, {
+    ...axes,
+    series: [
+      { lines, style: 'line', colour: CHART.line, label },
+      { points: outline, style: 'line', colour: CHART.dots, label: 'solid sphere, radius a' },
+    ],
+  });
+  panel('sphere-core', classroom.sphere.core, 'the core\'s wind');
+  panel('sphere-closed', classroom.sphere.closedForm, 'potential flow');
+  $('#sphere-caption').textContent = `Streamlines traced by the fourth-order Runge–Kutta rule through each wind; the two sets part by at most ${flow.largestGap.toFixed(4)} a.`;
+}
+
 /**
  * Section 3's players load as they near the viewport; each then gets its variant of the scene.
  * Resolves when all three run their variants.
@@ -219,7 +262,7 @@ async function sideBySide() {
     const variants = {
       off: { ...base, field: { ...base.field, amplitude: 0 } },
       on: base,
-      carried: { ...base, field: { ...base.field, carried_by_wind: true } },
+      carried: { ...base, field: { ...base.field, carried: true } },
     };
     if (p.id !== 'on') await p.setScene(variants[p.id]);
   }));
@@ -229,5 +272,5 @@ const fail = (e) => {
   showMessage(e.message);
   throw e;
 };
-classroom.ready = Promise.all([fieldLesson(), figure1Lesson()]).catch(fail);
+classroom.ready = Promise.all([fieldLesson(), figure1Lesson(), sphereLesson()]).catch(fail);
 classroom.sideBySide = sideBySide().catch(fail);

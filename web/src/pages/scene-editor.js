@@ -18,10 +18,11 @@ export const TEMPLATES = {
     point: { type: 'point', position: [2, 3, 2], color: [1, 1, 1] },
     directional: { type: 'directional', direction: [-0.3, -1, -0.3], color: [1, 1, 1] },
   },
+  // New objects are solid: the wind and the gas go round them (a switch makes them not).
   objects: {
-    sphere: { type: 'sphere', center: [0.6, 0.3, 0], radius: 0.2, color: [0.7, 0.7, 0.7] },
-    plane: { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.45, 0.45, 0.42] },
-    cylinder: { type: 'cylinder', base: [0, 0, 0], axis: [0, 1, 0], radius: 0.1, height: 0.2, color: [0.8, 0.8, 0.8] },
+    sphere: { type: 'sphere', center: [0.6, 0.3, 0], radius: 0.2, color: [0.7, 0.7, 0.7], solid: true },
+    plane: { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], color: [0.45, 0.45, 0.42], solid: true },
+    cylinder: { type: 'cylinder', base: [0, 0, 0], axis: [0, 1, 0], radius: 0.1, height: 0.2, color: [0.8, 0.8, 0.8], solid: true },
   },
 };
 
@@ -119,6 +120,8 @@ function world(root, draft, changed) {
   f.add(lattice, 'time', latticeChoices(lattice.time)).name('lattice N (t)').onChange((n) => { field.size[3] = n; changed(); });
   field.period.forEach((_, a) => f.add(field.period, a).name(`period ${'xyz'[a]} (m)`).onFinishChange(changed));
   f.add(field, 'time_period').name('time period (s)').onFinishChange(changed);
+  f.add(field, 'carried').name('carried by the large scales (§7)').onChange(changed);
+  f.add(field, 'boundary_width').name('layer over solids (m)').onFinishChange(changed);
 }
 
 function listFolder(root, key, list, draft, changed) {
@@ -137,6 +140,8 @@ function listFolder(root, key, list, draft, changed) {
   items.slice(0, MAX_ITEM_FOLDERS).forEach((item, i) => {
     const sub = f.addFolder(`${key} ${i + 1}: ${list.kind(item)}`);
     if ('enabled' in item) sub.add(item, 'enabled').name('on').onChange(changed);
+    // An object's `solid` is left out of a scene when false: offer the switch on every object.
+    if (key === 'objects') item.solid ??= false;
     addFields(sub, item, changed, list.optional);
     sub.add({ remove: () => { items.splice(i, 1); changed(); } }, 'remove');
   });

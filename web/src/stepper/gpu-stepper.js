@@ -6,13 +6,15 @@
 // exact view, or stepping in the worker again).
 //
 // WebGL2 with float render targets (EXT_color_buffer_float) and three draw buffers is enough:
-// every pass is a per-texel map. Where these are missing the worker steps the gas.
+// every pass is a per-texel map (four with carried turbulence, which every WebGL2 has). Where
+// these are missing the worker steps the gas, and for scenes with more solid objects than
+// MAX_GPU_SOLIDS (each is tested at every blob).
 
 import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS } from '../generated/contract.js';
 import { BoundsPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
-import { HEADER_TEXELS, PRIMITIVE_TEXELS } from './wind-glsl.js';
+import { HEADER_TEXELS, MAX_GPU_SOLIDS, PRIMITIVE_TEXELS } from './wind-glsl.js';
 
 /** Widest lattice texture row (texels); a lattice fills rows of this many points. */
 const LATTICE_WIDTH = 4096;
@@ -31,6 +33,13 @@ export function gpuStepperUnsupported(renderer) {
   if (!renderer.extensions.has('EXT_color_buffer_float')) return 'this GPU cannot render to float textures (no EXT_color_buffer_float)';
   if (gl.getParameter(gl.MAX_DRAW_BUFFERS) < 3) return 'this GPU draws to fewer than three targets at once';
   if (gl.getParameter(gl.MAX_TEXTURE_SIZE) < LATTICE_WIDTH) return `this GPU's textures are narrower than ${LATTICE_WIDTH}`;
+  return null;
+}
+
+/** Why the GPU stepper cannot step `scene` (its solid objects), or null when it can. */
+export function gpuStepperRefuses(scene) {
+  const solids = (scene.render?.objects ?? []).filter((o) => o.solid).length;
+  if (solids > MAX_GPU_SOLIDS) return `the scene has ${solids} solid objects, more than the GPU stepper's ${MAX_GPU_SOLIDS}`;
   return null;
 }
 
@@ -63,6 +72,7 @@ export class GpuStepper {
     this.packPass = new PackPass();
     this.boundsPass = new BoundsPass();
     this.copyMoving = new CopyPass(2);
+    this.copyCarried = new CopyPass(4);
     this.copyFixed = new CopyPass(3);
     this.state = null;
     this.lattice = null;
@@ -82,10 +92,13 @@ export class GpuStepper {
    * Takes the gas over: `records` (BLOB_FLOATS per slot, slot order, as the core's
    * `handCentresToGpu` gives them), room for `capacity` slots, at simulated time `time` (s).
    */
-  start({ records, capacity, time = 0 }) {
+  start({ records, capacity, time = 0, carried = false }) {
     const slots = records.length / BLOB_FLOATS;
     this.state?.dispose();
-    this.state = new StepperState(Math.max(capacity, slots, 1));
+    this.state = new StepperState(Math.max(capacity, slots, 1), carried);
+    // Kept until the first steps say whether the wind carries its small scales: a state that
+    // must carry offsets is then written again from them, offsets and all.
+    this.startRecords = carried ? null : records;
     const renderer = this.renderer;
     for (const target of [...this.state.moving, this.state.fixed]) {
       renderer.setRenderTarget(target);
@@ -105,25 +118,34 @@ export class GpuStepper {
    * The small-scale field's lattice (`data`: xyz per point, `[t][z][y][x]`, lattice units) of
    * `size` `[nx, ny, nz, nt]`, or none (a scene without one).
    */
-  setLattice(data, size) {
+  setLattice(data, size, potential = null) {
     this.lattice?.dispose();
+    this.potential?.dispose();
     this.lattice = null;
+    this.potential = null;
     this.latticeSize = size;
     if (!data) return;
-    const points = data.length / 3;
-    const rows = Math.ceil(points / LATTICE_WIDTH);
-    const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
-    for (let i = 0; i < points; i++) texels.set(data.subarray(3 * i, 3 * i + 3), 4 * i);
-    this.lattice = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
-    this.lattice.needsUpdate = true;
+    this.lattice = latticeTexture(data);
+    // The field's vector potential (scenes with solid objects), laid out as the velocity.
+    if (potential?.length) this.potential = latticeTexture(potential);
   }
 
-  /** Room for at least `slots` slots, keeping the state. */
-  #ensureCapacity(slots) {
-    if (slots <= this.state.capacity) return;
+  /**
+   * Room for at least `slots` slots, with carried offsets when `carried`, keeping the state (a
+   * state that gains offsets starts them at zero: the coordinates just reset).
+   */
+  #ensureCapacity(slots, carried) {
     const old = this.state;
-    const grown = new StepperState(Math.max(slots, Math.ceil(1.5 * old.capacity)));
-    this.copyMoving.copy(this.renderer, old.now, grown.now);
+    if (slots <= old.capacity && (old.carried || !carried)) return;
+    const grown = new StepperState(Math.max(slots, old.capacity < slots ? Math.ceil(1.5 * old.capacity) : old.capacity), carried || old.carried);
+    if (grown.carried) {
+      for (const target of grown.moving) {
+        this.renderer.setRenderTarget(target);
+        this.renderer.setClearColor(0x000000, 0);
+        this.renderer.clear(true, false, false);
+      }
+    }
+    (old.carried ? this.copyCarried : this.copyMoving).copy(this.renderer, old.now, grown.now);
     this.copyFixed.copy(this.renderer, old.fixed, grown.fixed);
     old.dispose();
     this.state = grown;
@@ -150,14 +172,24 @@ export class GpuStepper {
    */
   apply(steps, { dt, kappa, alpha, rk2 }) {
     const renderer = this.renderer;
-    this.#ensureCapacity(steps.highWater);
     const n = steps.ranges.length / 4;
+    // The tables say whether the wind goes round solids and carries its small scales
+    // (`gas::wind_table`: header floats 20 and 23).
+    const solids = n > 0 && steps.wind[20] > 0;
+    const carried = n > 0 && steps.wind[23] > 0;
+    if (carried && !this.state.carried && this.startRecords) {
+      this.start({ records: this.startRecords, capacity: this.state.capacity, time: this.time, carried: true });
+    }
+    if (n > 0) this.startRecords = null;
+    this.#ensureCapacity(steps.highWater, carried);
+    this.stepPass.configure({ solids, carried });
     const u = this.stepPass.material.uniforms;
     u.dt.value = dt;
     u.kappa.value = kappa;
     u.alpha.value = alpha;
     u.rk2.value = rk2;
     u.lattice.value = this.lattice;
+    u.potentialLattice.value = this.potential ?? this.lattice;
     const [nx, ny, nz, nt] = this.latticeSize ?? [1, 1, 1, 1];
     u.latticeSize.value.set(nx, ny, nz, nt);
     u.latticeWidth.value = LATTICE_WIDTH;
@@ -168,6 +200,8 @@ export class GpuStepper {
       u.centres.value = this.state.now.textures[0];
       u.masses.value = this.state.now.textures[1];
       u.ownVelocities.value = this.state.fixed.textures[0];
+      u.offsetsA.value = this.state.carried ? this.state.now.textures[2] : null;
+      u.offsetsB.value = this.state.carried ? this.state.now.textures[3] : null;
       this.stepPass.draw(renderer, this.state.next);
       const [firstBirth, births, firstFreed, freed] = steps.ranges.subarray(4 * k, 4 * k + 4);
       this.writePass.write(
@@ -241,6 +275,8 @@ export class GpuStepper {
     u.centres.value = this.state.now.textures[0];
     u.masses.value = this.state.now.textures[1];
     u.ownVelocities.value = this.state.fixed.textures[0];
+    u.offsetsA.value = this.state.carried ? this.state.now.textures[2] : null;
+    u.offsetsB.value = this.state.carried ? this.state.now.textures[3] : null;
     for (let i = 0; i <= repeats; i++) {
       const t0 = performance.now();
       this.stepPass.draw(renderer, this.state.next);
@@ -281,12 +317,37 @@ export class GpuStepper {
     return { sigma: Float32Array.from(sigma), mass: Float32Array.from(mass) };
   }
 
+  /** The carried offsets of every slot in use (phase a xyz, phase b xyz per slot), read back (for tests). */
+  readCarried() {
+    if (!this.state.carried) return null;
+    const a = this.#read(2);
+    const b = this.#read(3);
+    const out = new Float32Array(6 * this.highWater);
+    for (let i = 0; i < this.highWater; i++) {
+      out.set(a.subarray(4 * i, 4 * i + 3), 6 * i);
+      out.set(b.subarray(4 * i, 4 * i + 3), 6 * i + 3);
+    }
+    return out;
+  }
+
   dispose() {
     this.state?.dispose();
     this.lattice?.dispose();
+    this.potential?.dispose();
     this.windTable?.dispose();
-    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.copyMoving, this.copyFixed]) p.dispose();
+    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
   }
+}
+
+/** A lattice (xyz per point) as an RGBA32F texture, LATTICE_WIDTH points a row. */
+function latticeTexture(data) {
+  const points = data.length / 3;
+  const rows = Math.ceil(points / LATTICE_WIDTH);
+  const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
+  for (let i = 0; i < points; i++) texels.set(data.subarray(3 * i, 3 * i + 3), 4 * i);
+  const texture = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
+  texture.needsUpdate = true;
+  return texture;
 }
 
 /** The bounds of blob records (centre ± FOOTPRINT σ of those with mass): [lo xyz, hi xyz], or null. */

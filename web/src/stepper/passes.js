@@ -3,8 +3,8 @@
 // the packing of the state into the views' blob texture, and the reduction to the gas's bounds.
 
 import * as THREE from 'three';
-import { BLOBS_PER_ROW, FOOTPRINT } from '../generated/contract.js';
-import { WIND_GLSL } from './wind-glsl.js';
+import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT } from '../generated/contract.js';
+import { WIND_GLSL, WIND_PARTS_GLSL } from './wind-glsl.js';
 
 const SCREEN_VERTEX = /* glsl */ `
 in vec3 position;
@@ -45,54 +45,128 @@ export class ScreenPass {
 /**
  * One step (Eq. 14 by RK2's midpoint rule or Euler, through the wind at the step's start and
  * middle, plus the blob's own velocity v0·exp(−age/τ)); σ² += κ·dt (Eq. 15); m ← m·exp(−α·dt)
- * (Eq. 16). Empty slots (mass 0) stay empty.
+ * (Eq. 16). Empty slots (mass 0) stay empty. With SOLIDS the wind goes round the solids and a
+ * blob the step carried into one is put back just outside; with CARRIED each blob's carried
+ * offsets (attachments 2 and 3) move against the large-scale wind, o ← o − u_l dt, and a phase
+ * that reset in the step (the late table's header) starts again at −u_l·τ
+ * (`gas::blob_gas` in the core).
  */
 export class StepPass extends ScreenPass {
   constructor() {
     super(/* glsl */ `
 ${WIND_GLSL}
+${WIND_PARTS_GLSL}
 uniform highp sampler2D centres;
 uniform highp sampler2D masses;
 uniform highp sampler2D ownVelocities;
+uniform highp sampler2D offsetsA;
+uniform highp sampler2D offsetsB;
 uniform float dt;
 uniform float kappa;
 uniform float alpha;
 uniform bool rk2;
 layout(location = 0) out vec4 outCentre;
 layout(location = 1) out vec4 outMass;
+#ifdef CARRIED
+layout(location = 2) out vec4 outOffsetA;
+layout(location = 3) out vec4 outOffsetB;
+#endif
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 a = texelFetch(centres, p, 0);
   vec4 b = texelFetch(masses, p, 0);
+  vec3 oa = vec3(0.0);
+  vec3 ob = vec3(0.0);
+#ifdef CARRIED
+  oa = texelFetch(offsetsA, p, 0).xyz;
+  ob = texelFetch(offsetsB, p, 0).xyz;
+#endif
   if (b.x <= 0.0) {
     outCentre = a;
     outMass = vec4(0.0);
+#ifdef CARRIED
+    outOffsetA = vec4(oa, 0.0);
+    outOffsetB = vec4(ob, 0.0);
+#endif
     return;
   }
   vec3 x = a.xyz;
   float tau = b.z;
   vec3 v = texelFetch(ownVelocities, p, 0).xyz * exp(-b.y / tau);
+#if defined(SOLIDS) || defined(CARRIED)
+  vec3 l;
+  vec3 s;
+  vec3 moved;
+  if (rk2) {
+    windParts(0, x, oa, ob, l, s);
+    vec3 half_ = l * (-0.5 * dt);
+    vec3 xm = x + (l + s + v) * (0.5 * dt);
+    vec3 lm;
+    vec3 sm;
+    windParts(1, xm, oa + half_, ob + half_, lm, sm);
+    x += (lm + sm + v * exp(-0.5 * dt / tau)) * dt;
+    moved = lm * -dt;
+  } else {
+    windParts(0, x, oa, ob, l, s);
+    x += (l + s + v) * dt;
+    moved = l * -dt;
+  }
+#ifdef SOLIDS
+  x = pushOut(0, x);
+#endif
+#ifdef CARRIED
+  oa += moved;
+  ob += moved;
+  int late = rk2 ? 1 : 0;
+  vec4 resets = tableTexel(late, 7);
+  if (resets.z >= 0.0 || resets.w >= 0.0) {
+    vec3 lr;
+    vec3 sr;
+    windParts(late, x, vec3(0.0), vec3(0.0), lr, sr);
+    if (resets.z >= 0.0) oa = lr * -resets.z;
+    if (resets.w >= 0.0) ob = lr * -resets.w;
+  }
+  outOffsetA = vec4(oa, 0.0);
+  outOffsetB = vec4(ob, 0.0);
+#endif
+#else
   if (rk2) {
     vec3 xm = x + (wind(0, x) + v) * (0.5 * dt);
     x += (wind(1, xm) + v * exp(-0.5 * dt / tau)) * dt;
   } else {
     x += (wind(0, x) + v) * dt;
   }
+#endif
   outCentre = vec4(x, a.w + kappa * dt);
   outMass = vec4(b.x * exp(-alpha * dt), b.y + dt, tau, 0.0);
 }`, {
       windTable: { value: null },
       lattice: { value: null },
+      potentialLattice: { value: null },
       latticeSize: { value: new THREE.Vector4(1, 1, 1, 1) },
       latticeWidth: { value: 1 },
       centres: { value: null },
       masses: { value: null },
       ownVelocities: { value: null },
+      offsetsA: { value: null },
+      offsetsB: { value: null },
       dt: { value: 0 },
       kappa: { value: 0 },
       alpha: { value: 0 },
       rk2: { value: true },
     });
+  }
+
+  /** Compiles the pass for solids and carried offsets, or without (recompiled only on a change). */
+  configure({ solids, carried }) {
+    const key = `${solids}${carried}`;
+    if (this.key === key) return;
+    this.key = key;
+    const defines = {};
+    if (solids) defines.SOLIDS = '';
+    if (carried) defines.CARRIED = '';
+    this.material.defines = defines;
+    this.material.needsUpdate = true;
   }
 }
 
@@ -104,24 +178,31 @@ in vec4 b;
 in vec4 c0;
 in vec4 c1;
 in vec4 c2;
+in vec4 d0;
+in vec4 d1;
 uniform vec2 size;
 out vec4 va;
 out vec4 vb;
 out vec4 vc0;
 out vec4 vc1;
 out vec4 vc2;
+out vec4 vd0;
+out vec4 vd1;
 void main() {
   float column = mod(slot, ${BLOBS_PER_ROW}.0);
   float row = floor(slot / ${BLOBS_PER_ROW}.0);
   gl_Position = vec4((column + 0.5) / size.x * 2.0 - 1.0, (row + 0.5) / size.y * 2.0 - 1.0, 0.0, 1.0);
   gl_PointSize = 1.0;
-  va = a; vb = b; vc0 = c0; vc1 = c1; vc2 = c2;
+  va = a; vb = b; vc0 = c0; vc1 = c1; vc2 = c2; vd0 = d0; vd1 = d1;
 }`;
+
+/** The parts of a blob record (`frame::gpu_steps`), one vec4 attribute each. */
+const RECORD_PARTS = ['a', 'b', 'c0', 'c1', 'c2', 'd0', 'd1'];
 
 /**
  * Writes blob records into their slots: one point a slot, each record's moving part into the
- * moving state and (for births) its fixed part into the fixed state. An emptied slot is a
- * record of zeros.
+ * moving state (with carried offsets, when the state has them) and (for births) its fixed part
+ * into the fixed state. An emptied slot is a record of zeros.
  */
 export class WritePass {
   constructor() {
@@ -130,7 +211,7 @@ export class WritePass {
     const material = (outputs) => new THREE.RawShaderMaterial({
       glslVersion: THREE.GLSL3,
       vertexShader: WRITE_VERTEX,
-      fragmentShader: `precision highp float;\nin vec4 va;\nin vec4 vb;\nin vec4 vc0;\nin vec4 vc1;\nin vec4 vc2;\n${outputs}`,
+      fragmentShader: `precision highp float;\nin vec4 va;\nin vec4 vb;\nin vec4 vc0;\nin vec4 vc1;\nin vec4 vc2;\nin vec4 vd0;\nin vec4 vd1;\n${outputs}`,
       uniforms: { size: { value: new THREE.Vector2(1, 1) } },
       depthTest: false,
       depthWrite: false,
@@ -138,6 +219,11 @@ export class WritePass {
     this.movingMaterial = material(`layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
 void main() { o0 = va; o1 = vb; }`);
+    this.carriedMaterial = material(`layout(location = 0) out vec4 o0;
+layout(location = 1) out vec4 o1;
+layout(location = 2) out vec4 o2;
+layout(location = 3) out vec4 o3;
+void main() { o0 = va; o1 = vb; o2 = vd0; o3 = vd1; }`);
     this.fixedMaterial = material(`layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
 layout(location = 2) out vec4 o2;
@@ -154,7 +240,7 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
     this.capacity = Math.max(n, Math.ceil(1.5 * this.capacity), 1024);
     this.geometry.dispose();
     this.geometry.setAttribute('slot', new THREE.BufferAttribute(new Float32Array(this.capacity), 1));
-    for (const name of ['a', 'b', 'c0', 'c1', 'c2']) {
+    for (const name of RECORD_PARTS) {
       this.geometry.setAttribute(name, new THREE.BufferAttribute(new Float32Array(4 * this.capacity), 4));
     }
   }
@@ -169,16 +255,18 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
     if (n === 0) return;
     this.#reserve(n);
     const g = this.geometry.attributes;
-    const parts = [g.a.array, g.b.array, g.c0.array, g.c1.array, g.c2.array];
+    const parts = RECORD_PARTS.map((name) => g[name].array);
     for (let i = 0; i < born; i++) {
       g.slot.array[i] = slots[i];
-      for (let k = 0; k < 5; k++) parts[k].set(records.subarray(20 * i + 4 * k, 20 * i + 4 * k + 4), 4 * i);
+      for (let k = 0; k < parts.length; k++) {
+        parts[k].set(records.subarray(BLOB_FLOATS * i + 4 * k, BLOB_FLOATS * i + 4 * k + 4), 4 * i);
+      }
     }
     for (let j = 0; j < emptied.length; j++) {
       g.slot.array[born + j] = emptied[j];
-      for (let k = 0; k < 2; k++) parts[k].fill(0, 4 * (born + j), 4 * (born + j + 1));
+      for (const k of [0, 1, 5, 6]) parts[k].fill(0, 4 * (born + j), 4 * (born + j + 1));
     }
-    for (const name of ['slot', 'a', 'b', 'c0', 'c1', 'c2']) {
+    for (const name of ['slot', ...RECORD_PARTS]) {
       g[name].clearUpdateRanges();
       g[name].addUpdateRange(0, g[name].itemSize * n);
       g[name].needsUpdate = true;
@@ -187,8 +275,9 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
     const autoClear = renderer.autoClear;
     renderer.autoClear = false;
     this.movingMaterial.uniforms.size.value = size;
+    this.carriedMaterial.uniforms.size.value = size;
     this.fixedMaterial.uniforms.size.value = size;
-    this.points.material = this.movingMaterial;
+    this.points.material = state.carried ? this.carriedMaterial : this.movingMaterial;
     this.geometry.setDrawRange(0, n);
     renderer.setRenderTarget(into);
     renderer.render(this.scene, this.camera);
@@ -204,6 +293,7 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
   dispose() {
     this.geometry.dispose();
     this.movingMaterial.dispose();
+    this.carriedMaterial.dispose();
     this.fixedMaterial.dispose();
   }
 }

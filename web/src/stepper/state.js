@@ -2,7 +2,8 @@
 // a row, in float render targets.
 //
 // - `moving` (ping-pong, two attachments): [centre xyz (m), σ² (m²)] and [mass, age (s), τ (s), 0];
-//   a step reads one and writes the other.
+//   a step reads one and writes the other. With carried turbulence two more: the carried offsets
+//   [o_a xyz (m), 0] and [o_b xyz (m), 0] of the two phases (`gas::carried` in the core).
 // - `fixed` (three attachments, written only when a blob is born): [own velocity v0 xyz (m/s), 0],
 //   [albedo Ω rgb (a negative r: the medium's), 0], [emission Q rgb, 0].
 //
@@ -24,11 +25,13 @@ function target(rows, count) {
 }
 
 export class StepperState {
-  /** State for at least `capacity` slots (whole rows). */
-  constructor(capacity) {
+  /** State for at least `capacity` slots (whole rows), with carried offsets when `carried`. */
+  constructor(capacity, carried = false) {
     this.rows = Math.max(1, Math.ceil(capacity / BLOBS_PER_ROW));
     this.capacity = this.rows * BLOBS_PER_ROW;
-    this.moving = [target(this.rows, 2), target(this.rows, 2)];
+    this.carried = carried;
+    const moving = carried ? 4 : 2;
+    this.moving = [target(this.rows, moving), target(this.rows, moving)];
     this.fixed = target(this.rows, 3);
     /** Which of `moving` holds the current state. */
     this.current = 0;

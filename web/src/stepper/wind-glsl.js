@@ -1,16 +1,30 @@
 // GLSL: the wind u = u_l + u_s (paper Eq. 3) frozen at one time, read from a wind table the core
-// writes (`gas::wind::WindFrame::write_gpu_table`; layout in the generated contract) and the
-// small-scale field's raw lattice: quadrilinear and periodic in (x, y, z, t) on the lattice
-// (§3; the world mapping of docs/FORMATS.md: lattice point q = (x − offset)·cells per metre, velocity times
-// the scale), then each large-scale primitive (uniform, source or sink, vortex, repulsor, each
-// with its exponential decay). `tests/gpu_steps.rs` in the core holds this same arithmetic,
-// written out in Rust, to the core's own wind.
+// writes (`gas::wind_table`; layout in the generated contract) and the small-scale field's raw
+// lattice: quadrilinear and periodic in (x, y, z, t) on the lattice (§3; the world mapping of
+// docs/FORMATS.md: lattice point q = (x − offset)·cells per metre, velocity times the scale),
+// then each large-scale primitive (uniform, source or sink, vortex, repulsor, each with its
+// exponential decay). With SOLIDS defined, the wind goes round the table's solid objects as the
+// core's `WindFrame::parts` makes it (the field's vector potential from a second lattice,
+// doublets, mirror images, the ramped curl by differences, projections) and a point that ended
+// inside a solid is put back outside; with CARRIED, the small scales are sampled at each blob's
+// carried coordinates (two phases, cross-faded). `tests/gpu_steps.rs` in the core holds this
+// same arithmetic, written out in Rust, to the core's own wind.
 
-import { REPULSOR_KIND, SOURCE_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE } from '../generated/contract.js';
+import {
+  CYLINDER_SOLID_KIND, CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, EDGE_STEPS, PLANE_SOLID_KIND, REPULSOR_KIND, SOURCE_KIND,
+  SPHERE_SOLID_KIND, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
+  WIND_TABLE_SOLID,
+} from '../generated/contract.js';
 
 /** Texels (RGBA32F) of a wind table's header, and per primitive. */
 export const HEADER_TEXELS = WIND_TABLE_HEADER / 4;
 export const PRIMITIVE_TEXELS = WIND_TABLE_PRIMITIVE / 4;
+export const SOLID_TEXELS = WIND_TABLE_SOLID / 4;
+
+/** Most solid objects the GPU stepper takes (each is tested at every blob); more are stepped in the worker. */
+export const MAX_GPU_SOLIDS = 64;
+
+const f = (v) => (Number.isInteger(v) ? v.toFixed(1) : String(v));
 
 /**
  * `vec3 wind(int row, vec3 x)`: the wind (m/s) at `x` (m) from row `row` of `windTable` (row 0
@@ -25,18 +39,18 @@ uniform int latticeWidth;
 
 vec4 tableTexel(int row, int i) { return texelFetch(windTable, ivec2(i, row), 0); }
 
-vec3 latticePoint(ivec3 c, int t) {
+vec3 latticePoint(highp sampler2D tex, ivec3 c, int t) {
   ivec3 n = latticeSize.xyz;
   // The periodic wrap (GLSL's % is undefined for negative operands).
   ivec3 w = clamp(c - n * ivec3(floor(vec3(c) / vec3(n))), ivec3(0), n - 1);
   int index = ((t * n.z + w.z) * n.y + w.y) * n.x + w.x;
-  return texelFetch(lattice, ivec2(index % latticeWidth, index / latticeWidth), 0).xyz;
+  return texelFetch(tex, ivec2(index % latticeWidth, index / latticeWidth), 0).xyz;
 }
 
-vec3 smallScale(int row, vec3 x) {
+/** The lattice tex at world point x, times scale per component: trilinear in the blend of the two bracketing time slices. */
+vec3 latticeSample(highp sampler2D tex, int row, vec3 x, vec3 scale) {
   vec4 slices = tableTexel(row, 0);
   vec3 q = (x - tableTexel(row, 1).xyz) * tableTexel(row, 2).xyz;
-  vec3 scale = tableTexel(row, 3).xyz;
   vec3 fl = floor(q);
   vec3 f = q - fl;
   ivec3 c = ivec3(fl);
@@ -45,16 +59,18 @@ vec3 smallScale(int row, vec3 x) {
   vec3 e[4];
   for (int k = 0; k < 4; k++) {
     ivec3 o = ivec3(0, k & 1, k >> 1);
-    vec3 a0 = latticePoint(c + o, t0);
-    vec3 a1 = latticePoint(c + o + ivec3(1, 0, 0), t0);
-    vec3 corner0 = (a0 + (latticePoint(c + o, t1) - a0) * slices.w) * scale;
-    vec3 corner1 = (a1 + (latticePoint(c + o + ivec3(1, 0, 0), t1) - a1) * slices.w) * scale;
+    vec3 a0 = latticePoint(tex, c + o, t0);
+    vec3 a1 = latticePoint(tex, c + o + ivec3(1, 0, 0), t0);
+    vec3 corner0 = (a0 + (latticePoint(tex, c + o, t1) - a0) * slices.w) * scale;
+    vec3 corner1 = (a1 + (latticePoint(tex, c + o + ivec3(1, 0, 0), t1) - a1) * slices.w) * scale;
     e[k] = corner0 + (corner1 - corner0) * f.x;
   }
   vec3 lo = e[0] + (e[1] - e[0]) * f.y;
   vec3 hi = e[2] + (e[3] - e[2]) * f.y;
   return lo + (hi - lo) * f.z;
 }
+
+vec3 smallScale(int row, vec3 x) { return latticeSample(lattice, row, x, tableTexel(row, 3).xyz); }
 
 vec3 primitiveWind(int row, int j, vec3 x) {
   int at = ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j;
@@ -95,5 +111,400 @@ vec3 wind(int row, vec3 x) {
   int n = int(constant.w);
   for (int j = 0; j < n; j++) u += primitiveWind(row, j, x);
   return u;
+}
+`;
+
+/**
+ * `void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small)`: the wind
+ * at `x` in its large-scale and small-scale parts, with the carried offsets `oa`, `ob` of the
+ * two phases (used with CARRIED); and `vec3 pushOut(int row, vec3 x)` (with SOLIDS): x put back
+ * just outside a solid it lies in. The core's `WindFrame::parts` and `Solids::push_out`, line by
+ * line. With SOLIDS, `potentialLattice` holds the field's vector potential as `lattice` its
+ * velocity.
+ */
+export const WIND_PARTS_GLSL = /* glsl */ `
+uniform highp sampler2D potentialLattice;
+
+vec3 blendedSample(highp sampler2D tex, int row, vec3 x, vec3 scale, vec3 oa, vec3 ob) {
+#ifdef CARRIED
+  vec4 w = tableTexel(row, 7);
+  vec3 shift = 0.5 * vec3(latticeSize.xyz) / tableTexel(row, 2).xyz;
+  vec3 u = vec3(0.0);
+  if (w.x != 0.0) u += latticeSample(tex, row, x + oa, scale) * w.x;
+  if (w.y != 0.0) u += latticeSample(tex, row, x + ob + shift, scale) * w.y;
+  return u;
+#else
+  return latticeSample(tex, row, x, scale);
+#endif
+}
+
+vec3 smallAt(int row, vec3 x, vec3 oa, vec3 ob) {
+  if (tableTexel(row, 0).x < 0.5) return vec3(0.0);
+  return blendedSample(lattice, row, x, tableTexel(row, 3).xyz, oa, ob);
+}
+
+#ifdef SOLIDS
+int solidAt(int row, int j) {
+  return ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * int(tableTexel(row, 4).w) + ${SOLID_TEXELS} * j;
+}
+
+float rampOf(float s) {
+  s = clamp(s, -1.0, 1.0);
+  float s2 = s * s;
+  return s * (15.0 + s2 * (-10.0 + 3.0 * s2)) * 0.125;
+}
+
+vec2 taperOf(float s) {
+  if (s <= 0.0) return vec2(1.0, 0.0);
+  if (s >= 1.0) return vec2(0.0);
+  float s2 = s * s;
+  return vec2(1.0 - s2 * s * (10.0 + s * (-15.0 + 6.0 * s)), -30.0 * s2 * (1.0 - s) * (1.0 - s));
+}
+
+vec3 perpendicularTo(vec3 a) {
+  vec3 other = abs(a.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+  return normalize(cross(a, other));
+}
+
+/** Solid j's signed distance (xyz: its outward normal there; w: the distance), its rims rounded by \`edge\` (m). */
+vec4 solidDistance(int row, int j, vec3 x, float edge) {
+  int at = solidAt(row, j);
+  float kind = tableTexel(row, at).x;
+  vec4 a = tableTexel(row, at + 1);
+  vec4 b = tableTexel(row, at + 2);
+  if (kind == ${f(SPHERE_SOLID_KIND)}) {
+    vec3 r = x - a.xyz;
+    float len = length(r);
+    return vec4(len > 1e-12 ? r / len : vec3(0.0, 1.0, 0.0), len - a.w);
+  }
+  if (kind == ${f(PLANE_SOLID_KIND)}) return vec4(b.xyz, dot(x - a.xyz, b.xyz));
+  vec3 r = x - a.xyz;
+  float s = dot(r, b.xyz);
+  vec3 radial = r - b.xyz * s;
+  float rho = length(radial);
+  vec3 outward = rho > 1e-12 ? radial / rho : perpendicularTo(b.xyz);
+  float height = b.w;
+  float radius = a.w;
+  if (edge <= 0.0) {
+    float dr = rho - radius;
+    vec3 cap = s > 0.5 * height ? b.xyz : -b.xyz;
+    float ds = s > 0.5 * height ? s - height : -s;
+    if (dr > 0.0 && ds > 0.0) {
+      float d = sqrt(dr * dr + ds * ds);
+      return vec4((outward * dr + cap * ds) / d, d);
+    }
+    if (dr > 0.0) return vec4(outward, dr);
+    if (ds > 0.0) return vec4(cap, ds);
+    return dr > ds ? vec4(outward, dr) : vec4(cap, ds);
+  }
+  float half_ = 0.5 * height;
+  vec3 cap = s > half_ ? b.xyz : -b.xyz;
+  float e = min(min(edge, radius), half_);
+  float qx = rho - (radius - e);
+  float qy = abs(s - half_) - (half_ - e);
+  if (qx > 0.0 && qy > 0.0) {
+    float q = sqrt(qx * qx + qy * qy);
+    return vec4((outward * qx + cap * qy) / q, q - e);
+  }
+  return qx > qy ? vec4(outward, qx - e) : vec4(cap, qy - e);
+}
+
+float solidEdge(int row, int j) {
+  vec4 s0 = tableTexel(row, solidAt(row, j));
+  return s0.x == ${f(CYLINDER_SOLID_KIND)} ? ${f(EDGE_STEPS)} * s0.y : 0.0;
+}
+
+/** A solid's doublet at x: its vector potential (out psi) and wind (out u). */
+void doubletAt(int row, int j, vec3 x, out vec3 psi, out vec3 u) {
+  int at = solidAt(row, j);
+  vec4 s0 = tableTexel(row, at);
+  vec4 a = tableTexel(row, at + 1);
+  vec4 b = tableTexel(row, at + 2);
+  vec3 d = tableTexel(row, at + 3).xyz;
+  psi = vec3(0.0);
+  u = vec3(0.0);
+  if (s0.z == 1.0) {
+    float radius = a.w;
+    vec3 r = x - a.xyz;
+    float rho = length(r);
+    float span = ${f(SPHERE_ZONE_OUTER - SPHERE_ZONE_INNER)} * radius;
+    vec2 w = taperOf((rho - ${f(SPHERE_ZONE_INNER)} * radius) / span);
+    if (w.x == 0.0) return;
+    vec3 p;
+    vec3 v;
+    if (rho >= radius) {
+      vec3 n = r / rho;
+      float q = radius / rho;
+      float q3 = 0.5 * q * q * q;
+      p = cross(d, r) * (-q3);
+      v = (n * (3.0 * dot(d, n)) - d) * (-q3);
+    } else {
+      p = cross(d, r) * -0.5;
+      v = -d;
+    }
+    if (w.y == 0.0) {
+      psi = p * w.x;
+      u = v * w.x;
+      return;
+    }
+    vec3 grad = r * (w.y / (span * rho));
+    psi = p * w.x;
+    u = v * w.x + cross(grad, p);
+  } else if (s0.z == 2.0) {
+    vec3 axis = b.xyz;
+    float radius = a.w;
+    float height = b.w;
+    vec3 r = x - a.xyz;
+    float s = dot(r, axis);
+    float beyond = s > height ? s - height : -s;
+    float wAxial = taperOf(beyond / radius).x;
+    if (wAxial == 0.0) return;
+    vec3 rv = r - axis * s;
+    float rho = length(rv);
+    float span = ${f(CYLINDER_ZONE_OUTER - CYLINDER_ZONE_INNER)} * radius;
+    vec2 wr = taperOf((rho - ${f(CYLINDER_ZONE_INNER)} * radius) / span);
+    if (wr.x == 0.0) return;
+    float r2 = radius * radius;
+    float md = dot(d, rv);
+    float stream;
+    vec3 grad;
+    if (rho >= radius) {
+      float inv2 = 1.0 / (rho * rho);
+      stream = -r2 * md * inv2;
+      grad = (d - rv * (2.0 * md * inv2)) * (-r2 * inv2);
+    } else {
+      float q = rho * rho / r2;
+      float p = 1.0 + q * (3.0 + q * (-5.0 + 2.0 * q));
+      float dp = 3.0 + q * (-10.0 + 6.0 * q);
+      stream = -md * p;
+      grad = -(d * p + rv * (md * dp * 2.0 / r2));
+    }
+    vec3 g = grad * wr.x;
+    if (wr.y != 0.0) g += rv * (stream * wr.y / (span * rho));
+    psi = axis * (stream * wr.x * wAxial);
+    u = cross(g, axis) * wAxial;
+  }
+}
+
+vec3 projected(vec3 u, vec3 n, float alpha, bool keepOutflow) {
+  float un = dot(u, n);
+  if (keepOutflow) un = min(un, 0.0);
+  return u - n * ((1.0 - alpha) * un);
+}
+
+int imageOf(int row, int j) { return int(tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j + 1).w); }
+
+bool hasImageIn(int row, int j, int plane) {
+  int at = ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j;
+  int first = int(tableTexel(row, at + 2).w);
+  int count = int(tableTexel(row, at + 3).w);
+  for (int k = 0; k < count; k++) {
+    if (imageOf(row, first + k) == plane) return true;
+  }
+  return false;
+}
+
+/** Whether primitive j is a vortex without decay (turned by the ramped curl of its potential). */
+bool hasPotential(int row, int j) {
+  vec4 head = tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j);
+  return head.x == ${f(VORTEX_KIND)} && head.y == 0.0;
+}
+
+vec3 vortexPotential(int row, int j, vec3 y, vec3 gauge) {
+  int at = ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j;
+  vec4 head = tableTexel(row, at);
+  vec3 p = tableTexel(row, at + 2).xyz;
+  vec3 axis = tableTexel(row, at + 3).xyz;
+  vec3 c = cross(axis, y - p);
+  vec3 c0 = cross(axis, gauge - p);
+  return axis * (-0.5 * head.z * log((dot(c, c) + head.w) / (dot(c0, c0) + head.w)));
+}
+
+/** The point a vortex's potential vanishes at near solid n: a plane's foot of it, else the solid's centre. */
+vec3 gaugeOf(int row, int n, int j) {
+  int at = solidAt(row, n);
+  vec4 s0 = tableTexel(row, at);
+  vec4 a = tableTexel(row, at + 1);
+  vec4 b = tableTexel(row, at + 2);
+  if (s0.x == ${f(PLANE_SOLID_KIND)}) {
+    vec3 q = tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j + 2).xyz;
+    return q - b.xyz * dot(q - a.xyz, b.xyz);
+  }
+  if (s0.x == ${f(CYLINDER_SOLID_KIND)}) return a.xyz + b.xyz * (0.5 * b.w);
+  return a.xyz;
+}
+
+/** Whether primitive j passes exactly near solid n (it and its mirror image in that plane). */
+bool exactNear(int row, int n, int j) {
+  if (tableTexel(row, solidAt(row, n)).x != ${f(PLANE_SOLID_KIND)}) return false;
+  int image = imageOf(row, j);
+  return image == n || (image < 0 && hasImageIn(row, j, n));
+}
+
+/** The large-scale potential turned by the ramped curl near solid n, at y. */
+vec3 rampedPotential(int row, int n, vec3 y) {
+  vec3 psi = vec3(0.0);
+  int solids = int(tableTexel(row, 5).x);
+  for (int j = 0; j < solids; j++) {
+    if (j == n || tableTexel(row, solidAt(row, j)).z == 0.0) continue;
+    vec3 p;
+    vec3 u;
+    doubletAt(row, j, y, p, u);
+    psi += p;
+  }
+  int count = int(tableTexel(row, 4).w);
+  for (int j = 0; j < count; j++) {
+    if (!exactNear(row, n, j) && hasPotential(row, j)) psi += vortexPotential(row, j, y, gaugeOf(row, n, j));
+  }
+  return psi;
+}
+
+vec3 rampedCurl(vec3 a[6], vec3 points[6]) {
+  vec3 span = vec3(points[0].x - points[1].x, points[2].y - points[3].y, points[4].z - points[5].z);
+  vec3 inv = 1.0 / span;
+  vec3 dx = (a[0] - a[1]) * inv.x;
+  vec3 dy = (a[2] - a[3]) * inv.y;
+  vec3 dz = (a[4] - a[5]) * inv.z;
+  return vec3(dy.z - dz.y, dz.x - dx.z, dx.y - dy.x);
+}
+
+void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
+  int at = solidAt(row, n);
+  vec4 s0 = tableTexel(row, at);
+  vec4 sb = tableTexel(row, at + 2);
+  float width = tableTexel(row, 5).y;
+  vec3 nrm = near_.xyz;
+  float alpha = rampOf(near_.w / width);
+  bool plane = s0.x == ${f(PLANE_SOLID_KIND)};
+  vec3 u0 = tableTexel(row, 4).xyz;
+  if (s0.x == ${f(SPHERE_SOLID_KIND)}) {
+    large = u0;
+  } else if (s0.x == ${f(CYLINDER_SOLID_KIND)}) {
+    vec3 along = sb.xyz * dot(u0, sb.xyz);
+    large = (u0 - along) + projected(along, nrm, alpha, false);
+  } else {
+    large = projected(u0, nrm, alpha, true);
+  }
+  if (s0.z > 0.0) {
+    vec3 p;
+    vec3 u;
+    doubletAt(row, n, x, p, u);
+    large += u;
+  }
+  int solids = int(tableTexel(row, 5).x);
+  bool others = false;
+  for (int j = 0; j < solids; j++) others = others || (j != n && tableTexel(row, solidAt(row, j)).z > 0.0);
+  bool vortices = false;
+  int count = int(tableTexel(row, 4).w);
+  for (int j = 0; j < count; j++) {
+    if (exactNear(row, n, j)) large += primitiveWind(row, j, x);
+    else if (hasPotential(row, j)) vortices = true;
+    else large += projected(primitiveWind(row, j, x), nrm, alpha, plane);
+  }
+  bool hasField = tableTexel(row, 0).x > 0.5;
+  bool hasPsi = tableTexel(row, 5).z > 0.5;
+  if (!(others || vortices || hasPsi)) {
+    small = hasField ? projected(smallAt(row, x, oa, ob), nrm, alpha, false) : vec3(0.0);
+    return;
+  }
+  float h = s0.y;
+  vec3 c = near_.w < -h ? x + nrm * (-h - near_.w) : x;
+  float edge = solidEdge(row, n);
+  vec3 points[6];
+  float alphas[6];
+  vec3 normals[6];
+  for (int k = 0; k < 6; k++) {
+    vec3 e = vec3(k / 2 == 0 ? 1.0 : 0.0, k / 2 == 1 ? 1.0 : 0.0, k / 2 == 2 ? 1.0 : 0.0);
+    points[k] = c + e * ((k % 2 == 0 ? 1.0 : -1.0) * h);
+    vec4 dn = solidDistance(row, n, points[k], edge);
+    alphas[k] = rampOf(dn.w / width);
+    normals[k] = dn.xyz;
+  }
+  vec3 a[6];
+  if (others || vortices) {
+    for (int k = 0; k < 6; k++) {
+      vec3 psi = rampedPotential(row, n, points[k]);
+      a[k] = psi * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi));
+    }
+    large += rampedCurl(a, points);
+  }
+  if (hasPsi) {
+    vec3 scale = tableTexel(row, 6).xyz;
+    for (int k = 0; k < 6; k++) {
+      vec3 psi = blendedSample(potentialLattice, row, points[k], scale, oa, ob);
+      a[k] = psi * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi));
+    }
+    small = rampedCurl(a, points);
+  } else {
+    small = hasField ? projected(smallAt(row, x, oa, ob), nrm, alpha, false) : vec3(0.0);
+  }
+}
+
+/** The order the core visits solids in: the finite ones, then the planes. */
+int solidInOrder(int row, int k, int solids) {
+  int seen = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int j = 0; j < solids; j++) {
+      bool isPlane = tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)};
+      if (isPlane == (pass == 1)) {
+        if (seen == k) return j;
+        seen++;
+      }
+    }
+  }
+  return 0;
+}
+
+vec3 pushOut(int row, vec3 x) {
+  int solids = int(tableTexel(row, 5).x);
+  float gap = 1e-4 * tableTexel(row, 5).y;
+  for (int round_ = 0; round_ < 4; round_++) {
+    int inside = -1;
+    vec4 dn;
+    for (int k = 0; k < solids && inside < 0; k++) {
+      int j = solidInOrder(row, k, solids);
+      dn = solidDistance(row, j, x, 0.0);
+      if (dn.w < 0.0) inside = j;
+    }
+    if (inside < 0) return x;
+    vec3 ax = abs(x);
+    float g = gap + 4.0 * 1.1920929e-7 * max(ax.x, max(ax.y, ax.z));
+    x += dn.xyz * (g - dn.w);
+  }
+  return x;
+}
+#endif
+
+void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
+#ifdef SOLIDS
+  int solids = int(tableTexel(row, 5).x);
+  float width = tableTexel(row, 5).y;
+  int nearest = -1;
+  vec4 best = vec4(0.0);
+  for (int k = 0; k < solids; k++) {
+    int j = solidInOrder(row, k, solids);
+    vec4 dn = solidDistance(row, j, x, solidEdge(row, j));
+    if (dn.w < width && (nearest < 0 || dn.w < best.w)) {
+      nearest = j;
+      best = dn;
+    }
+  }
+  if (nearest >= 0) {
+    nearSolid(row, nearest, best, x, oa, ob, large, small);
+    return;
+  }
+  large = tableTexel(row, 4).xyz;
+  for (int j = 0; j < solids; j++) {
+    vec3 p;
+    vec3 u;
+    doubletAt(row, j, x, p, u);
+    large += u;
+  }
+#else
+  large = tableTexel(row, 4).xyz;
+#endif
+  int count = int(tableTexel(row, 4).w);
+  for (int j = 0; j < count; j++) large += primitiveWind(row, j, x);
+  small = smallAt(row, x, oa, ob);
 }
 `;

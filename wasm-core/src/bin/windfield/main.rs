@@ -4,6 +4,7 @@
 //! windfield generate --size 32 --epsilon 1 --k-inertial 4 --sigma 1 --seed 1 --out field.npy
 //! windfield stats field.npy --json
 //! windfield render scene.json --frames 0..240 --fps 24 --out frames/f%04d.png --shard 0/4
+//! windfield wind scene.json --seconds 2 --box -1,0,-1,1,2,1 --n 32,64,32 --out wind.npy
 //! windfield schema > ../public/scene.schema.json
 //! windfield contract > ../web/src/generated/contract.js
 //! ```
@@ -21,6 +22,7 @@ mod claim;
 mod messages;
 mod output;
 mod sequence;
+mod wind;
 
 use clap::{Args, Parser, Subcommand};
 use serde::de::IgnoredAny;
@@ -63,6 +65,8 @@ enum Command {
     Simulate(SimulateArgs),
     /// Render a still with the CPU reference renderer: a blob list, or a scene simulated first.
     Render(RenderArgs),
+    /// Sample the scene's whole wind (m/s) at one time, at points or over a box of cells.
+    Wind(wind::WindArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
     /// Print the JavaScript module of the constants the core shares with the page's code
@@ -645,6 +649,7 @@ fn main() -> ExitCode {
         Command::Stats(a) => stats_cmd(a),
         Command::Simulate(a) => simulate(a),
         Command::Render(a) => render_cmd(a),
+        Command::Wind(a) => wind::run(a),
         Command::Schema => {
             print!("{}", windfield::gas::scene::json_schema());
             Ok(())
