@@ -4,8 +4,8 @@
 // and the browser's real-time view and points view (the built site in chromium; SwiftShader
 // draws them on the CPU, as a GPU would), and the scene picker's thumbnail. The few-wide-blob stills come from the scenes'
 // earlier versions and are not regenerated. Needs `npm run build` and `cargo build --release`
-// first; `--views-only` redraws the browser's views and keeps the stills; `--only NAME,NAME`
-// draws those presets alone.
+// first; `--views-only` redraws the browser's views and keeps the stills; `--only a,b` redraws
+// the rows of those presets alone.
 import { execFileSync } from 'node:child_process';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { root, withSite } from './site.mjs';
@@ -13,7 +13,8 @@ import { root, withSite } from './site.mjs';
 /** The presets of the playground's catalog, each at its still's time (`render.time`); `--only A,B` some of them. */
 const catalog = JSON.parse(readFileSync(`${root}public/scenes/index.json`, 'utf8')).presets;
 const only = process.argv.includes('--only') ? process.argv[process.argv.indexOf('--only') + 1].split(',') : null;
-const PRESETS = catalog.filter(({ name }) => !only || only.includes(name))
+const PRESETS = catalog
+  .filter(({ name }) => !only || only.includes(name))
   .map(({ name }) => [name, JSON.parse(readFileSync(`${root}public/scenes/${name}.json`, 'utf8')).render.time]);
 const SIZE = { width: 480, height: 360 };
 /** The scene picker's thumbnails (public/scenes/thumbs/NAME.png). */

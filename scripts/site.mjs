@@ -5,7 +5,8 @@ import { spawn } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 
 export const root = fileURLToPath(new URL('..', import.meta.url));
-const PORT = 4179;
+/** The preview server's port: WINDFIELD_SITE_PORT, 4179 unless set. */
+const PORT = Number(process.env.WINDFIELD_SITE_PORT || 4179);
 
 /**
  * Serves dist/, opens a page on it (`path`, e.g. `?view=points`) once the server answers, runs

@@ -3,13 +3,131 @@
 
 use glam::DVec3;
 use serde_json::json;
-use windfield::gas::blob_list::{BlobList, Encoding};
+use windfield::gas::blob_list::{BlobList, Encoding, Object};
 use windfield::render::{psnr, RenderOptions, Renderer, TRUNCATION};
 use windfield::{Scene, Simulation};
 
 /// the rendering model (docs/FORMATS.md) by direct quadrature in f64: every blob untruncated, midpoint steps along the
-/// primary ray, shadow transmittance by its own midpoint march towards each light.
+/// primary ray, shadow transmittance by its own midpoint march towards each light, zero where
+/// [`twin_blocked`] finds an object on the way.
 fn twin(list: &BlobList) -> Vec<f64> {
+    twin_with(list, true)
+}
+
+/// Where the twin's cylinder tests sample a segment inside the cylinder's bounding sphere.
+const CYLINDER_SAMPLES: usize = 2000;
+
+/// A closed cylinder in f64: base, unit axis, radius, height.
+struct TwinCylinder {
+    base: DVec3,
+    axis: DVec3,
+    radius: f64,
+    height: f64,
+}
+
+impl TwinCylinder {
+    fn of(base: [f32; 3], axis: [f32; 3], radius: f32, height: f32) -> Self {
+        Self {
+            base: DVec3::from_array(base.map(f64::from)),
+            axis: DVec3::from_array(axis.map(f64::from)).normalize(),
+            radius: radius as f64,
+            height: height as f64,
+        }
+    }
+
+    fn inside(&self, p: DVec3) -> bool {
+        let along = (p - self.base).dot(self.axis);
+        let radial = (p - self.base - self.axis * along).length();
+        (0.0..=self.height).contains(&along) && radial <= self.radius
+    }
+
+    /// The part (t0, t1) of the line x + t·d inside the bounding sphere, if any.
+    fn bounding_span(&self, x: DVec3, d: DVec3) -> Option<(f64, f64)> {
+        let m = self.base + self.axis * (0.5 * self.height);
+        let r2 = self.radius * self.radius + 0.25 * self.height * self.height;
+        let tc = (m - x).dot(d);
+        let miss2 = (x + d * tc - m).length_squared();
+        (miss2 < r2).then(|| {
+            let w = (r2 - miss2).sqrt();
+            (tc - w, tc + w)
+        })
+    }
+
+    /// The first point of x + t·d, 0 < t < t_max, inside the cylinder: sampled, then bisected.
+    fn first_inside(&self, x: DVec3, d: DVec3, t_max: f64) -> Option<f64> {
+        let (a, b) = self.bounding_span(x, d)?;
+        let (a, b) = (a.max(0.0), b.min(t_max));
+        if b <= a {
+            return None;
+        }
+        let dt = (b - a) / CYLINDER_SAMPLES as f64;
+        let k = (1..=CYLINDER_SAMPLES).find(|&k| self.inside(x + d * (a + dt * k as f64)))?;
+        let (mut out, mut inn) = (a + dt * (k - 1) as f64, a + dt * k as f64);
+        for _ in 0..60 {
+            let mid = 0.5 * (out + inn);
+            if self.inside(x + d * mid) {
+                inn = mid;
+            } else {
+                out = mid;
+            }
+        }
+        Some(inn)
+    }
+
+    /// The outward normal at a surface point: of the nearest of the side and the two caps.
+    fn normal(&self, p: DVec3) -> DVec3 {
+        let along = (p - self.base).dot(self.axis);
+        let radial = p - self.base - self.axis * along;
+        let side = (radial.length() - self.radius).abs();
+        if side <= along.abs().min((along - self.height).abs()) {
+            radial.normalize()
+        } else if along.abs() < (along - self.height).abs() {
+            -self.axis
+        } else {
+            self.axis
+        }
+    }
+}
+
+/// Whether an opaque object lies on the segment from `x` along unit `l` over (0, `len`) (`len`
+/// ∞ for a directional light), found by other means than the renderer's: a sphere by the
+/// segment's closest approach to its centre (from outside), a plane by the sides its two ends
+/// lie on, a cylinder by sampling the segment for a point inside it (from outside).
+fn twin_blocked(objects: &[Object], x: DVec3, l: DVec3, len: f64) -> bool {
+    objects.iter().any(|obj| match obj {
+        Object::Sphere { center, radius, .. } => {
+            let c = DVec3::from_array(center.map(f64::from));
+            let r = *radius as f64;
+            let t = (c - x).dot(l).clamp(0.0, len);
+            (x - c).length() > r && (x + l * t - c).length() < r
+        }
+        Object::Plane { point, normal, .. } => {
+            let n = DVec3::from_array(normal.map(f64::from));
+            let p = DVec3::from_array(point.map(f64::from));
+            let start = n.dot(x - p);
+            let end = if len.is_finite() {
+                n.dot(x + l * len - p)
+            } else {
+                n.dot(l)
+            };
+            start * end < 0.0
+        }
+        Object::Cylinder {
+            base,
+            axis,
+            radius,
+            height,
+            ..
+        } => {
+            let cyl = TwinCylinder::of(*base, *axis, *radius, *height);
+            !cyl.inside(x) && cyl.first_inside(x, l, len).is_some()
+        }
+    })
+}
+
+/// [`twin`], with the objects' shadows (`object_shadows`) or without them (to show that a scene's
+/// object shadows matter).
+fn twin_with(list: &BlobList, object_shadows: bool) -> Vec<f64> {
     let (w, h) = (list.image.width, list.image.height);
     let cam = &list.camera;
     let o = DVec3::from_array(cam.position.map(f64::from));
@@ -50,6 +168,9 @@ fn twin(list: &BlobList) -> Vec<f64> {
     let shadow = |x: DVec3, l: DVec3, len: f64| -> DVec3 {
         if !list.shadows {
             return DVec3::ONE;
+        }
+        if object_shadows && twin_blocked(&list.objects, x, l, len) {
+            return DVec3::ZERO;
         }
         let end = len.min(far(x));
         let n = 300;
@@ -93,11 +214,11 @@ fn twin(list: &BlobList) -> Vec<f64> {
             let x = ((i as f64 + 0.5) / w as f64 * 2.0 - 1.0) * th * aspect;
             let y = (1.0 - (j as f64 + 0.5) / h as f64 * 2.0) * th;
             let d = (fwd + right * x + up * y).normalize();
-            // Nearest opaque object (spheres and planes in these scenes).
+            // Nearest opaque object.
             let mut hit: Option<(f64, DVec3, DVec3)> = None;
             for obj in &list.objects {
                 let cand = match obj {
-                    windfield::gas::blob_list::Object::Sphere {
+                    Object::Sphere {
                         center,
                         radius,
                         color,
@@ -116,7 +237,7 @@ fn twin(list: &BlobList) -> Vec<f64> {
                             )
                         })
                     }
-                    windfield::gas::blob_list::Object::Plane {
+                    Object::Plane {
                         point,
                         normal,
                         color,
@@ -126,7 +247,23 @@ fn twin(list: &BlobList) -> Vec<f64> {
                         let s = (DVec3::from_array(point.map(f64::from)) - o).dot(n) / d.dot(n);
                         Some((s, n, DVec3::from_array(color.map(f64::from))))
                     }
-                    _ => unreachable!("twin scenes use spheres and planes"),
+                    Object::Cylinder {
+                        base,
+                        axis,
+                        radius,
+                        height,
+                        color,
+                        ..
+                    } => {
+                        let cyl = TwinCylinder::of(*base, *axis, *radius, *height);
+                        cyl.first_inside(o, d, f64::INFINITY).map(|s| {
+                            (
+                                s,
+                                cyl.normal(o + d * s),
+                                DVec3::from_array(color.map(f64::from)),
+                            )
+                        })
+                    }
                 };
                 if let Some(c) = cand {
                     if c.0 > 1e-4 && hit.is_none_or(|h| c.0 < h.0) {
@@ -162,8 +299,9 @@ fn twin(list: &BlobList) -> Vec<f64> {
             }
             match hit {
                 Some((s, n, color)) => {
-                    let p = o + d * s;
                     let n = if n.dot(d) > 0.0 { -n } else { n };
+                    // Just off the surface, on the side the ray came from.
+                    let p = o + d * s + n * 1e-6;
                     let mut lam = DVec3::ZERO;
                     for l in &lights {
                         let (dir_l, len) = towards(p, l);
@@ -304,6 +442,59 @@ fn opaque_objects_match_the_twin() {
             "lights": [{"type": "point", "position": [1, 2.5, 1.5], "color": [1.3, 1.3, 1.3]}],
             "objects": [{"type": "sphere", "center": [0.7, -0.3, -0.6], "radius": 0.35, "color": [0.8, 0.3, 0.2]},
                         {"type": "plane", "point": [0, -0.7, 0], "normal": [0, 1, 0], "color": [0.6, 0.6, 0.6]}]
+        })),
+    );
+}
+
+/// [`compare`], and the objects' shadows matter in the scene: the twin without them is far from
+/// the twin with them, so a renderer that ignored them would fail the comparison.
+fn compare_shadowed(name: &str, v: serde_json::Value) {
+    let l = list(v.clone());
+    let with = encode(&twin(&l), l.image.encoding);
+    let without = encode(&twin_with(&l, false), l.image.encoding);
+    let p = psnr(&with, &without);
+    eprintln!("{name}: the twin without the objects' shadows is {p:.1} dB from the twin with them");
+    assert!(
+        p < 30.0,
+        "{name}: the objects' shadows hardly show ({p:.1} dB)"
+    );
+    compare(name, v);
+}
+
+#[test]
+fn a_sphere_shadows_the_gas_and_the_floor() {
+    // A sphere between a point light and the gas; the floor beneath catches both shadows.
+    compare_shadowed(
+        "sphere over gas",
+        base(json!({
+            "shadows": true,
+            "medium": {"extinction": 2.5, "albedo": [0.9, 0.9, 0.9], "phase": {"type": "isotropic"}},
+            "lights": [{"type": "point", "position": [1.2, 2.6, 1.4], "color": [1.5, 1.4, 1.3]}],
+            "objects": [{"type": "sphere", "center": [0.45, 1.0, 0.55], "radius": 0.28, "color": [0.8, 0.3, 0.2]},
+                        {"type": "plane", "point": [0, -0.75, 0], "normal": [0, 1, 0], "color": [0.7, 0.7, 0.7]}]
+        })),
+    );
+}
+
+#[test]
+fn objects_shadow_each_other_and_the_gas_under_a_directional_light() {
+    // A sphere hovering over the floor and a cylinder standing on it, the gas beside them, a low
+    // sun: the sphere shadows the floor, the cylinder the floor and the gas behind it.
+    let gas = json!([
+        {"center": [0.45, -0.25, -0.55], "sigma": 0.2, "mass": 0.12},
+        {"center": [0.75, -0.1, -0.4], "sigma": 0.15, "mass": 0.06, "albedo": [0.9, 0.6, 0.3]},
+        {"center": [0.3, 0.1, -0.7], "sigma": 0.25, "mass": 0.1}
+    ]);
+    compare_shadowed(
+        "sphere and cylinder on a floor",
+        base(json!({
+            "shadows": true,
+            "blobs": gas,
+            "camera": {"position": [0, 0.9, 3], "target": [0, -0.2, 0], "up": [0, 1, 0], "fov_y_deg": 45},
+            "lights": [{"type": "directional", "direction": [0.8, -0.7, -0.5], "color": [1.3, 1.25, 1.2]}],
+            "objects": [{"type": "sphere", "center": [-0.6, -0.1, 0.3], "radius": 0.25, "color": [0.3, 0.5, 0.8]},
+                        {"type": "cylinder", "base": [-0.15, -0.6, -0.35], "axis": [0, 1, 0], "radius": 0.15, "height": 0.7, "color": [0.8, 0.4, 0.3]},
+                        {"type": "plane", "point": [0, -0.6, 0], "normal": [0, 1, 0], "color": [0.6, 0.6, 0.55]}]
         })),
     );
 }

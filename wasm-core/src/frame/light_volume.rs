@@ -7,11 +7,19 @@
 //! from the same corner). From each of its voxel centres the column is a midpoint sum along
 //! the direction to the light, over the part of the path inside the density grid's box (no gas
 //! lies outside) and short of a point light, in n = ⌈length / (step·h)⌉ equal steps.
+//!
+//! **Objects.** The columns are the gas's alone and run through opaque objects: S_k's object
+//! factor (zero where an object blocks the light) is the exact ray test
+//! [`crate::render::occluded`], made per sample by the march and per fragment by the objects'
+//! material (`web/src/views/shaders/occluders.js`), not stored here. The objects read these
+//! columns at their own surfaces, where a column made infinite by the object behind the
+//! surface (a floor, under every voxel below it) would darken the lit surface itself.
 
 use crate::error::ParamError;
 use crate::frame::packed::PackedFrame;
 use crate::frame::volume::{splat, DensityVolume, VoxelGrid};
-use crate::gas::blob_list::Light;
+use crate::gas::blob_list::{Light, Object};
+use crate::render::occluded;
 use glam::Vec3;
 
 /// Most lights the GPU views draw: a light volume holds one per channel. (A scene may have more,
@@ -108,6 +116,26 @@ pub fn light_columns(
         }
     }
     (grid, out)
+}
+
+/// S_k at `x` inside the gas as the real-time march takes it (Eq. 25, `march-glsl.js`): zero
+/// where an object of `objects` lies between `x` and the light ([`occluded`]), else
+/// exp(−κ_t × the column of channel `k` of the light volume `columns` on `light_grid`,
+/// interpolated trilinearly at `x`).
+pub fn transmittance(
+    light_grid: &VoxelGrid,
+    columns: &[f32],
+    k: usize,
+    light: Towards,
+    objects: &[Object],
+    kappa: Vec3,
+    x: Vec3,
+) -> Vec3 {
+    let (d, to_light) = light.from(x);
+    if occluded(objects, x, d, to_light) {
+        return Vec3::ZERO;
+    }
+    (-kappa * light_grid.sample(columns, VIEW_LIGHTS, k, x)).exp()
 }
 
 /// The light volume of `frame` on `grid`: [`light_columns`] towards the first [`VIEW_LIGHTS`]

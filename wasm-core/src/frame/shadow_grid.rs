@@ -1,7 +1,9 @@
 //! The exact GPU march's shadow grid: the optical column ∫ρ ds from a point towards each light
 //! (S_k of paper Eq. 25 is exp(−κ_t ∫ρ ds)), computed by the reference renderer's exact line
 //! integrals on a grid over the gas, for the march to interpolate trilinearly per step instead
-//! of marching a shadow ray.
+//! of marching a shadow ray. The columns are the gas's alone; where an opaque object blocks a
+//! light the march finds it by the exact ray test of [`crate::render::occluded`] (in GLSL), as
+//! the reference renderer does, and the objects' material reads these columns at surfaces.
 
 use crate::error::ParamError;
 use crate::gas::blob_list::BlobList;

@@ -145,6 +145,75 @@ fn intersect(o: &Object, origin: Vec3, dir: Vec3) -> Option<Hit> {
     }
 }
 
+/// Whether the segment from `origin` along unit `dir` over (0, `s_max`) meets an opaque object
+/// (`s_max` is the distance to a point light, or ∞): the object factor of S_k in Eq. 25, the
+/// shadow of an object on the gas and on other objects. A ray counts as blocked where it enters
+/// a sphere or a closed cylinder, or crosses a plane (planes are two-sided), beyond a small
+/// epsilon; a ray that starts inside a sphere or cylinder is not blocked by it (only gas hidden
+/// in a solid starts there, and a convex object's own lit surface never shadows itself, so
+/// self-shadowing is n·l alone). An any-hit test: it stops at the first object met.
+pub fn occluded(objects: &[Object], origin: Vec3, dir: Vec3, s_max: f32) -> bool {
+    objects.iter().any(|o| enters(o, origin, dir, s_max))
+}
+
+/// Whether the segment (see [`occluded`]) enters `o`.
+fn enters(o: &Object, origin: Vec3, dir: Vec3, s_max: f32) -> bool {
+    let ahead = |s: f32| s > EPS && s < s_max;
+    match o {
+        Object::Sphere { center, radius, .. } => {
+            let oc = origin - Vec3::from_array(*center);
+            let q = oc.length_squared() - radius * radius;
+            let b = oc.dot(dir);
+            let disc = b * b - q;
+            // Outside (q > 0), and the near root ahead.
+            q > 0.0 && disc >= 0.0 && ahead(-b - disc.sqrt())
+        }
+        Object::Plane { point, normal, .. } => {
+            let n = Vec3::from_array(*normal).normalize();
+            let denom = dir.dot(n);
+            denom.abs() >= 1e-9 && ahead((Vec3::from_array(*point) - origin).dot(n) / denom)
+        }
+        Object::Cylinder {
+            base,
+            axis,
+            radius,
+            height,
+            ..
+        } => {
+            let a = Vec3::from_array(*axis).normalize();
+            let oc = origin - Vec3::from_array(*base);
+            // The ray's parameters inside the slab 0 ≤ along ≤ h, then inside the infinite
+            // cylinder; it enters where the later of the two entries comes first.
+            let (da, oa) = (dir.dot(a), oc.dot(a));
+            let (mut t0, mut t1) = if da.abs() > 1e-9 {
+                let (ta, tb) = (-oa / da, (height - oa) / da);
+                (ta.min(tb), ta.max(tb))
+            } else if (0.0..=*height).contains(&oa) {
+                (f32::NEG_INFINITY, f32::INFINITY)
+            } else {
+                return false;
+            };
+            let dp = dir - a * da;
+            let op = oc - a * oa;
+            let qa = dp.length_squared();
+            let qb = dp.dot(op);
+            let qc = op.length_squared() - radius * radius;
+            if qa > 1e-12 {
+                let disc = qb * qb - qa * qc;
+                if disc < 0.0 {
+                    return false;
+                }
+                let root = disc.sqrt();
+                t0 = t0.max((-qb - root) / qa);
+                t1 = t1.min((-qb + root) / qa);
+            } else if qc > 0.0 {
+                return false;
+            }
+            t0 < t1 && ahead(t0)
+        }
+    }
+}
+
 /// A closed cylinder (side and both caps).
 fn cylinder(base: Vec3, a: Vec3, r: f32, h: f32, origin: Vec3, dir: Vec3) -> Option<(f32, Vec3)> {
     let mut best: Option<(f32, Vec3)> = None;
@@ -238,5 +307,58 @@ mod tests {
         assert!((h.s - 4.5).abs() < 1e-5 && (h.normal - Vec3::Z).length() < 1e-5);
         let top = nearest_hit(&[cyl], Vec3::new(0.1, 3.0, 0.0), Vec3::NEG_Y).unwrap();
         assert!((top.s - 2.0).abs() < 1e-5 && (top.normal - Vec3::Y).length() < 1e-5);
+    }
+
+    #[test]
+    fn shadow_rays_are_blocked_where_they_enter_an_object_before_the_light() {
+        let inf = f32::INFINITY;
+        let sphere = [Object::Sphere {
+            center: [0.0, 1.0, 0.0],
+            radius: 0.5,
+            color: [1.0; 3],
+        }];
+        let below = Vec3::new(0.0, -1.0, 0.0);
+        assert!(occluded(&sphere, below, Vec3::Y, inf));
+        // A point light short of the sphere, a ray that passes beside it or leaves it.
+        assert!(!occluded(&sphere, below, Vec3::Y, 1.4));
+        assert!(occluded(&sphere, below, Vec3::Y, 1.6));
+        assert!(!occluded(&sphere, Vec3::new(0.6, -1.0, 0.0), Vec3::Y, inf));
+        assert!(!occluded(&sphere, below, Vec3::NEG_Y, inf));
+        // From inside (gas hidden in the solid) or from its own lit surface: not blocked.
+        assert!(!occluded(&sphere, Vec3::new(0.0, 1.2, 0.0), Vec3::Y, inf));
+        let top = Vec3::new(0.0, 1.5001, 0.0);
+        assert!(!occluded(&sphere, top, Vec3::Y, inf));
+        // A two-sided plane blocks every crossing, from either side, short of the light.
+        let plane = [Object::Plane {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            color: [1.0; 3],
+        }];
+        let up = Vec3::new(0.3, 0.8, 0.0).normalize();
+        assert!(occluded(&plane, Vec3::new(0.0, -0.5, 0.0), up, inf));
+        assert!(occluded(&plane, Vec3::new(0.0, 0.5, 0.0), -up, inf));
+        assert!(!occluded(&plane, Vec3::new(0.0, 0.5, 0.0), up, inf));
+        assert!(!occluded(&plane, Vec3::new(0.0, -0.5, 0.0), up, 0.5));
+        assert!(!occluded(&plane, Vec3::new(0.0, 0.5, 0.0), Vec3::X, inf));
+        // A closed cylinder: through its side, through a cap, along its axis, from inside.
+        let cyl = [Object::Cylinder {
+            base: [0.0, 0.0, 0.0],
+            axis: [0.0, 1.0, 0.0],
+            radius: 0.5,
+            height: 1.0,
+            color: [1.0; 3],
+            model: None,
+        }];
+        assert!(occluded(&cyl, Vec3::new(-2.0, 0.5, 0.0), Vec3::X, inf));
+        assert!(!occluded(&cyl, Vec3::new(-2.0, 1.1, 0.0), Vec3::X, inf));
+        assert!(!occluded(&cyl, Vec3::new(-2.0, 0.5, 0.0), Vec3::X, 1.4));
+        assert!(occluded(&cyl, Vec3::new(0.2, 2.0, 0.0), Vec3::NEG_Y, inf));
+        assert!(!occluded(&cyl, Vec3::new(0.6, 2.0, 0.0), Vec3::NEG_Y, inf));
+        let slant = Vec3::new(1.0, 1.0, 0.0).normalize();
+        assert!(occluded(&cyl, Vec3::new(-0.3, -0.6, 0.0), slant, inf));
+        assert!(!occluded(&cyl, Vec3::new(-2.4, -0.6, 0.0), slant, inf));
+        assert!(occluded(&cyl, Vec3::new(-1.4, -0.6, 0.0), slant, inf));
+        assert!(!occluded(&cyl, Vec3::new(0.0, 0.5, 0.0), Vec3::X, inf));
+        assert!(!occluded(&cyl, Vec3::new(0.0, 0.5, 0.0), Vec3::Y, inf));
     }
 }

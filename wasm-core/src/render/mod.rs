@@ -8,8 +8,9 @@
 //! sum of the blobs' Gaussian line integrals (Eq. 28, via erf), the source C is the
 //! density-weighted mean of Ω L + (1 − Ω) Q over the step (Eq. 24), and compositing is front to
 //! back (Eq. 27). L sums the lights with the phase function and the shadow transmittance S_k
-//! (Eq. 25), itself an exact sum of line integrals through the same hierarchy. Opaque objects end
-//! the ray with Lambert shading shadowed by the gas; other rays end in the background.
+//! (Eq. 25), itself an exact sum of line integrals through the same hierarchy, and zero where an
+//! opaque object lies between the point and the light. Opaque objects end the ray with Lambert
+//! shading shadowed by the gas and by the other objects; other rays end in the background.
 //!
 //! Its input is the blob list of [`crate::gas::blob_list`]; it knows nothing of scenes, of the
 //! gas's state or of the browser. The browser's GPU views have their own frame format
@@ -17,7 +18,7 @@
 //!
 //! - `gaussian`: one blob's density, its chord along a ray and the exact line integral (erf).
 //! - `bvh`: the bounding-volume hierarchy over the truncated blobs.
-//! - `geometry`: camera rays and the opaque objects.
+//! - `geometry`: camera rays, the opaque objects and the shadow rays' any-hit test.
 //! - [`image`]: linear images, sRGB encoding, PNG, PSNR.
 //! - `renderer`: the [`Renderer`] itself, a ray's march and its light.
 //! - [`banded`]: a still rendered a band of rows at a time (for progress reports).
@@ -32,6 +33,6 @@ mod renderer;
 pub use banded::BandedRender;
 pub use bvh::Bvh;
 pub use gaussian::{erf, Chord, RenderBlob, TRUNCATION};
-pub use geometry::CameraRays;
+pub use geometry::{occluded, CameraRays};
 pub use image::{decode_png, encode_png, psnr, LinearImage};
 pub use renderer::{phase, RenderOptions, Renderer, STEP_FRACTION};

@@ -5,7 +5,7 @@
 
 use super::bvh::Bvh;
 use super::gaussian::{Chord, RenderBlob};
-use super::geometry::{nearest_hit, CameraRays};
+use super::geometry::{nearest_hit, occluded, CameraRays};
 use super::image::LinearImage;
 use crate::error::ParamError;
 use crate::gas::blob_list::{BlobList, Light, Object, Phase};
@@ -206,16 +206,29 @@ impl Renderer {
         sum
     }
 
-    /// The column ∫ρ ds from `x` towards light `k` (to the light, or to infinity).
+    /// The column ∫ρ ds from `x` towards light `k` (to the light, or to infinity): the gas's
+    /// share of S_k; objects on the way are [`Self::light_blocked`]'s.
     pub fn column_to_light(&self, x: Vec3, k: usize) -> f32 {
-        let (to_light, s_max) = match self.lights[k] {
+        let (to_light, s_max) = self.towards(x, k);
+        self.column(x, to_light, s_max)
+    }
+
+    /// The unit vector from `x` towards light `k` and the distance to it (∞ if directional).
+    fn towards(&self, x: Vec3, k: usize) -> (Vec3, f32) {
+        match self.lights[k] {
             PreparedLight::Point { position, .. } => {
                 let d = position - x;
                 (d.normalize_or_zero(), d.length())
             }
             PreparedLight::Directional { to_light, .. } => (to_light, f32::INFINITY),
-        };
-        self.column(x, to_light, s_max)
+        }
+    }
+
+    /// Whether an opaque object lies between `x` and light `k` (then S_k = 0 whatever the
+    /// gas; [`occluded`]).
+    pub fn light_blocked(&self, x: Vec3, k: usize) -> bool {
+        let (to_light, s_max) = self.towards(x, k);
+        occluded(&self.objects, x, to_light, s_max)
     }
 
     /// Number of lights.
@@ -232,7 +245,8 @@ impl Renderer {
         })
     }
 
-    /// Σ_k p(D·l_k) S_k(x) L_k (Eq. 25); with `lambert`, max(0, n·l_k) replaces the phase.
+    /// Σ_k p(D·l_k) S_k(x) L_k (Eq. 25), S_k zero where an object blocks the light; with
+    /// `lambert`, max(0, n·l_k) replaces the phase.
     fn in_scattered(&self, x: Vec3, dir: Vec3, lambert: Option<Vec3>) -> Vec3 {
         let mut total = Vec3::ZERO;
         for light in &self.lights {
@@ -255,6 +269,10 @@ impl Renderer {
                 continue;
             }
             let s = if self.shadows {
+                // An opaque object on the way: S_k = 0, and no column to integrate.
+                if occluded(&self.objects, x, to_light, s_max) {
+                    continue;
+                }
                 (-self.kappa * self.column(x, to_light, s_max)).exp()
             } else {
                 Vec3::ONE
@@ -336,9 +354,13 @@ impl Renderer {
             let mut w_sum = 0.0f32;
             let mut albedo = Vec3::ZERO;
             let mut emitted = Vec3::ZERO;
+            // Where the step's gas ends: its light is sought within the gas, never past the
+            // object that ends the ray (whose shadow would fall on the point).
+            let mut reach = s;
             active.retain(|&k| {
                 let (c, j) = &chords[k];
                 let end = s1.min(c.s_out);
+                reach = reach.max(end);
                 let e1 = c.erf_at(end);
                 let w = (c.peak * (e1 - erf_at[k])).max(0.0);
                 erf_at[k] = e1;
@@ -357,7 +379,7 @@ impl Renderer {
                 // (full light, peak phase, no shadow) above NEGLIGIBLE.
                 let bound = (*transmittance * absorbed * albedo).max_element() * self.scatter_bound;
                 if bound > NEGLIGIBLE {
-                    let x = origin + dir * (0.5 * (s + s1));
+                    let x = origin + dir * (0.5 * (s + reach));
                     source += albedo * self.in_scattered(x, dir, None);
                 }
                 *radiance += *transmittance * absorbed * source;

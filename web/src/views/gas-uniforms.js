@@ -1,6 +1,6 @@
 // Uniforms every gas-aware shader shares (the exact march, the real-time view, the objects'
-// material): the lights, the medium's extinction and phase function, and where gas shadows come
-// from. One object of {value} holders, owned by the view; each material spreads it into its own
+// material): the lights, the medium's extinction and phase function, where gas shadows come
+// from, and the objects that cast shadows. One object of {value} holders, owned by the view; each material spreads it into its own
 // uniforms, so all of them always see the same frame. Their GLSL is `shaders/lights.js`.
 
 import * as THREE from 'three';
@@ -20,6 +20,9 @@ export function gasUniforms() {
     srgb: { value: true },
     // Where gas shadows come from: 0 none, 1 the exact march's shadow grid, 2 the light volume.
     shadowSource: { value: 0 },
+    // The objects' shadows (`occluders.js`): the packed objects and how many each row holds.
+    occluders: { value: null },
+    occluderCount: { value: new Array(VIEW_LIGHTS + 1).fill(0) },
   };
 }
 

@@ -1,12 +1,15 @@
-// The opaque objects' material: Lambert shading shadowed by the gas, as the rendering model (docs/FORMATS.md) defines it —
-// colour ⊙ Σ_k max(0, n·l_k) S_k L_k, with S_k from whichever gas view is drawn: the exact
-// march's shadow grid or the real-time view's light volume (the shared gas uniforms say which),
-// so objects and gas always see the same frame.
+// The opaque objects' material: Lambert shading shadowed by the gas and by the other objects, as
+// the rendering model (docs/FORMATS.md) defines it — colour ⊙ Σ_k max(0, n·l_k) S_k L_k. S_k is
+// zero where an object lies between the surface and light k (an exact ray test against every
+// object, `shaders/occluders.js`), else the gas's transmittance from whichever gas view is
+// drawn: the exact march's shadow grid or the real-time view's light volume (the shared gas
+// uniforms say which; none in the points view), so objects and gas always see the same frame.
 
 import * as THREE from 'three';
 import { VIEW_LIGHTS } from '../generated/contract.js';
 import { GRID_SHADOW_GLSL } from './shaders/grid-shadow.js';
 import { LIGHTS_GLSL } from './shaders/lights.js';
+import { OCCLUDERS_GLSL } from './shaders/occluders.js';
 import { VOLUME_SHADOW_GLSL } from './shaders/volume-shadow.js';
 
 const vertexShader = /* glsl */ `
@@ -32,6 +35,7 @@ out vec4 fragColor;
 ${LIGHTS_GLSL}
 ${GRID_SHADOW_GLSL}
 ${VOLUME_SHADOW_GLSL}
+${OCCLUDERS_GLSL}
 void main() {
   vec3 n = normalize(vNormal) * (gl_FrontFacing ? 1.0 : -1.0);
   vec3 x = vWorld + n * 1e-4;
@@ -42,6 +46,7 @@ void main() {
     vec3 toLight = towardsLight(l, x, dist);
     float c = max(dot(n, toLight), 0.0);
     if (c == 0.0) continue;
+    if (hasShadows && lightBlocked(0, x, toLight, dist)) continue;
     float column = 0.0;
     if (hasShadows && shadowSource == 1) column = shadowColumn(l, x);
     if (hasShadows && shadowSource == 2) column = volumeColumn(l, x, toLight, dist);

@@ -26,6 +26,7 @@ import { GuidesLayer } from './guides-layer.js';
 import { WindSliceLayer, sliceGeometry } from './wind-slice-layer.js';
 import { modelMesh } from './models.js';
 import { shadowedLambert } from './object-material.js';
+import { Occluders } from './occluders.js';
 import { releaseGeometries } from './context-loss.js';
 
 export class SceneView {
@@ -59,6 +60,11 @@ export class SceneView {
     this.exact = new ExactMarchLayer(this.gas);
     this.volume = new VolumeLayer(this.gas, this.blobs);
     this.points = new PointsLayer(this.gas, this.blobs);
+    /** The objects that cast shadows: the scene's objects and the frame's repulsor spheres. */
+    this.occluders = new Occluders(this.gas);
+    this.sceneObjects = [];
+    this.lights = [];
+    this.frameSpheres = [];
     this.target = null;
     /** The render settings applied last (the object, with or without stand-ins, and its content). */
     this.settings = null;
@@ -113,6 +119,7 @@ export class SceneView {
     this.blobs.contextLost();
     this.windSlice.contextLost();
     this.points.contextLost();
+    this.occluders.contextLost();
     this.target?.dispose();
     this.opaqueKey = null;
     releaseGeometries(this.scene, this.overlay);
@@ -147,6 +154,7 @@ export class SceneView {
     this.exact.contextRestored();
     this.blobs.contextRestored();
     this.windSlice.contextRestored();
+    this.occluders.contextRestored();
     this.onContextRestored?.();
   }
 
@@ -219,6 +227,8 @@ export class SceneView {
       child.material?.dispose();
     }
     for (const o of settings.objects) this.objects.add(objectMesh(o, standIns, this.gas));
+    this.sceneObjects = settings.objects;
+    this.lights = settings.lights;
     setLights(this.gas, settings.lights, settings.medium);
     this.gas.hasShadows.value = Boolean(settings.shadows) && settings.lights.length > 0;
     this.gas.srgb.value = (settings.image?.encoding ?? 'srgb') === 'srgb';
@@ -255,6 +265,11 @@ export class SceneView {
       }
     }
     this.spheres.children.forEach((mesh, i) => mesh.position.fromArray(s, SPHERE_FLOATS * i));
+    this.frameSpheres = Array.from({ length: n }, (_, i) => ({
+      type: 'sphere',
+      center: Array.from(s.subarray(SPHERE_FLOATS * i, SPHERE_FLOATS * i + 3)),
+      radius: s[SPHERE_FLOATS * i + 3],
+    }));
   }
 
   resize(width, height) {
@@ -299,8 +314,10 @@ export class SceneView {
   render(mode, quality) {
     if (this.contextLost) return;
     const gas = this.gas;
+    const casters = [...this.sceneObjects, ...this.frameSpheres];
     if (mode === 'points') {
       gas.shadowSource.value = 0;
+      this.occluders.update(casters, this.lights, null);
       // The objects into the opaque target (their depth hides the sprites behind them; drawn
       // again only when they or the camera moved), then the sprites over them and the background.
       this.camera.updateMatrixWorld();
@@ -311,6 +328,11 @@ export class SceneView {
       gas.shadowSource.value = mode === 'exact' ? 1 : 2;
       // The volumes first: the objects read their shadows from the light volume.
       if (mode === 'raymarch') this.volume.prepare(this.renderer, quality, this.volumeScale);
+      // The real-time view marches inside its grid's box alone: only objects that may shadow
+      // that box are tested per sample. The exact march tests every object.
+      const grid = mode === 'raymarch' ? this.volume.grid : null;
+      const box = grid && { lo: grid.lo, hi: grid.lo.map((v, a) => v + grid.h * grid.dims[a]) };
+      this.occluders.update(casters, this.lights, box);
       this.#opaquePass();
       const hasMeshes = this.objects.children.length + this.spheres.children.length > 0;
       layer.setOpaque(hasMeshes ? this.target : null, this.camera.near, this.camera.far);

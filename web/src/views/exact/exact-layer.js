@@ -3,7 +3,8 @@
 // CPU reference does: steps of STEP_FRACTION of the smallest σ met, the exact Gaussian line integral of
 // every chord over each step (erf), the density-weighted source Ω L + (1 − Ω) Q, front-to-back
 // compositing. Shadows come from a grid of shadow columns ∫ρ towards each light computed by the
-// WASM core and interpolated trilinearly. The opaque pass's colour and depth sit behind the gas.
+// WASM core and interpolated trilinearly, and are complete where an object blocks the light (an
+// exact ray test, `shaders/occluders.js`). The opaque pass's colour and depth sit behind the gas.
 // Everything arrives from the engine worker as whole buffers (`exactFrame`): the blobs packed
 // as for every view (the core's level of detail, `marchFrame`: blobs much closer than their
 // width merged by moments), the shadow grid, and the screen tiles; this layer only uploads them.
@@ -18,6 +19,7 @@ import { ERF_GLSL } from '../shaders/erf.js';
 import { GRID_SHADOW_GLSL } from '../shaders/grid-shadow.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
+import { OCCLUDERS_GLSL } from '../shaders/occluders.js';
 import { TILE } from './exact-frame.js';
 
 /**
@@ -42,6 +44,7 @@ ${ERF_GLSL}
 ${BLOB_GLSL}
 ${LIGHTS_GLSL}
 ${GRID_SHADOW_GLSL}
+${OCCLUDERS_GLSL}
 const int MAX_HITS = 64;
 const int MAX_STEPS = 4000;
 const int MAX_WINDOWS = 256;
@@ -169,7 +172,9 @@ void main() {
         vec3 L = vec3(0.0);
         for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
           if (l >= lightCount) break;
-          vec3 toLight = lightType[l] == 0 ? normalize(lightVec[l] - x) : lightVec[l];
+          float dist;
+          vec3 toLight = towardsLight(l, x, dist);
+          if (hasShadows && lightBlocked(1 + l, x, toLight, dist)) continue;
           float column = hasShadows ? shadowColumn(l, x) : 0.0;
           L += phase(dot(rd, toLight)) * exp(-kappa * column) * lightColor[l];
         }

@@ -1,6 +1,7 @@
 // GLSL of the real-time view's ray march through the density volume with jittered steps,
 // leaping over empty bricks. It follows the light volume's chunk (`../shaders/volume-shadow.js`:
-// the voxel grid, `volumeColumn`), which the objects' material reads too.
+// the voxel grid, `volumeColumn`), which the objects' material reads too, and the objects'
+// shadows (`../shaders/occluders.js`: `lightBlocked`, row 1 + l for light l).
 
 import { VIEW_LIGHTS } from '../../generated/contract.js';
 import { BRICK_GLSL } from './occupancy-pass.js';
@@ -52,6 +53,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
       if (l >= lightCount) break;
       float dist;
       vec3 toLight = towardsLight(l, x, dist);
+      if (hasShadows && lightBlocked(1 + l, x, toLight, dist)) continue;
       vec3 S = hasShadows ? exp(-kappa * volumeColumn(l, x, toLight, dist)) : vec3(1.0);
       L += phase(dot(rd, toLight)) * S * lightColor[l];
     }

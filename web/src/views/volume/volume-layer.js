@@ -19,6 +19,7 @@ import { sharingUniforms } from '../screen-pass.js';
 import { releaseGeometries } from '../context-loss.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
+import { OCCLUDERS_GLSL } from '../shaders/occluders.js';
 import { VOLUME_SHADOW_GLSL } from '../shaders/volume-shadow.js';
 import { atlasLayout, cutClasses, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
@@ -46,6 +47,7 @@ const fragmentShader = /* glsl */ `
 ${MARCH_PREAMBLE}
 ${LIGHTS_GLSL}
 ${VOLUME_SHADOW_GLSL}
+${OCCLUDERS_GLSL}
 ${MARCH_GLSL}
 uniform bool hasGas;
 #ifdef SPLIT
@@ -269,6 +271,8 @@ export class VolumeLayer extends MarchQuad {
     this.own.hasGas.value = hasGas;
     if (!hasGas) {
       this.grid = null;
+      // No gas, no gas shadows on the objects (not an earlier frame's light volume).
+      this.gas.lightVolume.value = null;
       return false;
     }
     const maxSize = renderer.capabilities.maxTextureSize;
