@@ -471,9 +471,9 @@ impl ReferenceRender {
         self.inner.image().to_rgb8(self.encoding)
     }
 
-    /// The image as PNG bytes.
+    /// The image as PNG bytes (RGBA with straight colour over a transparent background).
     pub fn png(&self) -> Result<Vec<u8>, JsError> {
-        encode_png(self.inner.width(), self.inner.height(), &self.rgb()).map_err(js_error)
+        self.inner.image().to_png(self.encoding).map_err(js_error)
     }
 }
 

@@ -33,5 +33,5 @@ pub use banded::BandedRender;
 pub use bvh::Bvh;
 pub use gaussian::{erf, Chord, RenderBlob, TRUNCATION};
 pub use geometry::CameraRays;
-pub use image::{decode_png, encode_png, psnr, LinearImage};
+pub use image::{decode_png, encode_png, encode_png_rgba, psnr, LinearImage};
 pub use renderer::{phase, RenderOptions, Renderer, STEP_FRACTION};

@@ -1,6 +1,8 @@
 //! `windfield render SCENE --frames A..B --fps F --out PATTERN [--shard I/N] [--force]`
-//! (docs/FORMATS.md, the command line): one PNG per frame k in the half-open range A..B, the scene at t = k/F, written
-//! to PATTERN with its one `%0Nd` replaced by k.
+//! (docs/FORMATS.md, the command line): one still per frame k in the half-open range A..B, the
+//! scene at t = k/F, written to PATTERN with its one `%0Nd` replaced by k: PNG, or OpenEXR when
+//! the pattern ends in `.exr`. `windfield volume SCENE --frames …` writes one OpenVDB volume per
+//! frame the same way.
 //!
 //! A shard (`--shard I/N`) renders the frames with k mod N = I: it simulates once, from t = 0 to
 //! its last frame that is not yet complete, rendering its frames as it passes them. The
@@ -23,7 +25,11 @@ use serde::{Deserialize, Serialize};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use windfield::render::{encode_png, RenderOptions, Renderer};
+use windfield::export::exr::{self, ExrInfo};
+use windfield::export::still::{self, StillFormat};
+use windfield::export::vdb;
+use windfield::export::volume::GasVolume;
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// Most frames one range may hold (at 24 fps, eleven and a half hours).
@@ -207,26 +213,36 @@ pub struct Manifest {
     pub scene: String,
     /// Frames per second: frame k is the scene at t = k / fps.
     pub fps: f64,
-    /// Image size in pixels.
-    pub width: u32,
-    pub height: u32,
+    /// Image size in pixels (a sequence of stills).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<u32>,
+    /// Voxel side in metres (a sequence of volumes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voxel: Option<f64>,
 }
 
 const MANIFEST_FORMAT: &str = "windfield-sequence/1";
 
 impl Manifest {
-    pub fn new(scene: &Scene, fps: f64, width: u32, height: u32) -> Self {
+    /// The manifest of a sequence of `scene` at `fps`: stills of `size`, or volumes of
+    /// voxels of `voxel` m.
+    pub fn new(scene: &Scene, fps: f64, size: Option<(u32, u32)>, voxel: Option<f64>) -> Self {
         let mut scene = scene.clone();
         scene.render.time = None;
-        scene.render.image.width = width;
-        scene.render.image.height = height;
+        if let Some((width, height)) = size {
+            scene.render.image.width = width;
+            scene.render.image.height = height;
+        }
         Self {
             format: MANIFEST_FORMAT.into(),
             windfield: env!("CARGO_PKG_VERSION").into(),
             scene: fingerprint(scene.to_json().as_bytes()),
             fps,
-            width,
-            height,
+            width: size.map(|s| s.0),
+            height: size.map(|s| s.1),
+            voxel,
         }
     }
 
@@ -239,11 +255,13 @@ impl Manifest {
         if self.fps != other.fps {
             out.push(format!("{} fps, not {}", self.fps, other.fps));
         }
-        if (self.width, self.height) != (other.width, other.height) {
-            out.push(format!(
-                "{}×{}, not {}×{}",
-                self.width, self.height, other.width, other.height
-            ));
+        let size = |m: &Self| match (m.width, m.height, m.voxel) {
+            (Some(w), Some(h), _) => format!("{w}×{h} stills"),
+            (_, _, Some(v)) => format!("volumes of {v} m voxels"),
+            _ => "an unknown size".into(),
+        };
+        if (self.width, self.height, self.voxel) != (other.width, other.height, other.voxel) {
+            out.push(format!("{}, not {}", size(self), size(other)));
         }
         if self.windfield != other.windfield || self.format != other.format {
             out.push(format!(
@@ -266,14 +284,26 @@ fn fingerprint(bytes: &[u8]) -> String {
     format!("{hash:032x}")
 }
 
-/// What `render --frames` was asked for, checked.
+/// What each frame of a sequence is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Output {
+    /// A still of `size` (default the scene's), PNG or OpenEXR.
+    Image {
+        size: Option<(u32, u32)>,
+        format: StillFormat,
+    },
+    /// The gas as an OpenVDB volume of voxels of `voxel` m.
+    Volume { voxel: f64 },
+}
+
+/// What `render --frames` (or `volume --frames`) was asked for, checked.
 pub struct Sequence {
     pub range: FrameRange,
     pub fps: f64,
     pub pattern: Pattern,
     pub shard: Shard,
     pub force: bool,
-    pub size: Option<(u32, u32)>,
+    pub output: Output,
 }
 
 impl Sequence {
@@ -284,7 +314,7 @@ impl Sequence {
         out: &Path,
         shard: Option<&str>,
         force: bool,
-        size: Option<(u32, u32)>,
+        output: Output,
     ) -> Result<Self, Failure> {
         let input = Failure::Input;
         let range = FrameRange::parse(frames).map_err(input)?;
@@ -311,7 +341,7 @@ impl Sequence {
             pattern,
             shard,
             force,
-            size,
+            output,
         })
     }
 
@@ -326,13 +356,21 @@ impl Sequence {
         sim.budgeted_steps(last)
             .map_err(|e| Failure::Input(e.to_string()))?;
         let settings = sim.render_settings();
-        let (width, height) = self
-            .size
-            .unwrap_or((settings.image.width, settings.image.height));
+        let size = match self.output {
+            Output::Image { size, .. } => {
+                Some(size.unwrap_or((settings.image.width, settings.image.height)))
+            }
+            Output::Volume { .. } => None,
+        };
         let frames: Vec<u64> = self.shard.frames(self.range).collect();
         let what = format!(
-            "{} ({width}×{height}; frames {}..{} at {} fps{})",
+            "{} ({}; frames {}..{} at {} fps{})",
             self.pattern.name(),
+            match (size, self.output) {
+                (Some((w, h)), _) => format!("{w}×{h}"),
+                (_, Output::Volume { voxel }) => format!("voxels of {voxel} m"),
+                _ => String::new(),
+            },
             self.range.start,
             self.range.end,
             self.fps,
@@ -342,12 +380,16 @@ impl Sequence {
             eprintln!("nothing to write: no frame k of {what} has k mod N = I");
             return Ok(());
         }
-        let manifest = Manifest::new(&manifest_scene, self.fps, width, height);
+        let voxel = match self.output {
+            Output::Volume { voxel } => Some(voxel),
+            Output::Image { .. } => None,
+        };
+        let manifest = Manifest::new(&manifest_scene, self.fps, size, voxel);
         self.claim(&manifest)?;
         let todo: Vec<u64> = frames
             .iter()
             .copied()
-            .filter(|&k| self.force || !is_complete(&self.pattern.path(k), width, height))
+            .filter(|&k| self.force || !self.is_complete(&self.pattern.path(k), size))
             .collect();
         let done = frames.len() - todo.len();
         if todo.is_empty() {
@@ -376,16 +418,33 @@ impl Sequence {
         for &k in &todo {
             sim.run(sim.steps_for(seconds(k)) - sim.steps());
             let mut list = sim.blob_list();
-            list.image.width = width;
-            list.image.height = height;
             blobs = list.blobs.len();
-            let renderer = Renderer::new(&list, None, RenderOptions::default())
-                .map_err(|e| Failure::Input(e.to_string()))?;
-            let image = renderer.render();
-            let png = encode_png(width, height, &image.to_rgb8(list.image.encoding))
-                .map_err(|e| Failure::Io(e.to_string()))?;
+            let bytes = match self.output {
+                Output::Image { format, .. } => {
+                    if let Some((width, height)) = size {
+                        list.image.width = width;
+                        list.image.height = height;
+                    }
+                    let renderer = Renderer::new(&list, None, RenderOptions::default())
+                        .map_err(|e| Failure::Input(e.to_string()))?;
+                    let image = renderer.render();
+                    let info = ExrInfo {
+                        camera: Some(list.camera.clone()),
+                        time: Some(sim.time()),
+                        fps: Some(self.fps),
+                        note: format!("frame {k}"),
+                    };
+                    still::encode(&image, format, list.image.encoding, &info)
+                        .map_err(Failure::Io)?
+                }
+                Output::Volume { voxel } => GasVolume::of(&list, voxel, "--voxel")
+                    .map_err(|e| {
+                        Failure::Input(format!("frame {k} (t = {:.4} s): {e}", sim.time()))
+                    })?
+                    .to_vdb(Some(sim.time())),
+            };
             let path = self.pattern.path(k);
-            write_atomically(&path, |w| std::io::Write::write_all(w, &png))?;
+            write_atomically(&path, |w| std::io::Write::write_all(w, &bytes))?;
             let line = format!(
                 "frame {k} (t = {:.4} s, {} blobs) -> {}",
                 sim.time(),
@@ -473,6 +532,28 @@ fn progress(len: u64) -> Option<ProgressBar> {
     .expect("the template is valid");
     bar.set_style(style);
     Some(bar)
+}
+
+impl Sequence {
+    /// Whether `path` holds a completed frame: a whole still of `size` (PNG or OpenEXR), or a
+    /// whole OpenVDB file.
+    fn is_complete(&self, path: &Path, size: Option<(u32, u32)>) -> bool {
+        match (self.output, size) {
+            (Output::Volume { .. }, _) => {
+                std::fs::read(path).is_ok_and(|bytes| vdb::is_complete(&bytes))
+            }
+            (
+                Output::Image {
+                    format: StillFormat::Exr,
+                    ..
+                },
+                Some((w, h)),
+            ) => std::fs::read(path)
+                .is_ok_and(|bytes| exr::read_rgba(&bytes).is_ok_and(|(a, b, _)| (a, b) == (w, h))),
+            (_, Some((w, h))) => is_complete(path, w, h),
+            _ => false,
+        }
+    }
 }
 
 /// Whether `path` holds a whole PNG of `width × height` (what a completed frame is).
