@@ -90,10 +90,12 @@ pub fn write(
     pixel: impl Fn(usize, usize) -> [f32; 4] + Sync,
     info: &ExrInfo,
 ) -> Result<Vec<u8>, String> {
-    let mut attributes = LayerAttributes::default();
-    attributes.software_name = Some(Text::from(
-        format!("windfield {}", env!("CARGO_PKG_VERSION")).as_str(),
-    ));
+    let mut attributes = LayerAttributes {
+        software_name: Some(Text::from(
+            format!("windfield {}", env!("CARGO_PKG_VERSION")).as_str(),
+        )),
+        ..LayerAttributes::default()
+    };
     let mut comments = String::new();
     if let Some(c) = &info.camera {
         let aspect = width as f32 / height as f32;

@@ -31,6 +31,8 @@ use std::sync::Arc;
 
 /// Most pixels along either side of a sheet.
 pub const MAX_SHEET_SIDE: u32 = 16384;
+/// Most fixed steps one [`FlipbookJob::step`] simulates on its way to a frame.
+const STEPS_PER_STAGE: u64 = 16;
 /// Most frames in one flipbook.
 pub const MAX_FLIPBOOK_FRAMES: u64 = 1 << 16;
 
@@ -297,8 +299,8 @@ impl FlipbookJob {
         self.spec.frames() + u64::from(self.spec.fade)
     }
 
-    /// Renders up to `rows` more rows (simulating to a frame first when it starts); false once
-    /// every frame is in the sheet.
+    /// Renders up to `rows` more rows, or simulates a share of the steps to the next frame;
+    /// false once every frame is in the sheet.
     pub fn step(&mut self, rows: u32) -> Result<bool, ParamError> {
         if self.next >= self.total() {
             return Ok(false);
@@ -306,7 +308,13 @@ impl FlipbookJob {
         if self.current.is_none() {
             let k = self.spec.start + self.next;
             let target = self.sim.steps_for(k as f64 / self.spec.fps);
-            self.sim.run(target - self.sim.steps());
+            // Simulating to a far frame is a stage of its own, a share of the steps at a time.
+            let ahead = target - self.sim.steps();
+            if ahead > STEPS_PER_STAGE {
+                self.sim.run(STEPS_PER_STAGE);
+                return Ok(true);
+            }
+            self.sim.run(ahead);
             let mut list = self.sim.blob_list();
             list.camera = self.camera.clone();
             list.background = Background::Transparent;
@@ -315,7 +323,7 @@ impl FlipbookJob {
             let renderer = Renderer::new(&list, None, RenderOptions::default())?;
             self.current = Some(BandedRender::new(renderer));
         }
-        let band = self.current.as_mut().map_or(false, |b| b.step(rows));
+        let band = self.current.as_mut().is_some_and(|b| b.step(rows));
         if !band {
             if let Some(done) = self.current.take() {
                 self.place(done.image());

@@ -272,10 +272,13 @@ pub enum AnyGrid<'a> {
     Vec3(Grid<'a, [f32; 3]>),
 }
 
-/// Active voxels of `leaves`, and the bounds of their indices (inclusive; none when empty).
-pub fn active_stats<T: VoxelValue>(leaves: &Leaves<T>) -> (u64, Option<([i32; 3], [i32; 3])>) {
+/// Inclusive bounds of voxel indices: lowest and highest corner.
+pub type IndexBounds = ([i32; 3], [i32; 3]);
+
+/// Active voxels of `leaves`, and the bounds of their indices (none when empty).
+pub fn active_stats<T: VoxelValue>(leaves: &Leaves<T>) -> (u64, Option<IndexBounds>) {
     let mut count = 0;
-    let mut bounds: Option<([i32; 3], [i32; 3])> = None;
+    let mut bounds: Option<IndexBounds> = None;
     for (origin, leaf) in leaves {
         for n in 0..512 {
             if !leaf.is_active(n) {
@@ -540,9 +543,7 @@ pub fn is_complete(bytes: &[u8]) -> bool {
         for _ in 0..count {
             string(bytes, &mut at)?;
             string(bytes, &mut at)?;
-            let _value = read::<4>(bytes, &mut at)?;
-            let n = u32::from_le_bytes(read(bytes, &mut at)?) as usize;
-            at += n;
+            string(bytes, &mut at)?;
         }
         let grids = i32::from_le_bytes(read(bytes, &mut at)?);
         let mut end = at as u64;
@@ -599,7 +600,10 @@ mod tests {
             leaves: &leaves,
             metadata: MetaMap::new(),
         };
-        let bytes = write(&[AnyGrid::Float(grid)], &MetaMap::new());
+        let mut meta = MetaMap::new();
+        meta.insert("creator".into(), Meta::String("a test".into()));
+        meta.insert("windfield_time".into(), Meta::Double(1.5));
+        let bytes = write(&[AnyGrid::Float(grid)], &meta);
         assert!(is_complete(&bytes));
         assert!(!is_complete(&bytes[..bytes.len() - 1]));
         assert_eq!(&bytes[..4], &[0x20, 0x42, 0x44, 0x56]);

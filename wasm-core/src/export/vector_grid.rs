@@ -16,7 +16,7 @@
 //! `windfield generate`), and the whole wind of a running scene over a box
 //! ([`VectorGrid::scene_wind`], for `windfield wind --box`).
 
-use super::vdb::{self, AnyGrid, Grid, GridClass, Leaf, Leaves, Meta, MetaMap, Transform};
+use super::vdb::{self, AnyGrid, Grid, GridClass, Leaves, Meta, MetaMap, Transform};
 use crate::error::ParamError;
 use crate::field::TurbulentField;
 use crate::gas::Simulation;
@@ -237,9 +237,7 @@ impl VectorGrid {
                 ((n / nx) % ny) as i32,
                 (n / (nx * ny)) as i32,
             );
-            let leaf = leaves
-                .entry(vdb::leaf_origin(i, j, k))
-                .or_insert_with(Leaf::new);
+            let leaf = leaves.entry(vdb::leaf_origin(i, j, k)).or_default();
             let o = vdb::leaf_offset(i, j, k);
             leaf.values[o] = *v;
             leaf.set_active(o, true);

@@ -61,6 +61,9 @@ struct Deposit {
     emitted: [f32; 3],
 }
 
+/// One leaf being filled: its origin, its density and (where blobs emit) its emission.
+type Deposited = ([i32; 3], Leaf<f32>, Option<Leaf<[f32; 3]>>);
+
 /// A volume being built a share of the blobs at a time (so that the browser's worker can
 /// report progress); [`GasVolume::of`] builds it at once.
 pub struct VolumeBuild {
@@ -68,7 +71,7 @@ pub struct VolumeBuild {
     blobs: Vec<Deposit>,
     next: usize,
     index: HashMap<[i32; 3], usize>,
-    leaves: Vec<([i32; 3], Leaf<f32>, Option<Leaf<[f32; 3]>>)>,
+    leaves: Vec<Deposited>,
     emits: bool,
     mass: f64,
 }
@@ -233,8 +236,8 @@ impl VolumeBuild {
                                 let n = vdb::leaf_offset(i, jj, k);
                                 leaf.values[n] += rho;
                                 if let Some(e) = emission {
-                                    for c in 0..3 {
-                                        e.values[n][c] += rho * emitted[c];
+                                    for (v, q) in e.values[n].iter_mut().zip(emitted) {
+                                        *v += rho * q;
                                     }
                                 }
                             }

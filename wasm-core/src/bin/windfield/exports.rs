@@ -163,6 +163,10 @@ pub struct VolumeArgs {
     /// With --frames: write complete frames again, and over another run's.
     #[arg(long, requires = "frames")]
     force: bool,
+    /// For a blob list: the moment it shows (s), recorded in the grids' metadata (a scene's
+    /// volume records the time it was simulated to).
+    #[arg(long, conflicts_with_all = ["seconds", "frames"], allow_hyphen_values = true)]
+    time: Option<f64>,
 }
 
 pub fn volume(args: VolumeArgs) -> Result<(), Failure> {
@@ -195,6 +199,11 @@ pub fn volume(args: VolumeArgs) -> Result<(), Failure> {
     }
     let path = &args.input;
     let (list, time) = match read_input(path)? {
+        Input::Scene(_) if args.time.is_some() => {
+            return Err(Failure::Input(
+                "--time: applies to blob lists; a scene's volume records the time it is simulated to (--seconds)".into(),
+            ))
+        }
         Input::Scene(scene) => {
             let seconds = args.seconds.unwrap_or(scene.render.still_time());
             let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
@@ -206,7 +215,16 @@ pub fn volume(args: VolumeArgs) -> Result<(), Failure> {
                 "--seconds: applies to scenes only; this input is a blob list".into(),
             ))
         }
-        Input::List(list) => (list, None),
+        Input::List(list) => {
+            if let Some(t) = args.time {
+                check_seconds(t).map_err(|_| {
+                    Failure::Input(format!(
+                        "--time: must be a number between 0 and 100000 (got {t})"
+                    ))
+                })?;
+            }
+            (list, args.time)
+        }
     };
     let build = VolumeBuild::new(&list, args.voxel, "--voxel").map_err(input)?;
     let volume: GasVolume = build.finish();

@@ -107,6 +107,10 @@ struct RenderArgs {
     /// channel, 1 − T(∞) over the gas and 1 on objects.
     #[arg(long)]
     alpha: bool,
+    /// For a blob list: the moment it shows (s), recorded in an EXR's header (a scene's
+    /// still records the time it was simulated to).
+    #[arg(long, conflicts_with_all = ["seconds", "frames"], allow_hyphen_values = true)]
+    time: Option<f64>,
 }
 
 #[derive(Args)]
@@ -622,6 +626,9 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
     }
     let path = &args.input;
     match read_input(path)? {
+        Input::Scene(_) if args.time.is_some() => Err(Failure::Input(
+            "--time: applies to blob lists; a scene's still records the time it is simulated to (--seconds)".into(),
+        )),
         Input::Scene(mut scene) => {
             if args.alpha {
                 scene.render.background = Background::Transparent;
@@ -638,7 +645,14 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
             if args.alpha {
                 list.background = Background::Transparent;
             }
-            Ok((list, None))
+            if let Some(t) = args.time {
+                check_seconds(t).map_err(|_| {
+                    Failure::Input(format!(
+                        "--time: must be a number between 0 and {MAX_SECONDS} (got {t})"
+                    ))
+                })?;
+            }
+            Ok((list, args.time))
         }
     }
 }
