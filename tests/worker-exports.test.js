@@ -22,16 +22,17 @@ async function loaded() {
   const stages = [];
   const handlers = createHandlers(core, (id, value, stage) => stages.push({ id, value, stage }));
   await handlers.load({ id: 1, scene });
-  handlers.advance({ id: 2, steps: 75 });
-  return { handlers, stages };
+  const { time } = handlers.advance({ id: 2, steps: 75 }).result;
+  return { handlers, stages, time };
 }
 
 test('exportStill and exportVolume are the command line\'s bytes for the same blob list', async () => {
-  const { handlers, stages } = await loaded();
+  const { handlers, stages, time } = await loaded();
   const list = handlers.blobList({ camera, image: { width: 50, height: 40 } }).result;
   assert.ok(list.blobs.length > 100, `${list.blobs.length} blobs`);
   writeFileSync(join(dir, 'list.json'), JSON.stringify(list));
-  const t = String(75 * 0.016666);
+  // The state's time, as the worker writes it into the EXR and the VDB.
+  const t = String(time);
   const cli = (...args) => execFileSync(cliPath, args, { stdio: 'pipe' });
   for (const [format, alpha, args] of [
     ['png', true, ['--alpha']],

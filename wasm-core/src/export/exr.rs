@@ -13,7 +13,8 @@
 //! - `windfieldTime` (float): the scene's time (s), when the image is one moment of a scene.
 //! - `software`, `comments` (string): windfield's version; the camera in words.
 //!
-//! Attributes are written in a fixed order, so the same image gives the same bytes.
+//! Attributes are written in a fixed order, and the angles computed with `libm` (as in
+//! WebAssembly), so the same image gives the same bytes natively and in the browser.
 
 use crate::gas::blob_list::Camera;
 use exr::meta::attribute::{AttributeValue, Text};
@@ -64,7 +65,7 @@ pub fn world_to_camera(camera: &Camera) -> [f32; 16] {
 /// World to NDC for an image of `aspect` = width/height: x_n = ½ + ½ x_c/(z_c tan(fx/2)),
 /// y_n = ½ − ½ y_c/(z_c tan(fy/2)), z_n = 1, after dividing by w = z_c.
 pub fn world_to_ndc(camera: &Camera, aspect: f32) -> [f32; 16] {
-    let ty = (camera.fov_y_deg.to_radians() * 0.5).tan();
+    let ty = libm::tanf(camera.fov_y_deg.to_radians() * 0.5);
     let tx = ty * aspect;
     let projection = [
         [0.5 / tx, 0.0, 0.0, 0.0],
@@ -102,7 +103,7 @@ pub fn write(
         attributes.world_to_camera = Some(world_to_camera(c));
         attributes.world_to_normalized_device = Some(world_to_ndc(c, aspect));
         attributes.vertical_field_of_view = Some(c.fov_y_deg);
-        let h = 2.0 * ((c.fov_y_deg.to_radians() * 0.5).tan() * aspect).atan();
+        let h = 2.0 * libm::atanf(libm::tanf(c.fov_y_deg.to_radians() * 0.5) * aspect);
         attributes.horizontal_field_of_view = Some(h.to_degrees());
         comments = format!(
             "camera at {:?} looking at {:?}, up {:?}, vertical field of view {} degrees",

@@ -129,7 +129,8 @@ impl VolumeBuild {
                 let emitted = ((Vec3::ONE - r.albedo) * r.emission).to_array();
                 emits |= emitted.iter().any(|&e| e > 0.0);
                 let s = f64::from(r.sigma);
-                let peak = f64::from(r.mass) / ((2.0 * std::f64::consts::PI).powf(1.5) * s * s * s);
+                let peak =
+                    f64::from(r.mass) / (libm::pow(2.0 * std::f64::consts::PI, 1.5) * s * s * s);
                 Deposit {
                     center: r.center,
                     sigma: r.sigma,

@@ -28,7 +28,7 @@ impl CameraRays {
             forward,
             right,
             up,
-            half_height: (camera.fov_y_deg.to_radians() * 0.5).tan(),
+            half_height: libm::tanf(camera.fov_y_deg.to_radians() * 0.5),
             width,
             height,
         }

@@ -17,12 +17,15 @@ pub struct LinearImage {
     pub alpha: Option<Vec<f32>>,
 }
 
-/// The sRGB transfer curve (IEC 61966-2-1) of a linear value in [0, 1].
+/// The sRGB transfer curve (IEC 61966-2-1) of a linear value in [0, 1]. The power is `libm`'s
+/// `powf`, the one `f32::powf` is in WebAssembly, so that the native and the browser's stills
+/// round every pixel the same way (the platform's own `powf` differs in the last bit now and
+/// then, which moves a byte where a value sits on a rounding boundary).
 pub fn srgb_encode(v: f32) -> f32 {
     if v <= 0.003_130_8 {
         12.92 * v
     } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
+        1.055 * libm::powf(v, 1.0 / 2.4) - 0.055
     }
 }
 

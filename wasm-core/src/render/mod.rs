@@ -11,6 +11,10 @@
 //! (Eq. 25), itself an exact sum of line integrals through the same hierarchy. Opaque objects end
 //! the ray with Lambert shading shadowed by the gas; other rays end in the background.
 //!
+//! Its transcendental functions are `libm`'s (glam's `libm` feature for its vectors), the same
+//! code the WebAssembly build runs, so a blob list renders to the same bytes natively and in
+//! the browser (the platform's own `expf` and `powf` differ in the last bit now and then).
+//!
 //! Its input is the blob list of [`crate::gas::blob_list`]; it knows nothing of scenes, of the
 //! gas's state or of the browser. The browser's GPU views have their own frame format
 //! ([`crate::frame`]), held against this renderer by tests.

@@ -407,7 +407,7 @@ pub fn phase(p: Phase, cos_theta: f32) -> f32 {
     match p {
         Phase::Isotropic => 1.0,
         Phase::HenyeyGreenstein { g } => {
-            (1.0 - g * g) / (1.0 + g * g - 2.0 * g * cos_theta).powf(1.5)
+            (1.0 - g * g) / libm::powf(1.0 + g * g - 2.0 * g * cos_theta, 1.5)
         }
     }
 }
