@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Installs what a fresh machine lacks, skipping whatever is already there:
 # the wasm32 target, the wasm-bindgen CLI pinned to the crate's wasm-bindgen, npm packages
-# (exactly package-lock.json's, with `npm ci`), and (with --browser) Debian's chromium for the
-# end-to-end tests.
+# (exactly package-lock.json's, with `npm ci`), (with --browser) Debian's chromium for the
+# end-to-end tests, and (with --readers) the file formats' own readers the export tests hold
+# windfield's files to: Debian's python3-openvdb (OpenVDB's Python bindings) and, in a
+# project-local Python (.venv/, made from Debian's python3 with its system packages so that it
+# sees pyopenvdb), the OpenEXR project's bindings from PyPI.
 #
 # On a fresh machine the slow part is compiling the wasm-bindgen CLI. It is compiled
 # unoptimised (opt-level 0) and without its test runner or TLS stack: about a third of the
@@ -14,8 +17,10 @@ cd "$(dirname "$0")/.."
 root=$PWD
 
 want_browser=0
+want_readers=0
 for arg in "$@"; do
   [ "$arg" = "--browser" ] && want_browser=1
+  [ "$arg" = "--readers" ] && want_readers=1
 done
 
 log() { printf '[setup] %s\n' "$*"; }
@@ -89,6 +94,24 @@ if [ "$want_browser" = 1 ] && [ ! -x "${CHROMIUM_PATH:-/usr/bin/chromium}" ]; th
   [ "$(id -u)" = 0 ] || SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq chromium
+fi
+
+if [ "$want_readers" = 1 ]; then
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO="sudo"
+  missing=()
+  /usr/bin/python3 -c 'import pyopenvdb' 2>/dev/null || missing+=(python3-openvdb)
+  /usr/bin/python3 -c 'import ensurepip, venv' 2>/dev/null || missing+=(python3-venv)
+  if [ "${#missing[@]}" -gt 0 ]; then
+    log "installing Debian's ${missing[*]} (OpenVDB's own reader, for the export tests)"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+  fi
+  if ! "$root/.venv/bin/python" -c 'import OpenEXR, pyopenvdb, numpy' 2>/dev/null; then
+    log "making .venv/ with the OpenEXR project's Python bindings (OpenEXR's own reader)"
+    /usr/bin/python3 -m venv --system-site-packages "$root/.venv"
+    "$root/.venv/bin/pip" install --quiet --disable-pip-version-check OpenEXR numpy
+  fi
 fi
 
 if [ "${#jobs_pids[@]}" -gt 0 ]; then

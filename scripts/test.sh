@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# The whole suite: lints, Rust tests, the WASM build, JS unit tests, the site build and the
-# Playwright tests in Debian's chromium. Installs what is missing first.
+# The whole suite: lints, Rust tests, the WASM build, JS unit tests (the export tests with the
+# formats' own readers), the site build and the Playwright tests in Debian's chromium. Installs
+# what is missing first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
 step() { printf '\n== %s\n' "$*"; }
 
 step "setup"
-bash scripts/setup.sh --browser
+bash scripts/setup.sh --browser --readers
 step "lint"
 bash scripts/lint.sh
 step "rust tests"

@@ -17,6 +17,9 @@ const USED = {
     'blobList', 'windSlice', 'packFrame', 'marchFrame', 'volumeTwin', 'lightTwin', 'marchList', 'free',
   ],
   ReferenceRender: ['step', 'progress', 'width', 'height', 'rgb', 'png', 'free'],
+  StillExport: ['step', 'progress', 'bytes', 'free'],
+  FlipbookExport: ['step', 'progress', 'finish', 'free'],
+  VolumeExport: ['step', 'progress', 'finish', 'free'],
   Figure1Demo: ['step', 'time', 'n', 'grid', 'blobs', 'gridMass', 'blobMass', 'free'],
 };
 
@@ -24,6 +27,7 @@ test('every export the JavaScript uses is there', () => {
   for (const name of ['validateScene', 'sceneFieldParams']) assert.equal(typeof core[name], 'function', name);
   assert.equal(typeof core.WindField.generate, 'function', 'WindField.generate');
   assert.equal(typeof core.SceneSimulation.withField, 'function', 'SceneSimulation.withField');
+  assert.equal(typeof core.FlipbookExport.withField, 'function', 'FlipbookExport.withField');
   for (const [cls, methods] of Object.entries(USED)) {
     assert.equal(typeof core[cls], 'function', cls);
     for (const m of methods) assert.equal(typeof core[cls].prototype[m], 'function', `${cls}.${m}`);

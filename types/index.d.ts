@@ -86,6 +86,67 @@ export interface WindFieldMethods {
   captureGPU(options?: CaptureOptions): Promise<string>;
   /** A PNG data URL from the WASM CPU reference renderer. */
   renderReference(options?: { width?: number; height?: number }): Promise<string>;
+  /**
+   * The CPU reference still of the current state from the view's camera as a file: PNG (8-bit;
+   * RGBA with straight colour when `alpha`) or OpenEXR (half-float linear RGBA, premultiplied);
+   * the bytes `windfield render` writes for the same blob list. Default: PNG, no alpha, the
+   * view's size.
+   */
+  exportStill(options?: ExportStillOptions): Promise<Blob>;
+  /**
+   * The scene's frames `frames[0]` to `frames[1]` (half-open, frame k at k/fps, simulated from
+   * t = 0 apart from the running scene) as one sprite sheet with alpha, from the view's camera;
+   * the bytes of `windfield flipbook`. The Blob carries the sheet's JSON as `description`.
+   */
+  exportFlipbook(options?: ExportFlipbookOptions): Promise<Blob & { description: FlipbookDescription }>;
+  /** The gas's density (and emission) as an OpenVDB file, voxels of `voxel` m; the bytes of `windfield volume`. */
+  exportVolume(options: { voxel: number }): Promise<Blob>;
+  /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many there were. */
+  cancelExport(): Promise<number>;
+}
+
+export interface ExportStillOptions {
+  format?: 'png' | 'exr';
+  /** A transparent background: alpha = 1 − T(∞) over the gas, 1 on objects. */
+  alpha?: boolean;
+  width?: number;
+  height?: number;
+}
+
+export interface ExportFlipbookOptions {
+  /** [A, B]: frames A..B, half-open (default [0, 64]). */
+  frames?: [number, number];
+  /** Frames per second (default 24). */
+  fps?: number;
+  /** [columns, rows] (default [8, 8]). */
+  grid?: [number, number];
+  /** [width, height] of a tile in pixels (default [256, 256]). */
+  tile?: [number, number];
+  /** A seamless loop: true blends a quarter of the frames across the wrap, a number that many. */
+  loop?: boolean | number;
+  format?: 'png' | 'exr';
+}
+
+/** The JSON description beside a sprite sheet (`windfield flipbook`'s `SHEET.json`). */
+export interface FlipbookDescription {
+  format: 'windfield-flipbook/1';
+  image: string;
+  columns: number;
+  rows: number;
+  fps: number;
+  tile_width: number;
+  tile_height: number;
+  sheet_width: number;
+  sheet_height: number;
+  frame_count: number;
+  frames: [number, number];
+  frame_times: number[];
+  order: string;
+  alpha: 'straight' | 'premultiplied';
+  encoding: 'srgb' | 'linear';
+  loop: { fade_frames: number; seconds: number; field_periods: number } | null;
+  time_period: number;
+  windfield: string;
 }
 
 export interface WindFieldReadyDetail {

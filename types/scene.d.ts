@@ -469,10 +469,9 @@ export interface GasSettings {
  */
 export interface RenderSettings {
   /**
-   * @minItems 3
-   * @maxItems 3
+   * Linear radiance [r, g, b] behind the gas, or "transparent": an alpha channel instead (alpha = 1 - T(inf) over the gas, 1 on objects).
    */
-  background: [number, number, number];
+  background: [number, number, number] | 'transparent';
   camera: Camera;
   image: ImageSettings;
   /**
@@ -908,10 +907,9 @@ export interface GasSettingsInput {
  */
 export interface RenderSettingsInput {
   /**
-   * @minItems 3
-   * @maxItems 3
+   * Linear radiance [r, g, b] behind the gas, or "transparent": an alpha channel instead (alpha = 1 - T(inf) over the gas, 1 on objects).
    */
-  background?: [number, number, number];
+  background?: [number, number, number] | 'transparent';
   camera?: CameraInput;
   image?: ImageSettingsInput;
   /**

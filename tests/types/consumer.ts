@@ -34,6 +34,10 @@ if (player) {
     const png: string = await el.captureGPU({ mode: 'raymarch', width: 320, height: 240, quality: 'high' });
     const still: string = await el.renderReference({ width: 160 });
     console.log(loaded, stats.blobs + stats.time, list.blobs[0]?.sigma, png.length, still.length);
+    const exr: Blob = await el.exportStill({ format: 'exr', alpha: true, width: 64, height: 48 });
+    const book = await el.exportFlipbook({ frames: [0, 16], fps: 24, grid: [4, 4], tile: [64, 64], loop: true });
+    const vdb: Blob = await el.exportVolume({ voxel: 0.01 });
+    console.log(exr.size, book.description.columns * book.description.rows, vdb.type, await el.cancelExport());
     const edited: Scene = await el.editScene({ version: 1, wind: [{ type: 'uniform', velocity: [0, 1, 0] }] });
     const time: number | null | undefined = edited.render.time;
     const stepper: 'cpu' | 'gpu' = await el.setStepper('auto');
@@ -55,6 +59,10 @@ if (player) {
   void el.captureGPU({ mode: 'wireframe' });
   // @ts-expect-error: not a stepper
   void el.setStepper('wasm');
+  // @ts-expect-error: a still is PNG or EXR
+  void el.exportStill({ format: 'tiff' });
+  // @ts-expect-error: a volume needs its voxel size
+  void el.exportVolume({});
   // @ts-expect-error: stir is on or off
   el.stir = 'yes';
   // @ts-expect-error: a uniform wind needs its velocity

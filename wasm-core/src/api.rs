@@ -12,6 +12,10 @@
 
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use crate::export::exr::ExrInfo;
+use crate::export::flipbook::{FlipbookJob, FlipbookSpec, SettingNames};
+use crate::export::still::{self, StillFormat};
+use crate::export::volume::VolumeBuild;
 use crate::field::spectrum::SpectrumParams;
 use crate::field::statistics;
 use crate::field::{FieldParams, Synthesis, TurbulentField};
@@ -19,12 +23,13 @@ use crate::frame::gpu_steps::{gas_by_slot, GpuSteps};
 use crate::frame::light_volume::light_twin;
 use crate::frame::volume::{density_twin, VoxelGrid};
 use crate::frame::{merged_list, MarchFrame, PackedFrame, ViewFrame};
+use crate::gas::blob_list::Camera;
 use crate::gas::blob_list::{BlobList, Encoding};
 use crate::gas::figure1::{Figure1, Figure1Params};
 use crate::gas::simulation::{Edit, Simulation};
 use crate::gas::wind_slice::SlicePlane;
 use crate::gas::Scene;
-use crate::render::{encode_png, BandedRender, RenderOptions, Renderer};
+use crate::render::{BandedRender, RenderOptions, Renderer};
 use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
@@ -521,9 +526,215 @@ impl ReferenceRender {
         self.inner.image().to_rgb8(self.encoding)
     }
 
-    /// The image as PNG bytes.
+    /// The image as PNG bytes (RGBA with straight colour over a transparent background).
     pub fn png(&self) -> Result<Vec<u8>, JsError> {
-        encode_png(self.inner.width(), self.inner.height(), &self.rgb()).map_err(js_error)
+        self.inner.image().to_png(self.encoding).map_err(js_error)
+    }
+}
+
+/// The time a still or volume shows, from JavaScript: a finite number, or none (NaN).
+fn known_time(t: f64) -> Option<f64> {
+    t.is_finite().then_some(t)
+}
+
+/// A still for export (`exportStill`): the reference renderer a band of rows at a time, then
+/// PNG or OpenEXR bytes, exactly what `windfield render LIST --out still.png|.exr` writes.
+#[wasm_bindgen]
+pub struct StillExport {
+    inner: BandedRender,
+    encoding: Encoding,
+    format: StillFormat,
+    info: ExrInfo,
+}
+
+#[wasm_bindgen]
+impl StillExport {
+    /// `blob_list_json` at its own size; `format` `png` or `exr`; `time` (s) the moment it
+    /// shows, written into the EXR header (NaN for none).
+    #[wasm_bindgen(constructor)]
+    pub fn new(blob_list_json: &str, format: &str, time: f64) -> Result<StillExport, JsError> {
+        let format = StillFormat::parse(format, "format").map_err(js_error)?;
+        let value: serde_json::Value = parse(blob_list_json, "blob list")?;
+        let list = BlobList::from_value(value).map_err(js_error)?;
+        let renderer = Renderer::new(&list, None, RenderOptions::default()).map_err(js_error)?;
+        Ok(Self {
+            inner: BandedRender::new(renderer),
+            encoding: list.image.encoding,
+            format,
+            info: ExrInfo {
+                camera: Some(list.camera.clone()),
+                time: known_time(time),
+                fps: None,
+                note: String::new(),
+            },
+        })
+    }
+
+    /// Renders up to `rows` more rows; false once the image is complete.
+    pub fn step(&mut self, rows: u32) -> bool {
+        self.inner.step(rows)
+    }
+
+    /// Fraction of rows done, 0..1.
+    pub fn progress(&self) -> f64 {
+        self.inner.progress()
+    }
+
+    pub fn height(&self) -> u32 {
+        self.inner.height()
+    }
+
+    /// The file's bytes (call once every row is rendered).
+    pub fn bytes(&self) -> Result<Vec<u8>, JsError> {
+        still::encode(&self.inner.image(), self.format, self.encoding, &self.info)
+            .map_err(|e| JsError::new(&e))
+    }
+}
+
+/// What `exportFlipbook` asks for (JSON).
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FlipbookRequest {
+    frames: [u64; 2],
+    fps: f64,
+    grid: [u32; 2],
+    tile: [u32; 2],
+    /// Frames blended across the wrap; 0 for none.
+    fade: u32,
+    format: String,
+    camera: Option<Camera>,
+}
+
+/// The names of the settings of `exportFlipbook`, for its messages.
+const FLIPBOOK_NAMES: SettingNames = SettingNames {
+    frames: "frames",
+    fps: "fps",
+    grid: "grid",
+    tile: "tile",
+    fade: "loop",
+};
+
+/// A flipbook for export (`exportFlipbook`): the scene simulated from t = 0 on the running
+/// field, each frame rendered a band of rows at a time, then the sheet's bytes and its
+/// description; what `windfield flipbook` writes.
+#[wasm_bindgen]
+pub struct FlipbookExport {
+    inner: Option<FlipbookJob>,
+}
+
+impl FlipbookExport {
+    fn make(
+        scene_json: &str,
+        request_json: &str,
+        field: Option<Option<Arc<TurbulentField>>>,
+    ) -> Result<FlipbookExport, JsError> {
+        let scene = Scene::from_json(scene_json).map_err(js_error)?;
+        let r: FlipbookRequest = parse(request_json, "exportFlipbook")?;
+        let format = StillFormat::parse(&r.format, "format").map_err(js_error)?;
+        let spec = FlipbookSpec {
+            start: r.frames[0],
+            end: r.frames[1],
+            fps: r.fps,
+            columns: r.grid[0],
+            rows: r.grid[1],
+            tile_width: r.tile[0],
+            tile_height: r.tile[1],
+            fade: r.fade,
+        };
+        let job = FlipbookJob::new(scene, field, spec, format, r.camera, &FLIPBOOK_NAMES)
+            .map_err(js_error)?;
+        Ok(Self { inner: Some(job) })
+    }
+}
+
+#[wasm_bindgen]
+impl FlipbookExport {
+    /// `request_json`: `{frames: [A, B], fps, grid: [C, R], tile: [W, H], fade, format,
+    /// camera}`; the scene's field is synthesised (see `withField`).
+    #[wasm_bindgen(constructor)]
+    pub fn new(scene_json: &str, request_json: &str) -> Result<FlipbookExport, JsError> {
+        Self::make(scene_json, request_json, None)
+    }
+
+    /// As `new`, on `field` (the scene's own, already synthesised).
+    #[wasm_bindgen(js_name = withField)]
+    pub fn with_field(
+        scene_json: &str,
+        request_json: &str,
+        field: &WindField,
+    ) -> Result<FlipbookExport, JsError> {
+        Self::make(scene_json, request_json, Some(Some(field.inner.clone())))
+    }
+
+    /// Renders up to `rows` more rows; false once every frame is in.
+    pub fn step(&mut self, rows: u32) -> Result<bool, JsError> {
+        match &mut self.inner {
+            Some(job) => job.step(rows).map_err(js_error),
+            None => Ok(false),
+        }
+    }
+
+    /// Share of the work done, 0..1.
+    pub fn progress(&self) -> f64 {
+        self.inner.as_ref().map_or(1.0, FlipbookJob::progress)
+    }
+
+    /// The sheet's bytes and its description (JSON), `image` its file name:
+    /// `{sheet, description}`. May be called once.
+    pub fn finish(&mut self, image: &str) -> Result<JsValue, JsError> {
+        let job = self
+            .inner
+            .take()
+            .ok_or_else(|| JsError::new("the flipbook was finished already"))?;
+        let (bytes, description) = job.finish(image).map_err(|e| JsError::new(&e))?;
+        let json = serde_json::to_string(&description).map_err(js_error)?;
+        Ok(object(vec![
+            ("sheet", bytes.into()),
+            ("description", json.into()),
+        ]))
+    }
+}
+
+/// A volume for export (`exportVolume`): the blobs deposited a share at a time, then the
+/// `.vdb` bytes `windfield volume LIST --voxel H` writes.
+#[wasm_bindgen]
+pub struct VolumeExport {
+    inner: Option<VolumeBuild>,
+    time: Option<f64>,
+}
+
+#[wasm_bindgen]
+impl VolumeExport {
+    /// The blobs of `blob_list_json` at voxels of `voxel` m; `time` (s) the moment they show
+    /// (NaN for none). Refused over the voxel budget, naming `voxel`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(blob_list_json: &str, voxel: f64, time: f64) -> Result<VolumeExport, JsError> {
+        let value: serde_json::Value = parse(blob_list_json, "blob list")?;
+        let list = BlobList::from_value(value).map_err(js_error)?;
+        let build = VolumeBuild::new(&list, voxel, "voxel").map_err(js_error)?;
+        Ok(Self {
+            inner: Some(build),
+            time: known_time(time),
+        })
+    }
+
+    /// Deposits up to `blobs` more blobs; false once all are in.
+    pub fn step(&mut self, blobs: u32) -> bool {
+        self.inner.as_mut().is_some_and(|b| b.step(blobs as usize))
+    }
+
+    /// Share of the blobs deposited, 0..1.
+    pub fn progress(&self) -> f64 {
+        self.inner.as_ref().map_or(1.0, VolumeBuild::progress)
+    }
+
+    /// The `.vdb` bytes. May be called once.
+    pub fn finish(&mut self) -> Result<Vec<u8>, JsError> {
+        let build = self
+            .inner
+            .take()
+            .ok_or_else(|| JsError::new("the volume was finished already"))?;
+        Ok(build.finish().to_vdb(self.time))
     }
 }
 

@@ -13,6 +13,8 @@
 //! render/   §5, App. B  the CPU reference renderer of a blob list
 //! frame/                the browser's GPU frame: blobs packed for the shaders, the exact
 //!                       march's level of detail and shadow grid, the real-time view's twin
+//! export/               files for other pipelines: stills with alpha, OpenEXR, flipbooks,
+//!                       OpenVDB volumes, the wind as a vector grid
 //! contract              the numbers shared with the page's code, written to JavaScript
 //! api       (wasm32)    the one door to JavaScript: conversions and errors only
 //! ```
@@ -28,6 +30,7 @@ pub mod api;
 pub mod check;
 pub mod contract;
 pub mod error;
+pub mod export;
 pub mod field;
 pub mod frame;
 pub mod gas;

@@ -309,7 +309,7 @@ fn twin_with(list: &BlobList, object_shadows: bool) -> Vec<f64> {
                     }
                     rad += t * color * lam;
                 }
-                None => rad += t * DVec3::from_array(list.background.map(f64::from)),
+                None => rad += t * DVec3::from_array(list.background.radiance().map(f64::from)),
             }
             out.extend_from_slice(&rad.to_array());
         }
@@ -322,6 +322,7 @@ fn encode(data: &[f64], enc: Encoding) -> Vec<u8> {
         width: 0,
         height: 0,
         data: data.iter().map(|&v| v as f32).collect(),
+        alpha: None,
     };
     img.to_rgb8(enc)
 }

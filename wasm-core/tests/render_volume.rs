@@ -99,6 +99,7 @@ fn a_sphere_in_the_light_shadows_the_steam_in_the_twin_as_in_the_reference() {
         center: [0.8, 2.1, 0.95],
         radius: 0.12,
         color: [0.5; 3],
+        solid: false,
     });
     let grid = standard_grid(&frame);
     let volume = splat(&frame, &grid);

@@ -183,8 +183,8 @@ fn bad_input_is_refused_naming_the_flag_or_the_file() {
         refused(&refs, flag, Path::new(out));
     };
     check(
-        with(&b, &out_vdb),
-        "--out: .vdb output is not available yet",
+        with(&["--points", &points], &out_vdb),
+        "--out: the wind at --points is written as .json",
         &out_vdb,
     );
     check(

@@ -8,6 +8,7 @@ import { FramePace } from './player/frame-pace.js';
 import { describeRenderer, LIGHT, lightenedWords, SLOW_FPS, userChoices } from './player/machine.js';
 import { boolean, nonFinite, number, oneOf, shown, wholeNumber } from './player/arguments.js';
 import { MAX_IMAGE_SIDE, MAX_STEPS } from './generated/contract.js';
+import { exportBlob, flipbookRequest, stillRequest, volumeRequest } from './player/exports.js';
 import { recordWebM } from './player/recorder.js';
 import { ResolutionGovernor, startScale } from './player/resolution.js';
 import { EXACT_QUALITY, exactFrameRequest } from './views/exact/exact-frame.js';
@@ -709,6 +710,33 @@ export class Player {
   }
 
   /**
+   * Exports for pipelines (docs/FORMATS.md, exports), made in the worker by the command line's
+   * code: a still (PNG or EXR, optionally over a transparent background) and a volume (OpenVDB)
+   * of the current state, a flipbook of the scene from t = 0, each seen from the view's camera;
+   * each a Promise of a Blob. The running scene is only read; `cancelExport()` stops them.
+   */
+  async exportStill(options = {}) {
+    const request = stillRequest(options, this.#view.size());
+    await this.#syncCentres();
+    return exportBlob(this.#engine, 'exportStill', { ...request, camera: this.#view.cameraSettings() }, this.hooks.onProgress);
+  }
+
+  async exportFlipbook(options = {}) {
+    return exportBlob(this.#engine, 'exportFlipbook', flipbookRequest(options, this.#view.cameraSettings()), this.hooks.onProgress);
+  }
+
+  async exportVolume(options = {}) {
+    const request = volumeRequest(options);
+    await this.#syncCentres();
+    return exportBlob(this.#engine, 'exportVolume', request, this.hooks.onProgress);
+  }
+
+  /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many. */
+  cancelExport() {
+    return this.#engine.request('cancelExport');
+  }
+
+  /**
    * A WebM of `frames` consecutive fixed steps (one step a frame, from the current state),
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
@@ -1168,6 +1196,10 @@ export class Player {
       exportBlobs: (size) => this.exportBlobs(size),
       captureGPU: (options) => this.captureGPU(options),
       renderReference: (options) => this.renderReference(options),
+      exportStill: (options) => this.exportStill(options),
+      exportFlipbook: (options) => this.exportFlipbook(options),
+      exportVolume: (options) => this.exportVolume(options),
+      cancelExport: () => this.cancelExport(),
       recordWebM: (options) => this.recordWebM(options),
       inspectVolume: (options) => this.inspectVolume(options),
       inspectStepper: () => this.inspectStepper(),

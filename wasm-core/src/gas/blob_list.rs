@@ -211,6 +211,100 @@ pub enum Model {
     Teapot,
 }
 
+/// What a ray that meets neither gas nor object ends in: a colour (linear radiance per channel,
+/// `[r, g, b]`), or `"transparent"`: nothing, and the image gets an alpha channel, α = 1 − T(∞)
+/// over the gas (T the ray's transmittance, its channels' mean where the extinction is
+/// coloured) and 1 on opaque objects (docs/FORMATS.md, the image).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Background {
+    Colour([f32; 3]),
+    Transparent,
+}
+
+/// The keyword of a transparent background.
+pub const TRANSPARENT: &str = "transparent";
+
+impl Background {
+    /// The radiance a ray picks up past the gas: the colour, or none when transparent.
+    pub fn radiance(self) -> [f32; 3] {
+        match self {
+            Self::Colour(c) => c,
+            Self::Transparent => [0.0; 3],
+        }
+    }
+
+    pub fn is_transparent(self) -> bool {
+        self == Self::Transparent
+    }
+}
+
+impl Default for Background {
+    fn default() -> Self {
+        Self::Colour([0.05, 0.06, 0.08])
+    }
+}
+
+impl Serialize for Background {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Self::Colour(c) => c.serialize(s),
+            Self::Transparent => s.serialize_str(TRANSPARENT),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Background {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> Visitor<'de> for Either {
+            type Value = Background;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                write!(f, "[r, g, b] (linear radiance) or \"{TRANSPARENT}\"")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Background, E> {
+                if v == TRANSPARENT {
+                    Ok(Background::Transparent)
+                } else {
+                    Err(E::custom(format!(
+                        "must be [r, g, b] (linear radiance) or \"{TRANSPARENT}\" (got \"{v}\")"
+                    )))
+                }
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Background, A::Error> {
+                let rgb =
+                    <[f32; 3]>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))?;
+                Ok(Background::Colour(rgb))
+            }
+        }
+        d.deserialize_any(Either)
+    }
+}
+
+impl JsonSchema for Background {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Background".into()
+    }
+
+    fn inline_schema() -> bool {
+        true
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "description": "Linear radiance [r, g, b] behind the gas, or \"transparent\": an alpha channel instead (alpha = 1 - T(inf) over the gas, 1 on objects).",
+            "anyOf": [
+                {
+                    "type": "array",
+                    "items": { "type": "number", "format": "float", "minimum": 0, "maximum": 1e6 },
+                    "minItems": 3,
+                    "maxItems": 3
+                },
+                { "const": TRANSPARENT }
+            ]
+        })
+    }
+}
+
 /// The `render` section of a scene: everything of a blob list except the blobs, and the
 /// scene's `time`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -222,8 +316,7 @@ pub struct RenderSettings {
     #[schemars(length(max = MAX_LIGHTS))]
     pub lights: Vec<Light>,
     pub shadows: bool,
-    #[schemars(inner(range(min = 0, max = 1e6)))]
-    pub background: [f32; 3],
+    pub background: Background,
     #[schemars(length(max = MAX_OBJECTS))]
     pub objects: Vec<Object>,
     /// The moment (s) a still or a poster shows when none is given (`windfield render`
@@ -245,7 +338,7 @@ impl Default for RenderSettings {
                 color: [1.0, 1.0, 1.0],
             }],
             shadows: true,
-            background: [0.05, 0.06, 0.08],
+            background: Background::default(),
             objects: Vec::new(),
             time: None,
         }
@@ -283,7 +376,7 @@ pub struct BlobList {
     pub medium: Medium,
     pub lights: Vec<Light>,
     pub shadows: bool,
-    pub background: [f32; 3],
+    pub background: Background,
     pub objects: Vec<Object>,
     /// At most [`MAX_LIST_BLOBS`]: a longer list is refused as it is read, before it is held.
     #[serde(deserialize_with = "bounded_blobs")]

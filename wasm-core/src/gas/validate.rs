@@ -12,7 +12,7 @@ use crate::check;
 use crate::error::ParamError;
 use crate::field::MAX_SEED;
 use crate::gas::blob_list::{
-    BlobList, Camera, Image, Light, Medium, Object, Phase, RenderSettings,
+    Background, BlobList, Camera, Image, Light, Medium, Object, Phase, RenderSettings,
 };
 use crate::gas::limits::{
     MAX_BIRTHS_PER_STEP, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_IMAGE_SIDE, MAX_LIGHTS,
@@ -422,7 +422,9 @@ fn view(v: &RenderSettings, prefix: &str, max_objects: usize) -> Result<(), Para
     for (i, l) in v.lights.iter().enumerate() {
         light(&p(&format!("lights[{i}]")), l)?;
     }
-    check::colour(&p("background"), v.background, 1e6)?;
+    if let Background::Colour(c) = v.background {
+        check::colour(&p("background"), c, 1e6)?;
+    }
     for (i, o) in v.objects.iter().enumerate() {
         object(&p(&format!("objects[{i}]")), o)?;
     }

@@ -10,29 +10,47 @@ pub struct BandedRender {
     renderer: Renderer,
     /// Three floats a pixel, row 0 at the top; rows not yet rendered are black.
     data: Vec<f32>,
+    /// Coverage, one float a pixel.
+    alpha: Vec<f32>,
     next_row: u32,
 }
 
 impl BandedRender {
     /// A still of `renderer`'s image, no row rendered yet.
     pub fn new(renderer: Renderer) -> Self {
-        let data = vec![0.0; 3 * (renderer.width * renderer.height) as usize];
+        let pixels = (renderer.width * renderer.height) as usize;
         Self {
             renderer,
-            data,
+            data: vec![0.0; 3 * pixels],
+            alpha: vec![0.0; pixels],
             next_row: 0,
         }
     }
 
     /// Renders up to `rows` more rows; false once the image is complete.
     pub fn step(&mut self, rows: u32) -> bool {
-        let row_len = 3 * self.renderer.width as usize;
-        let end = self.next_row.saturating_add(rows).min(self.renderer.height);
-        for j in self.next_row..end {
-            let start = j as usize * row_len;
-            self.renderer
-                .render_row(j, &mut self.data[start..start + row_len]);
+        let w = self.renderer.width as usize;
+        let (first, end) = (
+            self.next_row,
+            self.next_row.saturating_add(rows).min(self.renderer.height),
+        );
+        let (a, b) = (first as usize * w, end as usize * w);
+        let rows = self.data[3 * a..3 * b].chunks_mut(3 * w);
+        let alphas = self.alpha[a..b].chunks_mut(w);
+        let renderer = &self.renderer;
+        let render = |(n, (row, al)): (usize, (&mut [f32], &mut [f32]))| {
+            renderer.render_row(first + n as u32, row, al)
+        };
+        // Rows are independent: rendered on every core where the `parallel` feature is on,
+        // with the same result.
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            let work: Vec<_> = rows.zip(alphas).enumerate().collect();
+            work.into_par_iter().for_each(render);
         }
+        #[cfg(not(feature = "parallel"))]
+        rows.zip(alphas).enumerate().for_each(render);
         self.next_row = end;
         self.next_row < self.renderer.height
     }
@@ -58,6 +76,7 @@ impl BandedRender {
             width: self.renderer.width,
             height: self.renderer.height,
             data: self.data.clone(),
+            alpha: self.renderer.transparent().then(|| self.alpha.clone()),
         }
     }
 }

@@ -73,7 +73,7 @@ impl RenderBlob {
             s_in: s_mid - h,
             s_out: s_mid + h,
             s_mid,
-            peak: self.mass * INV_4PI / s2 * (-r2.max(0.0) / (2.0 * s2)).exp(),
+            peak: self.mass * INV_4PI / s2 * libm::expf(-r2.max(0.0) / (2.0 * s2)),
             inv_width: FRAC_1_SQRT_2 / self.sigma,
         })
     }
@@ -83,7 +83,7 @@ impl RenderBlob {
     pub fn density(&self, x: Vec3) -> f32 {
         let s2 = self.sigma * self.sigma;
         self.mass * INV_2PI_32 / (s2 * self.sigma)
-            * (-(x - self.center).length_squared() / (2.0 * s2)).exp()
+            * libm::expf(-(x - self.center).length_squared() / (2.0 * s2))
     }
 }
 
@@ -128,7 +128,7 @@ fn erf_table() -> &'static [[f32; 2]] {
                 let x = i as f64 * ERF_RANGE as f64 / ERF_STEPS as f64;
                 [
                     libm::erf(x) as f32,
-                    (2.0 / std::f64::consts::PI.sqrt() * (-x * x).exp()) as f32,
+                    (2.0 / std::f64::consts::PI.sqrt() * libm::exp(-x * x)) as f32,
                 ]
             })
             .collect()

@@ -28,7 +28,7 @@ impl CameraRays {
             forward,
             right,
             up,
-            half_height: (camera.fov_y_deg.to_radians() * 0.5).tan(),
+            half_height: libm::tanf(camera.fov_y_deg.to_radians() * 0.5),
             width,
             height,
         }
@@ -316,6 +316,7 @@ mod tests {
             center: [0.0, 1.0, 0.0],
             radius: 0.5,
             color: [1.0; 3],
+            solid: false,
         }];
         let below = Vec3::new(0.0, -1.0, 0.0);
         assert!(occluded(&sphere, below, Vec3::Y, inf));
@@ -333,6 +334,7 @@ mod tests {
             point: [0.0, 0.0, 0.0],
             normal: [0.0, 1.0, 0.0],
             color: [1.0; 3],
+            solid: false,
         }];
         let up = Vec3::new(0.3, 0.8, 0.0).normalize();
         assert!(occluded(&plane, Vec3::new(0.0, -0.5, 0.0), up, inf));
@@ -348,6 +350,7 @@ mod tests {
             height: 1.0,
             color: [1.0; 3],
             model: None,
+            solid: false,
         }];
         assert!(occluded(&cyl, Vec3::new(-2.0, 0.5, 0.0), Vec3::X, inf));
         assert!(!occluded(&cyl, Vec3::new(-2.0, 1.1, 0.0), Vec3::X, inf));

@@ -1,22 +1,31 @@
 //! Linear RGB images, their 8-bit encodings (docs/FORMATS.md: `linear` or the sRGB curve), PNG
-//! files, and the PSNR the tests compare with.
+//! files, and the PSNR the tests compare with. An image rendered over a transparent background
+//! carries its coverage α; its colour is then premultiplied (the radiance over nothing), and its
+//! PNG is RGBA with straight colour, as PNG expects.
 
 use crate::gas::blob_list::Encoding;
 
-/// Linear radiance, RGB interleaved, row 0 at the top.
+/// Linear radiance, RGB interleaved, row 0 at the top; with `alpha`, premultiplied colour over
+/// a transparent background and its coverage, one float a pixel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinearImage {
     pub width: u32,
     pub height: u32,
     pub data: Vec<f32>,
+    /// Coverage α in [0, 1] per pixel (1 − T(∞) over the gas, 1 on objects), or `None` for an
+    /// opaque image (a background colour).
+    pub alpha: Option<Vec<f32>>,
 }
 
-/// The sRGB transfer curve (IEC 61966-2-1) of a linear value in [0, 1].
+/// The sRGB transfer curve (IEC 61966-2-1) of a linear value in [0, 1]. The power is `libm`'s
+/// `powf`, the one `f32::powf` is in WebAssembly, so that the native and the browser's stills
+/// round every pixel the same way (the platform's own `powf` differs in the last bit now and
+/// then, which moves a byte where a value sits on a rounding boundary).
 pub fn srgb_encode(v: f32) -> f32 {
     if v <= 0.003_130_8 {
         12.92 * v
     } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
+        1.055 * libm::powf(v, 1.0 / 2.4) - 0.055
     }
 }
 
@@ -35,6 +44,49 @@ impl LinearImage {
             })
             .collect()
     }
+
+    /// 8-bit RGBA with straight (un-premultiplied) colour: each channel c/α (0 where α = 0)
+    /// encoded as [`Self::to_rgb8`] encodes it, α as round(255·α) (α is always linear). An
+    /// opaque image gets α = 255.
+    pub fn to_rgba8(&self, encoding: Encoding) -> Vec<u8> {
+        let ones;
+        let alpha = match &self.alpha {
+            Some(a) => a,
+            None => {
+                ones = vec![1.0; (self.width * self.height) as usize];
+                &ones
+            }
+        };
+        let straight = LinearImage {
+            width: self.width,
+            height: self.height,
+            data: self
+                .data
+                .chunks_exact(3)
+                .zip(alpha)
+                .flat_map(|(c, &a)| {
+                    let inv = if a > 0.0 { 1.0 / a } else { 0.0 };
+                    [c[0] * inv, c[1] * inv, c[2] * inv]
+                })
+                .collect(),
+            alpha: None,
+        };
+        straight
+            .to_rgb8(encoding)
+            .chunks_exact(3)
+            .zip(alpha)
+            .flat_map(|(c, &a)| [c[0], c[1], c[2], (255.0 * a.clamp(0.0, 1.0)).round() as u8])
+            .collect()
+    }
+
+    /// The still as PNG bytes: 8-bit RGB when opaque, 8-bit RGBA (straight colour) when it
+    /// carries alpha.
+    pub fn to_png(&self, encoding: Encoding) -> Result<Vec<u8>, png::EncodingError> {
+        match self.alpha {
+            None => encode_png(self.width, self.height, &self.to_rgb8(encoding)),
+            Some(_) => encode_png_rgba(self.width, self.height, &self.to_rgba8(encoding)),
+        }
+    }
 }
 
 /// Encodes 8-bit RGB as PNG bytes.
@@ -46,6 +98,23 @@ pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, png::E
         enc.set_depth(png::BitDepth::Eight);
         let mut writer = enc.write_header()?;
         writer.write_image_data(rgb)?;
+    }
+    Ok(out)
+}
+
+/// Encodes 8-bit RGBA (straight colour) as PNG bytes.
+pub fn encode_png_rgba(
+    width: u32,
+    height: u32,
+    rgba: &[u8],
+) -> Result<Vec<u8>, png::EncodingError> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, width, height);
+        enc.set_color(png::ColorType::Rgba);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header()?;
+        writer.write_image_data(rgba)?;
     }
     Ok(out)
 }
@@ -97,6 +166,7 @@ mod tests {
             width: 2,
             height: 1,
             data: vec![0.0, 0.5, 1.0, 0.2, 2.0, -1.0],
+            alpha: None,
         };
         assert_eq!(img.to_rgb8(Encoding::Linear), vec![0, 128, 255, 51, 255, 0]);
         assert_eq!(img.to_rgb8(Encoding::Srgb), vec![0, 188, 255, 124, 255, 0]);

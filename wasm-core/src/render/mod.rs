@@ -12,6 +12,10 @@
 //! opaque object lies between the point and the light. Opaque objects end the ray with Lambert
 //! shading shadowed by the gas and by the other objects; other rays end in the background.
 //!
+//! Its transcendental functions are `libm`'s (glam's `libm` feature for its vectors), the same
+//! code the WebAssembly build runs, so a blob list renders to the same bytes natively and in
+//! the browser (the platform's own `expf` and `powf` differ in the last bit now and then).
+//!
 //! Its input is the blob list of [`crate::gas::blob_list`]; it knows nothing of scenes, of the
 //! gas's state or of the browser. The browser's GPU views have their own frame format
 //! ([`crate::frame`]), held against this renderer by tests.
@@ -34,5 +38,5 @@ pub use banded::BandedRender;
 pub use bvh::Bvh;
 pub use gaussian::{erf, Chord, RenderBlob, TRUNCATION};
 pub use geometry::{occluded, CameraRays};
-pub use image::{decode_png, encode_png, psnr, LinearImage};
+pub use image::{decode_png, encode_png, encode_png_rgba, psnr, LinearImage};
 pub use renderer::{phase, RenderOptions, Renderer, STEP_FRACTION};

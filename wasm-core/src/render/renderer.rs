@@ -63,6 +63,8 @@ pub struct Renderer {
     lights: Vec<PreparedLight>,
     shadows: bool,
     background: Vec3,
+    /// The background is transparent: the image carries its coverage as alpha.
+    transparent: bool,
     objects: Vec<Object>,
     /// Σ_k max colour_k × max phase: a bound on L(x).
     scatter_bound: f32,
@@ -133,7 +135,8 @@ impl Renderer {
             phase: list.medium.phase,
             lights,
             shadows: list.shadows,
-            background: Vec3::from_array(list.background),
+            background: Vec3::from_array(list.background.radiance()),
+            transparent: list.background.is_transparent(),
             objects: list.objects.clone(),
             width: list.image.width,
             height: list.image.height,
@@ -141,34 +144,50 @@ impl Renderer {
         })
     }
 
-    /// Renders the whole image (rows in parallel where the `parallel` feature is on).
+    /// Renders the whole image (rows in parallel where the `parallel` feature is on); with a
+    /// transparent background it carries its coverage as alpha.
     pub fn render(&self) -> LinearImage {
-        let mut data = vec![0.0f32; 3 * (self.width * self.height) as usize];
-        let row_len = 3 * self.width as usize;
+        let pixels = (self.width * self.height) as usize;
+        let mut data = vec![0.0f32; 3 * pixels];
+        let mut alpha = vec![0.0f32; pixels];
+        let (row_len, w) = (3 * self.width as usize, self.width as usize);
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
             data.par_chunks_mut(row_len)
+                .zip(alpha.par_chunks_mut(w))
                 .enumerate()
-                .for_each(|(j, row)| self.render_row(j as u32, row));
+                .for_each(|(j, (row, a))| self.render_row(j as u32, row, a));
         }
         #[cfg(not(feature = "parallel"))]
-        for (j, row) in data.chunks_mut(row_len).enumerate() {
-            self.render_row(j as u32, row);
+        for (j, (row, a)) in data
+            .chunks_mut(row_len)
+            .zip(alpha.chunks_mut(w))
+            .enumerate()
+        {
+            self.render_row(j as u32, row, a);
         }
         LinearImage {
             width: self.width,
             height: self.height,
             data,
+            alpha: self.transparent.then_some(alpha),
         }
     }
 
-    /// Renders row `j` into `row` (3 × width floats).
-    pub fn render_row(&self, j: u32, row: &mut [f32]) {
+    /// Renders row `j` into `row` (3 × width floats) and its coverage into `alpha` (width
+    /// floats).
+    pub fn render_row(&self, j: u32, row: &mut [f32], alpha: &mut [f32]) {
         for i in 0..self.width {
-            let c = self.radiance(self.rays.origin(), self.rays.direction(i, j));
+            let (c, a) = self.radiance_alpha(self.rays.origin(), self.rays.direction(i, j));
             row[3 * i as usize..3 * i as usize + 3].copy_from_slice(&c.to_array());
+            alpha[i as usize] = a;
         }
+    }
+
+    /// Whether the background is transparent (the image carries alpha).
+    pub fn transparent(&self) -> bool {
+        self.transparent
     }
 
     /// Blobs the ray may touch: through the hierarchy, or all of them. `visit` returns false
@@ -284,6 +303,14 @@ impl Renderer {
 
     /// Radiance arriving at `origin` from direction `dir`.
     pub fn radiance(&self, origin: Vec3, dir: Vec3) -> Vec3 {
+        self.radiance_alpha(origin, dir).0
+    }
+
+    /// Radiance arriving at `origin` from direction `dir`, and its coverage α: 1 where the ray
+    /// ends on an opaque object or in opaque gas, else 1 − T(∞) (the mean over the channels of
+    /// the transmittance past the gas). With a transparent background the radiance is the
+    /// premultiplied colour over nothing; with a colour it includes T(∞) · background.
+    pub fn radiance_alpha(&self, origin: Vec3, dir: Vec3) -> (Vec3, f32) {
         let hit = nearest_hit(&self.objects, origin, dir);
         let s_end = hit.map_or(f32::INFINITY, |h| h.s);
         let mut chords: Vec<(Chord, usize)> = Vec::new();
@@ -301,16 +328,19 @@ impl Renderer {
         let mut radiance = Vec3::ZERO;
         let mut transmittance = Vec3::ONE;
         if self.march(origin, dir, &chords, &mut radiance, &mut transmittance) {
-            return radiance;
+            return (radiance, 1.0);
         }
         match hit {
             Some(h) => {
                 let p = origin + dir * h.s + h.normal * 1e-4;
                 radiance += transmittance * h.color * self.in_scattered(p, dir, Some(h.normal));
+                (radiance, 1.0)
             }
-            None => radiance += transmittance * self.background,
+            None => {
+                radiance += transmittance * self.background;
+                (radiance, 1.0 - transmittance.element_sum() / 3.0)
+            }
         }
-        radiance
     }
 
     /// Composites the chords (sorted by entry) front to back (Eqs. 26–27). Steps are at most
@@ -399,7 +429,7 @@ pub fn phase(p: Phase, cos_theta: f32) -> f32 {
     match p {
         Phase::Isotropic => 1.0,
         Phase::HenyeyGreenstein { g } => {
-            (1.0 - g * g) / (1.0 + g * g - 2.0 * g * cos_theta).powf(1.5)
+            (1.0 - g * g) / libm::powf(1.0 + g * g - 2.0 * g * cos_theta, 1.5)
         }
     }
 }

@@ -55,4 +55,20 @@ export const ApiMixin = (Base) => class extends Base {
   async renderReference(options) {
     return (await this[$whenReady]()).renderReference(options);
   }
+
+  async exportStill(options) {
+    return (await this[$whenReady]()).exportStill(options);
+  }
+
+  async exportFlipbook(options) {
+    return (await this[$whenReady]()).exportFlipbook(options);
+  }
+
+  async exportVolume(options) {
+    return (await this[$whenReady]()).exportVolume(options);
+  }
+
+  async cancelExport() {
+    return (await this[$whenReady]()).cancelExport();
+  }
 };

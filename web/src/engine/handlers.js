@@ -92,6 +92,42 @@ function referenceStill(core, list, width, height, id, progress) {
   }
 }
 
+/** Lets the worker's event loop run (progress posts, a cancel) between an export's stages. */
+const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
+
+/** Rows rendered between two looks at the clock and at a cancel. */
+const EXPORT_ROWS = 8;
+/** Blobs deposited in a volume between two looks. */
+const EXPORT_BLOBS = 2000;
+
+/**
+ * Runs an export job (`StillExport`, `FlipbookExport` or `VolumeExport` of the core) stage by
+ * stage: `step(n)` until it returns false, reporting progress under `id` and yielding to the
+ * event loop between stages so that a `cancelExport` request is heard; a cancelled export
+ * throws "cancelled: …" and leaves nothing behind (the job is freed either way).
+ */
+async function runExport(job, { id, stage, chunk, progress, exports }) {
+  const token = { cancelled: false };
+  exports.add(token);
+  try {
+    progress(id, 0, stage);
+    for (;;) {
+      if (token.cancelled) throw new Error(`cancelled: the ${stage.toLowerCase()} was cancelled`);
+      if (!job.step(chunk)) break;
+      progress(id, job.progress(), stage);
+      await yieldToEvents();
+    }
+    if (token.cancelled) throw new Error(`cancelled: the ${stage.toLowerCase()} was cancelled`);
+    progress(id, 1, stage);
+  } catch (err) {
+    job.free();
+    throw err;
+  } finally {
+    exports.delete(token);
+  }
+  return job;
+}
+
 /**
  * The request handlers over `core` (the WASM module's exports, initialised); `progress(id,
  * value, stage)` reports a request's progress; `memory()` is the core's linear memory (bytes).
@@ -134,6 +170,8 @@ export function createHandlers(core, progress, memory = () => 0) {
     }
     session.blobCap = blobCap ?? Infinity;
   };
+  /** The exports in flight (their cancel tokens). */
+  const exports = new Set();
   return {
     load: async ({ id, scene, blobCap }) => {
       setCap(blobCap);
@@ -220,6 +258,54 @@ export function createHandlers(core, progress, memory = () => 0) {
     reference: ({ id, camera, width, height }) => {
       const png = referenceStill(core, session.blobList(camera, { width, height }), width, height, id, progress);
       return { result: { png, width, height }, transfer: [png.buffer] };
+    },
+    // Exports for pipelines (docs/FORMATS.md, exports), from the current state and the
+    // view's camera: the same core code and bytes as the command line's `render LIST`,
+    // `volume LIST` and `flipbook`. The running scene is only read, never changed.
+    exportStill: async ({ id, camera, width, height, format, alpha }) => {
+      const list = session.blobList(camera, { width, height });
+      if (alpha) list.background = 'transparent';
+      const job = await runExport(new core.StillExport(JSON.stringify(list), format, sim().time()), {
+        id, stage: 'Rendering still', chunk: EXPORT_ROWS, progress, exports,
+      });
+      try {
+        const bytes = job.bytes();
+        return { result: { bytes, format }, transfer: [bytes.buffer] };
+      } finally {
+        job.free();
+      }
+    },
+    exportVolume: async ({ id, voxel }) => {
+      const list = session.blobList();
+      const job = await runExport(new core.VolumeExport(JSON.stringify(list), voxel, sim().time()), {
+        id, stage: 'Building volume', chunk: EXPORT_BLOBS, progress, exports,
+      });
+      try {
+        const bytes = job.finish();
+        return { result: { bytes }, transfer: [bytes.buffer] };
+      } finally {
+        job.free();
+      }
+    },
+    exportFlipbook: async ({ id, request, name }) => {
+      // A simulation of its own from t = 0, on the running field when it is the scene's.
+      const { json, key } = session.current;
+      const text = JSON.stringify(request);
+      const job = key && session.field && session.fieldKey === key
+        ? core.FlipbookExport.withField(json, text, session.field)
+        : new core.FlipbookExport(json, text);
+      await runExport(job, { id, stage: 'Rendering flipbook', chunk: EXPORT_ROWS, progress, exports });
+      try {
+        const { sheet, description } = job.finish(name);
+        return { result: { bytes: sheet, description: JSON.parse(description) }, transfer: [sheet.buffer] };
+      } finally {
+        job.free();
+      }
+    },
+    // Cancels every export in flight: each rejects with "cancelled: …" at its next stage.
+    cancelExport: () => {
+      for (const token of exports) token.cancelled = true;
+      return { result: exports.size };
     },
     windSlice: ({ origin, u, v, n }) => {
       const data = sim().windSlice(new Float32Array(origin), new Float32Array(u), new Float32Array(v), n, n);

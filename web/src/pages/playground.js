@@ -356,6 +356,7 @@ function shareFolder(gui) {
     },
   };
   const share = gui.addFolder('Share and export');
+  pipelineFolder(share);
   share.add(actions, 'copyLink').name('copy link');
   share.add(actions, 'exportScene').name('export scene JSON');
   share.add(actions, 'importScene').name('import scene JSON');
@@ -364,6 +365,71 @@ function shareFolder(gui) {
   share.add(actions, 'blobs').name('export blob list JSON');
   share.add(actions, 'frames', 2, 1800, 1).name('video frames');
   share.add(actions, 'video').name('record WebM');
+}
+
+/**
+ * Runs an export (`make()` resolves with a Blob) and downloads it as `name`, with the progress
+ * bar and a cancel button; a cancelled or failed export says so and leaves the scene running.
+ */
+async function exportFile(what, name, make) {
+  const cancel = $('#progress .cancel');
+  cancel.hidden = false;
+  cancel.onclick = () => player.cancelExport();
+  try {
+    const blob = await make();
+    download(name, URL.createObjectURL(blob));
+    return blob;
+  } catch (e) {
+    if (e.message.startsWith('cancelled')) showMessage(`The ${what} was cancelled`, { transient: true });
+    else showMessage(`Could not export the ${what}: ${e.message}`);
+    return null;
+  } finally {
+    cancel.hidden = true;
+    showProgress(1, 'done');
+  }
+}
+
+/**
+ * Exports for pipelines (docs/FORMATS.md, exports): a still (PNG or EXR, with alpha), a flipbook
+ * sprite sheet and its JSON, and the gas as an OpenVDB volume, each made in the engine worker by
+ * the command line's code; the video's alpha where the browser can encode it.
+ */
+function pipelineFolder(parent) {
+  const o = {
+    stillFormat: 'png', alpha: true, width: 640, height: 480,
+    fromFrame: 0, toFrame: 64, fps: 24, columns: 8, rows: 8, tileWidth: 256, tileHeight: 256, loop: false, sheetFormat: 'png',
+    voxelMm: 5,
+    still: () => exportFile('still', `windfield.${o.stillFormat}`, () => player.exportStill({
+      format: o.stillFormat, alpha: o.alpha, width: o.width, height: o.height,
+    })),
+    flipbook: async () => {
+      const blob = await exportFile('flipbook', `flipbook.${o.sheetFormat}`, () => player.exportFlipbook({
+        frames: [o.fromFrame, o.toFrame], fps: o.fps, grid: [o.columns, o.rows], tile: [o.tileWidth, o.tileHeight],
+        loop: o.loop, format: o.sheetFormat,
+      }));
+      if (blob) download('flipbook.json', URL.createObjectURL(new Blob([JSON.stringify(blob.description, null, 2)], { type: 'application/json' })));
+    },
+    volume: () => exportFile('volume', 'gas.vdb', () => player.exportVolume({ voxel: o.voxelMm / 1000 })),
+  };
+  const f = parent.addFolder('Export for pipelines').close();
+  f.add(o, 'stillFormat', ['png', 'exr']).name('still format');
+  f.add(o, 'alpha').name('transparent background');
+  f.add(o, 'width', 1, 8192, 1).name('still width');
+  f.add(o, 'height', 1, 8192, 1).name('still height');
+  f.add(o, 'still').name('export still (CPU renderer)');
+  f.add(o, 'fromFrame', 0, 100000, 1).name('flipbook from frame');
+  f.add(o, 'toFrame', 1, 100000, 1).name('flipbook to frame (excl.)');
+  f.add(o, 'fps', 1, 240, 1).name('flipbook fps');
+  f.add(o, 'columns', 1, 64, 1).name('sheet columns');
+  f.add(o, 'rows', 1, 64, 1).name('sheet rows');
+  f.add(o, 'tileWidth', 1, 2048, 1).name('tile width');
+  f.add(o, 'tileHeight', 1, 2048, 1).name('tile height');
+  f.add(o, 'loop').name('seamless loop');
+  f.add(o, 'sheetFormat', ['png', 'exr']).name('sheet format');
+  f.add(o, 'flipbook').name('export flipbook');
+  f.add(o, 'voxelMm', 0.1, 1000, 0.1).name('voxel (mm)');
+  f.add(o, 'volume').name('export volume (OpenVDB)');
+  return f;
 }
 
 let controls = null;

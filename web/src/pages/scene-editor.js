@@ -165,5 +165,8 @@ function medium(root, draft, changed) {
   };
   f.add(phase, 'type', ['isotropic', 'henyey-greenstein']).name('phase').onChange(setPhase);
   if (phase.type !== 'isotropic') f.add(phase, 'g', -0.99, 0.99, 0.01).name('phase g').onFinishChange(setPhase);
-  render.background.forEach((_, a) => f.add(render.background, a, 0, 1, 0.01).name(`background ${'rgb'[a]}`).onFinishChange(changed));
+  // A transparent background (stills and exports with alpha) has no colour to edit.
+  if (Array.isArray(render.background)) {
+    render.background.forEach((_, a) => f.add(render.background, a, 0, 1, 0.01).name(`background ${'rgb'[a]}`).onFinishChange(changed));
+  }
 }

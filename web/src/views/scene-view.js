@@ -29,6 +29,9 @@ import { shadowedLambert } from './object-material.js';
 import { Occluders } from './occluders.js';
 import { releaseGeometries } from './context-loss.js';
 
+/** The colour the views draw for a transparent `render.background` (the scene format's default). */
+const SHOWN_FOR_TRANSPARENT = [0.05, 0.06, 0.08];
+
 export class SceneView {
   /** Set between the context's loss and its restoration. */
   #lost = false;
@@ -219,8 +222,9 @@ export class SceneView {
     const key = JSON.stringify([settings.objects, settings.lights, settings.medium, settings.background, settings.shadows, settings.image, standIns]);
     if (key === this.settingsKey) return;
     this.settingsKey = key;
-    this.background = settings.background;
-    this.scene.background = new THREE.Color().setRGB(...settings.background, THREE.LinearSRGBColorSpace);
+    // A transparent background (for stills and exports with alpha) is drawn as the default one.
+    this.background = settings.background === 'transparent' ? SHOWN_FOR_TRANSPARENT : settings.background;
+    this.scene.background = new THREE.Color().setRGB(...this.background, THREE.LinearSRGBColorSpace);
     for (const child of [...this.objects.children]) {
       this.objects.remove(child);
       child.geometry?.dispose();

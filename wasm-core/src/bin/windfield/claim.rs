@@ -112,9 +112,12 @@ pub struct Manifest {
     pub scene: String,
     /// Frames per second: frame k is the scene at t = k / fps.
     pub fps: f64,
-    /// Image size in pixels.
+    /// Image size in pixels (0 × 0 for a sequence of volumes).
     pub width: u32,
     pub height: u32,
+    /// Voxel side in metres, for a sequence of volumes (`volume --frames`); absent for stills.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub voxel: Option<f64>,
     /// The frames' file names, spelled as `--out` takes them (`f%04d.png`).
     pub pattern: String,
     /// The frame numbers claimed: half-open ranges [A, B), sorted and disjoint.
@@ -140,6 +143,7 @@ impl Manifest {
             fps,
             width,
             height,
+            voxel: None,
             pattern: names.spelling(),
             frames: vec![[range.start, range.end]],
             input: input.display().to_string(),
@@ -155,8 +159,8 @@ impl Manifest {
     /// A key of the run's identity, for the folder lock.
     fn run_key(&self) -> String {
         format!(
-            "{}/{}/{}x{}/{}",
-            self.scene, self.fps, self.width, self.height, self.windfield
+            "{}/{}/{}x{}/{:?}/{}",
+            self.scene, self.fps, self.width, self.height, self.voxel, self.windfield
         )
     }
 
@@ -169,11 +173,12 @@ impl Manifest {
         if self.fps != other.fps {
             out.push(format!("{} fps, not {}", self.fps, other.fps));
         }
-        if (self.width, self.height) != (other.width, other.height) {
-            out.push(format!(
-                "{}×{}, not {}×{}",
-                self.width, self.height, other.width, other.height
-            ));
+        let size = |m: &Self| match m.voxel {
+            Some(v) => format!("volumes of {v} m voxels"),
+            None => format!("{}×{}", m.width, m.height),
+        };
+        if (self.width, self.height, self.voxel) != (other.width, other.height, other.voxel) {
+            out.push(format!("{}, not {}", size(self), size(other)));
         }
         if self.windfield != other.windfield || self.format != other.format {
             out.push(format!(

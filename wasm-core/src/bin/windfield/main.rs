@@ -19,6 +19,7 @@
 //! the range check, not the argument parser, answers them.
 
 mod claim;
+mod exports;
 mod messages;
 mod output;
 mod sequence;
@@ -34,13 +35,16 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 use windfield::error::number;
+use windfield::export::exr::ExrInfo;
+use windfield::export::still::{self, StillFormat};
+use windfield::export::vector_grid::VectorGrid;
 use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
 use windfield::field::{npy, statistics};
 use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
-use windfield::gas::blob_list::BlobList;
+use windfield::gas::blob_list::{Background, BlobList};
 use windfield::gas::limits::{MAX_IMAGE_SIDE, MAX_SCENE_BYTES, MAX_SECONDS};
 use windfield::gas::read::check_scene_size;
-use windfield::render::{encode_png, RenderOptions, Renderer};
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{ParamError, Scene, Simulation};
 
 #[derive(Parser)]
@@ -64,9 +68,14 @@ enum Command {
     /// Simulate a scene and write the blob list (camera, lights, medium and blobs).
     Simulate(SimulateArgs),
     /// Render a still with the CPU reference renderer: a blob list, or a scene simulated first.
+    /// An --out ending in .exr writes OpenEXR (half-float linear RGBA).
     Render(RenderArgs),
     /// Sample the scene's whole wind (m/s) at one time, at points or over a box of cells.
     Wind(wind::WindArgs),
+    /// Render a scene's frames into one sprite sheet (PNG or EXR, with alpha) and its JSON.
+    Flipbook(exports::FlipbookArgs),
+    /// Write the gas's density (and emission) as an OpenVDB volume.
+    Volume(exports::VolumeArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
     /// Print the JavaScript module of the constants the core shares with the page's code
@@ -105,6 +114,14 @@ struct RenderArgs {
     /// another run (another scene, frame rate or size) left under the pattern.
     #[arg(long, requires = "frames")]
     force: bool,
+    /// A transparent background (render.background = "transparent"): the image gets an alpha
+    /// channel, 1 − T(∞) over the gas and 1 on objects.
+    #[arg(long)]
+    alpha: bool,
+    /// For a blob list: the moment it shows (s), recorded in an EXR's header (a scene's
+    /// still records the time it was simulated to).
+    #[arg(long, conflicts_with_all = ["seconds", "frames"], allow_hyphen_values = true)]
+    time: Option<f64>,
 }
 
 #[derive(Args)]
@@ -147,9 +164,23 @@ struct GenerateArgs {
     /// Random seed (0 to 2^53).
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     seed: i64,
-    /// Output file (.npy).
+    /// Output file: .npy (the lattice, lattice units), or one time slice of the world's wind
+    /// (m/s): .vdb (a Vec3SGrid "wind") or .rgb32f (a raw 3-D texture, JSON beside it).
     #[arg(long)]
     out: PathBuf,
+    /// For .vdb and .rgb32f: the moment (s) of the slice, 0 to 100000 (default 0); linear in
+    /// time between lattice times.
+    #[arg(long, allow_hyphen_values = true)]
+    time: Option<f64>,
+    /// For .vdb and .rgb32f: world metres of one spatial period, L or LX,LY,LZ (default 4).
+    #[arg(long, allow_hyphen_values = true)]
+    period: Option<String>,
+    /// For .vdb and .rgb32f: seconds of one temporal period (default 8).
+    #[arg(long = "time-period", allow_hyphen_values = true)]
+    time_period: Option<f64>,
+    /// For .vdb and .rgb32f: the velocity scale A, 0 to 1000 (default 1).
+    #[arg(long, allow_hyphen_values = true)]
+    amplitude: Option<f64>,
 }
 
 #[derive(Args)]
@@ -202,7 +233,7 @@ fn parse_size(text: &str) -> Result<[usize; 4], Failure> {
     }
 }
 
-fn sidecar(path: &Path) -> PathBuf {
+pub(crate) fn sidecar(path: &Path) -> PathBuf {
     let mut s = path.as_os_str().to_owned();
     s.push(".json");
     PathBuf::from(s)
@@ -292,6 +323,7 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
         spectrum: resolve_spectrum(&args.spectrum, None)?,
         seed: args.seed as u64,
     };
+    check_wind_mapping(&args)?;
     let start = Instant::now();
     let field = TurbulentField::generate(&params).map_err(input_error)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
@@ -300,6 +332,9 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
         .check_finite()
         .map_err(|e| Failure::Input(format!("the synthesised {e}")))?;
     let [nx, ny, nz, nt] = params.size;
+    if let Some(grid) = wind_mapping(&args, &field)? {
+        return write_wind_grid(&args.out, &grid, ms);
+    }
     let meta = serde_json::to_string_pretty(&params).expect("parameters serialise");
     // The field and its parameters are one pair: written together, the parameters last.
     output::write_together(&[
@@ -332,6 +367,137 @@ fn open_input(path: &Path) -> Result<(fs::File, u64), Failure> {
         )));
     }
     Ok((file, meta.len()))
+}
+
+/// What `generate --out` writes: the lattice, or one time slice of the wind as a grid.
+#[derive(Clone, Copy, PartialEq)]
+enum FieldOutput {
+    Npy,
+    Vdb,
+    Texture,
+}
+
+fn field_output(path: &Path) -> FieldOutput {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("vdb") => FieldOutput::Vdb,
+        Some(e) if e.eq_ignore_ascii_case("rgb32f") => FieldOutput::Texture,
+        _ => FieldOutput::Npy,
+    }
+}
+
+/// The world mapping flags of `generate` checked, and the slice they ask for (`None` for a
+/// `.npy`, which stays in lattice units and takes none of them). Checked before synthesis by
+/// [`check_wind_mapping`].
+fn wind_mapping(
+    args: &GenerateArgs,
+    field: &TurbulentField,
+) -> Result<Option<VectorGrid>, Failure> {
+    let Some((period, time_period, amplitude, time)) = check_wind_mapping(args)? else {
+        return Ok(None);
+    };
+    Ok(Some(VectorGrid::field_slice(
+        field,
+        period,
+        time_period,
+        amplitude,
+        time,
+    )))
+}
+
+/// `--period`, `--time-period`, `--amplitude`, `--time` for a grid output (defaults 4 m, 8 s,
+/// 1, 0 s); refused for a `.npy`.
+#[allow(clippy::type_complexity)]
+fn check_wind_mapping(args: &GenerateArgs) -> Result<Option<([f64; 3], f64, f64, f64)>, Failure> {
+    let given = [
+        ("--time", args.time.is_some()),
+        ("--period", args.period.is_some()),
+        ("--time-period", args.time_period.is_some()),
+        ("--amplitude", args.amplitude.is_some()),
+    ];
+    if field_output(&args.out) == FieldOutput::Npy {
+        if let Some((flag, _)) = given.iter().find(|(_, on)| *on) {
+            return Err(Failure::Input(format!(
+                "{flag}: applies to a wind grid (--out ending in .vdb or .rgb32f); a .npy holds the lattice in lattice units"
+            )));
+        }
+        return Ok(None);
+    }
+    let period = match &args.period {
+        None => [4.0; 3],
+        Some(text) => {
+            let bad = || {
+                Failure::Input(format!(
+                    "--period: expected L or LX,LY,LZ, metres from 0.001 to 10000 (got {text:?})"
+                ))
+            };
+            let v: Vec<f64> = text
+                .split(',')
+                .map(|p| p.trim().parse::<f64>().map_err(|_| bad()))
+                .collect::<Result<_, _>>()?;
+            let p = match v.as_slice() {
+                [l] => [*l; 3],
+                [x, y, z] => [*x, *y, *z],
+                _ => return Err(bad()),
+            };
+            if !p.iter().all(|l| (0.001..=1e4).contains(l)) {
+                return Err(bad());
+            }
+            p
+        }
+    };
+    let time_period = args.time_period.unwrap_or(8.0);
+    if !(0.001..=1e6).contains(&time_period) {
+        return Err(Failure::Input(format!(
+            "--time-period: must be seconds from 0.001 to 1000000 (got {time_period})"
+        )));
+    }
+    let amplitude = args.amplitude.unwrap_or(1.0);
+    if !(0.0..=1000.0).contains(&amplitude) {
+        return Err(Failure::Input(format!(
+            "--amplitude: must be a number from 0 to 1000 (got {amplitude})"
+        )));
+    }
+    let time = args.time.unwrap_or(0.0);
+    if !(time.is_finite() && (0.0..=MAX_SECONDS).contains(&time)) {
+        return Err(Failure::Input(format!(
+            "--time: must be seconds from 0 to {MAX_SECONDS} (got {time})"
+        )));
+    }
+    Ok(Some((period, time_period, amplitude, time)))
+}
+
+/// Writes a wind grid as `.vdb`, or as `.rgb32f` with its JSON description beside it.
+fn write_wind_grid(out: &Path, grid: &VectorGrid, ms: f64) -> Result<(), Failure> {
+    let [nx, ny, nz] = grid.dims;
+    match field_output(out) {
+        FieldOutput::Vdb => {
+            let bytes = grid.to_vdb();
+            write_atomically(out, |w| std::io::Write::write_all(w, &bytes))?;
+            eprintln!(
+                "wrote {} (a Vec3SGrid \"wind\", {nx}x{ny}x{nz} voxels of {:?} m, t = {} s, m/s); synthesis {ms:.1} ms",
+                out.display(),
+                grid.cell,
+                grid.time
+            );
+        }
+        _ => {
+            let bytes = grid.to_rgb32f();
+            write_atomically(out, |w| std::io::Write::write_all(w, &bytes))?;
+            let text = serde_json::to_string_pretty(&grid.description())
+                .expect("descriptions serialise")
+                + "\n";
+            write_atomically(&sidecar(out), |w| {
+                std::io::Write::write_all(w, text.as_bytes())
+            })?;
+            eprintln!(
+                "wrote {} (RGB32F, {nx}x{ny}x{nz} texels, t = {} s, m/s) and {}; synthesis {ms:.1} ms",
+                out.display(),
+                grid.time,
+                sidecar(out).display()
+            );
+        }
+    }
+    Ok(())
 }
 
 fn stats_cmd(args: StatsArgs) -> Result<(), Failure> {
@@ -393,7 +559,7 @@ fn read_text(path: &Path) -> Result<String, Failure> {
 }
 
 /// Reads and validates a scene file; one over `MAX_SCENE_BYTES` is refused unread.
-fn read_scene(path: &Path) -> Result<Scene, Failure> {
+pub(crate) fn read_scene(path: &Path) -> Result<Scene, Failure> {
     let (_, len) = open_input(path)?;
     check_scene_size(len).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?;
     Scene::from_json(&read_text(path)?)
@@ -401,7 +567,7 @@ fn read_scene(path: &Path) -> Result<Scene, Failure> {
 }
 
 /// What `render` reads: a scene, or a blob list.
-enum Input {
+pub(crate) enum Input {
     Scene(Box<Scene>),
     List(BlobList),
 }
@@ -440,7 +606,7 @@ const SCENE_ONLY_KEYS: [&str; 8] = [
 /// blobs, at most `blob_list::MAX_LIST_BLOBS` of them, with no intermediate JSON tree. A file
 /// over `MAX_SCENE_BYTES` can only be a blob list: it is read as one from the file, never held
 /// whole, and refused unread past its first scene key if it is a scene.
-fn read_input(path: &Path) -> Result<Input, Failure> {
+pub(crate) fn read_input(path: &Path) -> Result<Input, Failure> {
     let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
     let (file, len) = open_input(path)?;
     if len > MAX_SCENE_BYTES as u64 {
@@ -471,7 +637,7 @@ fn read_input(path: &Path) -> Result<Input, Failure> {
 }
 
 /// Seconds of simulated time asked for with `--seconds`: 0 to `gas::limits::MAX_SECONDS`.
-fn check_seconds(seconds: f64) -> Result<(), Failure> {
+pub(crate) fn check_seconds(seconds: f64) -> Result<(), Failure> {
     if seconds.is_finite() && (0.0..=MAX_SECONDS).contains(&seconds) {
         Ok(())
     } else {
@@ -511,7 +677,7 @@ pub fn wall(start: Instant) -> String {
 }
 
 /// A scene simulated to `seconds` (refused over the step budget before it starts).
-fn simulated(
+pub(crate) fn simulated(
     scene: Scene,
     seconds: f64,
     bad: impl Fn(ParamError) -> Failure,
@@ -553,7 +719,13 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
     }
     let path = &args.input;
     match read_input(path)? {
-        Input::Scene(scene) => {
+        Input::Scene(_) if args.time.is_some() => Err(Failure::Input(
+            "--time: applies to blob lists; a scene's still records the time it is simulated to (--seconds)".into(),
+        )),
+        Input::Scene(mut scene) => {
+            if args.alpha {
+                scene.render.background = Background::Transparent;
+            }
             let seconds = args.seconds.unwrap_or(scene.render.still_time());
             let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
             let sim = simulated(*scene, seconds, bad)?;
@@ -562,7 +734,19 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
         Input::List(_) if args.seconds.is_some() => Err(Failure::Input(
             "--seconds: applies to scenes only; this input is a blob list".into(),
         )),
-        Input::List(list) => Ok((list, None)),
+        Input::List(mut list) => {
+            if args.alpha {
+                list.background = Background::Transparent;
+            }
+            if let Some(t) = args.time {
+                check_seconds(t).map_err(|_| {
+                    Failure::Input(format!(
+                        "--time: must be a number between 0 and {MAX_SECONDS} (got {t})"
+                    ))
+                })?;
+            }
+            Ok((list, args.time))
+        }
     }
 }
 
@@ -580,16 +764,22 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
             ))
         }
     };
+    let format = StillFormat::of_name(&args.out.to_string_lossy());
     let job = sequence::Sequence::parse(
         frames,
         args.fps,
         &args.out,
         args.shard.as_deref(),
         args.force,
-        size,
+        sequence::Output::Image { size, format },
     )?;
     match read_input(&args.input)? {
-        Input::Scene(scene) => job.run(*scene, &args.input, start),
+        Input::Scene(mut scene) => {
+            if args.alpha {
+                scene.render.background = Background::Transparent;
+            }
+            job.run(*scene, &args.input, start)
+        }
         Input::List(_) => Err(Failure::Input(format!(
             "--frames: needs a scene to simulate; {} is a blob list",
             args.input.display()
@@ -617,13 +807,15 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
     let renderer = Renderer::new(&list, size, RenderOptions::default())
         .map_err(|e| Failure::Input(format!("{}: {e}", args.input.display())))?;
     let image = renderer.render();
-    let png = encode_png(
-        image.width,
-        image.height,
-        &image.to_rgb8(list.image.encoding),
-    )
-    .map_err(|e| Failure::Io(e.to_string()))?;
-    write_atomically(&args.out, |w| std::io::Write::write_all(w, &png))?;
+    let format = StillFormat::of_name(&args.out.to_string_lossy());
+    let info = ExrInfo {
+        camera: Some(list.camera.clone()),
+        time,
+        fps: None,
+        note: String::new(),
+    };
+    let bytes = still::encode(&image, format, list.image.encoding, &info).map_err(Failure::Io)?;
+    write_atomically(&args.out, |w| std::io::Write::write_all(w, &bytes))?;
     let when = match time {
         Some(t) => format!("at t = {t:.2} s"),
         None => format!("from {}", args.input.display()),
@@ -650,6 +842,8 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate(a),
         Command::Render(a) => render_cmd(a),
         Command::Wind(a) => wind::run(a),
+        Command::Flipbook(a) => exports::flipbook(a),
+        Command::Volume(a) => exports::volume(a),
         Command::Schema => {
             print!("{}", windfield::gas::scene::json_schema());
             Ok(())

@@ -1,6 +1,8 @@
 //! `windfield render SCENE --frames A..B --fps F --out PATTERN [--shard I/N] [--force]`
-//! (docs/FORMATS.md, the command line): one PNG per frame k in the half-open range A..B, the scene at t = k/F, written
-//! to PATTERN with its one `%0Nd` replaced by k.
+//! (docs/FORMATS.md, the command line): one still per frame k in the half-open range A..B, the
+//! scene at t = k/F, written to PATTERN with its one `%0Nd` replaced by k: PNG, or OpenEXR when
+//! the pattern ends in `.exr`. `windfield volume SCENE --frames …` writes one OpenVDB volume per
+//! frame the same way.
 //!
 //! A shard (`--shard I/N`) renders the frames with k mod N = I: it simulates once, from t = 0 to
 //! its last frame that is not yet complete, rendering its frames as it passes them. The
@@ -24,7 +26,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use windfield::render::{encode_png, RenderOptions, Renderer};
+use windfield::export::exr::{self, ExrInfo};
+use windfield::export::still::{self, StillFormat};
+use windfield::export::vdb;
+use windfield::export::volume::GasVolume;
+use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
 /// Most frames one range may hold (at 24 fps, eleven and a half hours).
@@ -224,14 +230,26 @@ pub fn scene_fingerprint(scene: &Scene, width: u32, height: u32) -> String {
     claim::fingerprint(scene.to_json().as_bytes())
 }
 
-/// What `render --frames` was asked for, checked.
+/// What each frame of a sequence is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Output {
+    /// A still of `size` (default the scene's), PNG or OpenEXR.
+    Image {
+        size: Option<(u32, u32)>,
+        format: StillFormat,
+    },
+    /// The gas as an OpenVDB volume of voxels of `voxel` m.
+    Volume { voxel: f64 },
+}
+
+/// What `render --frames` (or `volume --frames`) was asked for, checked.
 pub struct Sequence {
     pub range: FrameRange,
     pub fps: f64,
     pub pattern: Pattern,
     pub shard: Shard,
     pub force: bool,
-    pub size: Option<(u32, u32)>,
+    pub output: Output,
 }
 
 impl Sequence {
@@ -242,7 +260,7 @@ impl Sequence {
         out: &Path,
         shard: Option<&str>,
         force: bool,
-        size: Option<(u32, u32)>,
+        output: Output,
     ) -> Result<Self, Failure> {
         let input = Failure::Input;
         let range = FrameRange::parse(frames).map_err(input)?;
@@ -270,7 +288,7 @@ impl Sequence {
             pattern,
             shard,
             force,
-            size,
+            output,
         })
     }
 
@@ -285,13 +303,21 @@ impl Sequence {
         sim.budgeted_steps(last)
             .map_err(|e| Failure::Input(e.to_string()))?;
         let settings = sim.render_settings();
-        let (width, height) = self
-            .size
-            .unwrap_or((settings.image.width, settings.image.height));
+        let size = match self.output {
+            Output::Image { size, .. } => {
+                Some(size.unwrap_or((settings.image.width, settings.image.height)))
+            }
+            Output::Volume { .. } => None,
+        };
         let frames: Vec<u64> = self.shard.frames(self.range).collect();
         let what = format!(
-            "{} ({width}×{height}; frames {}..{} at {} fps{})",
+            "{} ({}; frames {}..{} at {} fps{})",
             self.pattern.name(),
+            match (size, self.output) {
+                (Some((w, h)), _) => format!("{w}×{h}"),
+                (_, Output::Volume { voxel }) => format!("voxels of {voxel} m"),
+                _ => String::new(),
+            },
             self.range.start,
             self.range.end,
             self.fps,
@@ -301,11 +327,15 @@ impl Sequence {
             eprintln!("nothing to write: no frame k of {what} has k mod N = I");
             return Ok(());
         }
-        self.claim(&manifest_scene, (width, height), input)?;
+        let voxel = match self.output {
+            Output::Volume { voxel } => Some(voxel),
+            Output::Image { .. } => None,
+        };
+        self.claim(&manifest_scene, size.unwrap_or((0, 0)), voxel, input)?;
         let todo: Vec<u64> = frames
             .iter()
             .copied()
-            .filter(|&k| self.force || !is_complete(&self.pattern.path(k), width, height))
+            .filter(|&k| self.force || !self.is_complete(&self.pattern.path(k), size))
             .collect();
         let done = frames.len() - todo.len();
         if todo.is_empty() {
@@ -334,16 +364,33 @@ impl Sequence {
         for &k in &todo {
             sim.run(sim.steps_for(seconds(k)) - sim.steps());
             let mut list = sim.blob_list();
-            list.image.width = width;
-            list.image.height = height;
             blobs = list.blobs.len();
-            let renderer = Renderer::new(&list, None, RenderOptions::default())
-                .map_err(|e| Failure::Input(e.to_string()))?;
-            let image = renderer.render();
-            let png = encode_png(width, height, &image.to_rgb8(list.image.encoding))
-                .map_err(|e| Failure::Io(e.to_string()))?;
+            let bytes = match self.output {
+                Output::Image { format, .. } => {
+                    if let Some((width, height)) = size {
+                        list.image.width = width;
+                        list.image.height = height;
+                    }
+                    let renderer = Renderer::new(&list, None, RenderOptions::default())
+                        .map_err(|e| Failure::Input(e.to_string()))?;
+                    let image = renderer.render();
+                    let info = ExrInfo {
+                        camera: Some(list.camera.clone()),
+                        time: Some(sim.time()),
+                        fps: Some(self.fps),
+                        note: format!("frame {k}"),
+                    };
+                    still::encode(&image, format, list.image.encoding, &info)
+                        .map_err(Failure::Io)?
+                }
+                Output::Volume { voxel } => GasVolume::of(&list, voxel, "--voxel")
+                    .map_err(|e| {
+                        Failure::Input(format!("frame {k} (t = {:.4} s): {e}", sim.time()))
+                    })?
+                    .to_vdb(Some(sim.time())),
+            };
             let path = self.pattern.path(k);
-            write_atomically(&path, |w| std::io::Write::write_all(w, &png))?;
+            write_atomically(&path, |w| std::io::Write::write_all(w, &bytes))?;
             let line = format!(
                 "frame {k} (t = {:.4} s, {} blobs) -> {}",
                 sim.time(),
@@ -379,9 +426,15 @@ impl Sequence {
     /// Claims the range's frame files for this run, its identity that of `scene` at the
     /// sequence's rate and `size` ([`claim::claim_frames`]): the whole range, whatever the
     /// shard, so the shards of one run share the claim.
-    pub fn claim(&self, scene: &Scene, size: (u32, u32), input: &Path) -> Result<(), Failure> {
+    pub fn claim(
+        &self,
+        scene: &Scene,
+        size: (u32, u32),
+        voxel: Option<f64>,
+        input: &Path,
+    ) -> Result<(), Failure> {
         let (folder, names) = self.pattern.folder_and_names();
-        let run = Manifest::new(
+        let mut run = Manifest::new(
             scene_fingerprint(scene, size.0, size.1),
             self.fps,
             size,
@@ -389,6 +442,7 @@ impl Sequence {
             self.range,
             input,
         );
+        run.voxel = voxel;
         claim::claim_frames(&folder, &names, self.range, &run, self.force)
     }
 }
@@ -405,6 +459,28 @@ fn progress(len: u64) -> Option<ProgressBar> {
     .expect("the template is valid");
     bar.set_style(style);
     Some(bar)
+}
+
+impl Sequence {
+    /// Whether `path` holds a completed frame: a whole still of `size` (PNG or OpenEXR), or a
+    /// whole OpenVDB file.
+    fn is_complete(&self, path: &Path, size: Option<(u32, u32)>) -> bool {
+        match (self.output, size) {
+            (Output::Volume { .. }, _) => {
+                std::fs::read(path).is_ok_and(|bytes| vdb::is_complete(&bytes))
+            }
+            (
+                Output::Image {
+                    format: StillFormat::Exr,
+                    ..
+                },
+                Some((w, h)),
+            ) => std::fs::read(path)
+                .is_ok_and(|bytes| exr::read_rgba(&bytes).is_ok_and(|(a, b, _)| (a, b) == (w, h))),
+            (_, Some((w, h))) => is_complete(path, w, h),
+            _ => false,
+        }
+    }
 }
 
 /// Whether `path` holds a whole PNG of `width × height` (what a completed frame is).

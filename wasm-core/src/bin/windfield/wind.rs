@@ -9,6 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
+use windfield::export::vector_grid::VectorGrid;
 use windfield::field::{npy, TurbulentField};
 use windfield::gas::limits::MAX_COORD;
 use windfield::gas::wind::Wind;
@@ -60,6 +61,7 @@ pub struct WindArgs {
 enum Format {
     Json,
     Npy,
+    Vdb,
 }
 
 /// The output format of `path` (`points`: only JSON), or a refusal naming `--out`.
@@ -74,12 +76,13 @@ fn format_of(path: &Path, points: bool) -> Result<Format, Failure> {
         "npy" => Err(Failure::Input(
             "--out: the wind at --points is written as .json (an array of [u, v, w])".into(),
         )),
+        "vdb" if !points => Ok(Format::Vdb),
         "vdb" => Err(Failure::Input(
-            "--out: .vdb output is not available yet; write the box as .npy or .json".into(),
+            "--out: the wind at --points is written as .json (an array of [u, v, w])".into(),
         )),
         _ => Err(Failure::Input(format!(
             "--out: must end in .json{} (got {:?})",
-            if points { "" } else { " or .npy" },
+            if points { "" } else { ", .npy or .vdb" },
             path.display().to_string()
         ))),
     }
@@ -104,7 +107,15 @@ fn numbers<T: std::str::FromStr>(
 }
 
 /// The cell centres of the box `bounds` with `cells`, x fastest, then y, then z.
-fn box_points(bounds: &str, cells: &str) -> Result<([usize; 3], Vec<Vec3>), Failure> {
+/// A box of cells: their counts, the box's lower and upper corners (m), and the cell centres,
+/// x fastest.
+struct CellBox {
+    n: [usize; 3],
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+fn box_points(bounds: &str, cells: &str) -> Result<(CellBox, Vec<Vec3>), Failure> {
     let b: Vec<f64> = numbers("--box", bounds, 6, "X0,Y0,Z0,X1,Y1,Z1: six numbers")?;
     if let Some(v) = b.iter().find(|v| !(v.is_finite() && v.abs() <= MAX_COORD)) {
         return Err(Failure::Input(format!(
@@ -147,7 +158,12 @@ fn box_points(bounds: &str, cells: &str) -> Result<([usize; 3], Vec<Vec3>), Fail
             }
         }
     }
-    Ok((n, points))
+    let cells = CellBox {
+        n,
+        lo: [b[0], b[1], b[2]],
+        hi: [b[3], b[4], b[5]],
+    };
+    Ok((cells, points))
 }
 
 /// The points of a JSON file: an array of [x, y, z] (m).
@@ -205,10 +221,31 @@ fn write_json(path: &Path, u: &[Vec3]) -> Result<(), Failure> {
     write_atomically(path, |w| w.write_all(text.as_bytes()))
 }
 
-/// Writes a box's samples in the format its extension names: the one place a new format
-/// (OpenVDB) joins.
-fn write_box(path: &Path, format: Format, n: [usize; 3], u: &[Vec3]) -> Result<(), Failure> {
+/// Writes a box's samples in the format its extension names; `.vdb` is a Vec3SGrid named
+/// `wind` in world metres, voxel (i, j, k) at the cell centre of the same index.
+fn write_box(
+    path: &Path,
+    format: Format,
+    cells: &CellBox,
+    seconds: f64,
+    u: &[Vec3],
+) -> Result<(), Failure> {
+    let n = cells.n;
     match format {
+        Format::Vdb => {
+            let cell = [0, 1, 2].map(|a| (cells.hi[a] - cells.lo[a]) / n[a] as f64);
+            let grid = VectorGrid {
+                dims: n,
+                first: [0, 1, 2].map(|a| cells.lo[a] + 0.5 * cell[a]),
+                cell,
+                values: u.iter().map(|v| v.to_array()).collect(),
+                time: seconds,
+                periodic: false,
+                source: "the whole wind of a scene (Eq. 3)".into(),
+            };
+            let bytes = grid.to_vdb();
+            write_atomically(path, |w| w.write_all(&bytes))
+        }
         Format::Json => write_json(path, u),
         Format::Npy => {
             let data: Vec<f32> = u.iter().flat_map(|v| v.to_array()).collect();
@@ -242,12 +279,12 @@ pub fn run(args: WindArgs) -> Result<(), Failure> {
         .dt
         .max(scene.field.carry_period() / MAX_TRACE_STEPS);
     let u = wind.sample(&points, args.seconds, trace);
-    match cells {
-        Some(n) => write_box(&args.out, format, n, &u)?,
+    match &cells {
+        Some(cells) => write_box(&args.out, format, cells, args.seconds, &u)?,
         None => write_json(&args.out, &u)?,
     }
-    let what = match cells {
-        Some([x, y, z]) => format!("{x}×{y}×{z} cells"),
+    let what = match &cells {
+        Some(CellBox { n: [x, y, z], .. }) => format!("{x}×{y}×{z} cells"),
         None => format!("{} points", super::grouped(points.len())),
     };
     eprintln!(
