@@ -179,7 +179,7 @@ test('every argument of the API is checked, and refused with its name and range'
   expect(messages.captureQuality).toMatch(/^captureGPU: quality must be one of 'draft', 'standard', 'high'/);
   expect(messages.referenceZero).toMatch(/^renderReference: width must be a whole number from 1/);
   expect(messages.recordFps).toBe('recordWebM: fps must be a number greater than 0 and at most 240 (got 0)');
-  expect(messages.stepHalf).toMatch(/^step: n must be a whole number from 0 to 1,000,000 \(got 1.5\)/);
+  expect(messages.stepHalf).toMatch(/^steps: must be a whole number of at least 0 \(got 1.5\)/);
   expect(messages.statsEpsilon).toMatch(/spectrum\.epsilon/);
   expect(messages.nan).toBe('field.amplitude: must be a finite number (got NaN)');
   expect(messages.infinity).toBe('wind[0].velocity[1]: must be a finite number (got Infinity)');

@@ -6,8 +6,8 @@ import { Engine } from './engine/client.js';
 import { removedError } from './engine/removed.js';
 import { FramePace } from './player/frame-pace.js';
 import { describeRenderer, LIGHT, lightenedWords, SLOW_FPS, userChoices } from './player/machine.js';
-import { boolean, nonFinite, number, oneOf, shown, wholeNumber } from './player/arguments.js';
-import { MAX_IMAGE_SIDE, MAX_STEPS } from './generated/contract.js';
+import { atLeast, boolean, nonFinite, number, oneOf, shown, wholeNumber } from './player/arguments.js';
+import { MAX_IMAGE_SIDE } from './generated/contract.js';
 import { exportBlob, flipbookRequest, stillRequest, volumeRequest } from './player/exports.js';
 import { recordWebM } from './player/recorder.js';
 import { ResolutionGovernor, startScale } from './player/resolution.js';
@@ -114,6 +114,10 @@ export class Player {
   #choices = {};
   /** Calls waiting their turn in `exclusive`, woken at once when the player ends. */
   #sleepers = new Set();
+  /** Loads asked for and not yet ended (`#loadTurn`). */
+  #loads = 0;
+  /** Resolves once the latest load's request has gone to the engine (or it ended without one). */
+  #loadSent = Promise.resolve();
 
   /**
    * @param {HTMLCanvasElement} canvas
@@ -230,7 +234,7 @@ export class Player {
     const json = this.#sceneJson;
     if (!json) return;
     // Exclusive, so that steps asked for meanwhile wait for the reloaded scene.
-    const reload = (text) => this.exclusive(() => this.#load(text)).catch((e) => this.hooks.onMessage?.(e.message));
+    const reload = (text) => this.#loadTurn(text).catch((e) => this.hooks.onMessage?.(e.message));
     if (recycled) {
       // The engine was restarted to give back memory, not because this scene failed.
       this.hooks.onMessage?.(`The engine was restarted to give back memory (${reason}); the scene starts again.`);
@@ -260,19 +264,55 @@ export class Player {
   async load(scene) {
     if (this.recording) throw recordingRefuses('load the scene');
     const text = sceneText(scene);
-    return this.exclusive(() => this.#load(text));
+    return this.#loadTurn(text);
+  }
+
+  /**
+   * Loads `text` in its turn (`exclusive`). While another load is in the engine (holding the
+   * turn, so no frame is in flight), this one is sent at once, after that one's request: the
+   * engine then cancels the older (`cancelled: a newer scene was loaded…`, its field synthesis
+   * stopped at its next stage), and this one takes its result in its turn.
+   */
+  async #loadTurn(text) {
+    const previous = this.#loads > 0 ? this.#loadSent : null;
+    let sent;
+    this.#loadSent = new Promise((resolve) => { sent = resolve; });
+    this.#loads += 1;
+    try {
+      if (!previous) return await this.exclusive(() => this.#load(text, sent));
+      await previous;
+      const info = this.#requestLoad(text);
+      sent();
+      info.catch(() => {});
+      return await this.exclusive(async () => this.#adoptLoad(await info));
+    } finally {
+      sent();
+      this.#loads -= 1;
+    }
+  }
+
+  /** Sends the load of `text` to the engine; resolves with its result. */
+  #requestLoad(text) {
+    return this.#engine.request('load', { scene: text, blobCap: this.#state.blobCap }, {
+      onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
+    });
   }
 
   /**
    * Loads the scene JSON `text`: the engine validates it and hands back the scene normalised
    * (JSON text), which is parsed here once. Resolves with the scene.
    */
-  async #load(text) {
+  async #load(text, sent = () => {}) {
     if (this.recording) throw recordingRefuses('load the scene');
     await this.#settle();
-    const info = await this.#engine.request('load', { scene: text, blobCap: this.#state.blobCap }, {
-      onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
-    });
+    const request = this.#requestLoad(text);
+    sent();
+    return this.#adoptLoad(await request);
+  }
+
+  /** Takes a load's result from the engine (`info`) as the running scene; resolves with it. */
+  async #adoptLoad(info) {
+    if (this.recording) throw recordingRefuses('load the scene');
     this.hooks.onProgress?.(1, 'done');
     this.halted = null;
     this.stepsSinceLoad = 0;
@@ -364,7 +404,7 @@ export class Player {
     if (!response.ok) throw new Error(`could not load ${url} (${response.status})`);
     const text = await response.text();
     try {
-      return await this.exclusive(() => this.#load(text));
+      return await this.#loadTurn(text);
     } catch (err) {
       if (/not valid JSON/.test(err.message)) throw new Error(`${url} is not a scene (JSON expected)`);
       throw err;
@@ -741,7 +781,8 @@ export class Player {
    * drawn at width × height in `mode`, at `fps` frames per second of video.
    */
   async recordWebM({ frames = 60, width = 640, height = 480, fps = 30, mode = this.#state.mode } = {}) {
-    wholeNumber('recordWebM: frames', frames, 1, MAX_STEPS);
+    // More frames than the run budget allows are refused below, in the budget's words.
+    atLeast('recordWebM: frames', frames, 1);
     wholeNumber('recordWebM: width', width, 2, 4096);
     wholeNumber('recordWebM: height', height, 2, 4096);
     number('recordWebM: fps', fps, 0, 240);
@@ -936,7 +977,8 @@ export class Player {
 
   /** `n` fixed steps when no frame is in flight. */
   async step(n = 1) {
-    wholeNumber('step: n', n, 0, MAX_STEPS);
+    // More steps than the run budget allows are refused by the engine, in the budget's words.
+    atLeast('steps:', n, 0);
     if (this.recording) throw recordingRefuses('take steps');
     return this.exclusive(() => this.advance(n));
   }

@@ -380,9 +380,13 @@ impl Solids {
 
     /// `x` put back on the surface, `gap` metres outside, if it lies inside a solid; else `x`.
     /// A point pushed out of one solid into another is pushed again (at most four times, for
-    /// solids that overlap).
+    /// solids that overlap). Where overlapping solids send it back and forth (a mug's base
+    /// sunk in the floor), it leaves them all by the shortest of seven ways: along the last
+    /// normal or an axis, in steps growing by a quarter from `gap`.
     #[inline]
     pub fn push_out(&self, mut x: Vec3A, gap: f32) -> Vec3A {
+        let start = x;
+        let mut normal = Vec3A::Y;
         for _ in 0..4 {
             let Some(i) = self.inside(x) else {
                 return x;
@@ -391,6 +395,30 @@ impl Solids {
             // The gap grows with the coordinates' size so the step survives rounding.
             let g = gap + 4.0 * f32::EPSILON * x.abs().max_element();
             x += n * (g - d);
+            normal = n;
+        }
+        if self.inside(x).is_none() {
+            return x;
+        }
+        let ways = [
+            normal,
+            Vec3A::X,
+            Vec3A::NEG_X,
+            Vec3A::Y,
+            Vec3A::NEG_Y,
+            Vec3A::Z,
+            Vec3A::NEG_Z,
+        ];
+        let mut t = gap.max(1e-4);
+        while t < 1e3 {
+            if let Some(y) = ways
+                .iter()
+                .map(|&w| start + w * t)
+                .find(|&y| self.inside(y).is_none())
+            {
+                return y;
+            }
+            t *= 1.25;
         }
         x
     }
@@ -426,7 +454,8 @@ mod tests {
         assert_eq!(at(0.2, 2.5, 0.0), (0.5, Vec3A::Y));
         let (d, n) = at(4.0, 6.0, 0.0);
         assert!((d - 5.0).abs() < 1e-6 && (n - Vec3A::new(0.6, 0.8, 0.0)).length() < 1e-6);
-        assert_eq!(at(0.0, 1.0, 0.9), (-0.1, Vec3A::Z));
+        let (d, n) = at(0.0, 1.0, 0.9);
+        assert!((d + 0.1).abs() < 1e-6 && n == Vec3A::Z, "{d} {n}");
         assert_eq!(at(0.0, 0.05, 0.0).0, -0.05);
         assert_eq!(at(0.0, 0.05, 0.0).1, Vec3A::NEG_Y);
     }
@@ -494,7 +523,7 @@ mod tests {
         ] {
             let y = solids.push_out(x, 1e-5);
             assert!(solids.inside(y).is_none(), "{x} → {y}");
-            assert!((y - x).length() < 0.2, "{x} → {y}");
+            assert!((y - x).length() < 0.2 + 1e-3, "{x} → {y}");
         }
     }
 }

@@ -131,14 +131,31 @@ function setPlaying(on) {
   $('#play').textContent = on ? 'Pause' : 'Play';
 }
 
+/** Counts scenes loaded: a scene's walk to its `render.time` stops when another is loaded. */
+let loads = 0;
+
+/**
+ * Paused, walks the scene just loaded to its `render.time` (as a still would show it), a few
+ * steps at a time, so that a newer scene, Play or a step asked for meanwhile never waits long.
+ */
+async function showAtRenderTime(loaded, ticket) {
+  let left = Math.round((loaded.render.time ?? DEFAULT_RENDER_TIME) / loaded.simulation.dt);
+  while (left > 0 && ticket === loads && !player.playing) {
+    const n = Math.min(left, 5);
+    await player.step(n);
+    left -= n;
+  }
+}
+
 /**
  * Loads a whole new scene (it starts at t = 0) named `name` for notices and the canvas, with
  * `poster` (an image URL, or null) over the view until its first frame with gas. Paused (with
- * reduced motion, say), the scene is shown at its `render.time`, as a still would show it.
+ * reduced motion, say), the scene then walks to its `render.time`, as a still would show it.
  */
 async function loadScene(scene, name, poster = null) {
   const previous = sceneName;
   sceneName = name;
+  const ticket = ++loads;
   const img = $('#poster');
   if (poster) {
     img.src = poster;
@@ -146,10 +163,7 @@ async function loadScene(scene, name, poster = null) {
   }
   try {
     const loaded = await player.load(scene);
-    if (!player.playing) {
-      const steps = Math.round((loaded.render.time ?? DEFAULT_RENDER_TIME) / loaded.simulation.dt);
-      if (steps > 0) await player.step(steps);
-    }
+    if (!player.playing) showAtRenderTime(loaded, ticket).catch((e) => showMessage(e.message));
     return loaded;
   } catch (e) {
     sceneName = previous;

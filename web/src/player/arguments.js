@@ -15,6 +15,12 @@ export function wholeNumber(name, value, min, max) {
   throw new Error(`${name} must be a whole number from ${min.toLocaleString('en')} to ${max.toLocaleString('en')} (got ${shown(value)})`);
 }
 
+/** `value` if it is a whole number of at least `min` (a budget checked elsewhere bounds it), else an Error. */
+export function atLeast(name, value, min) {
+  if (Number.isInteger(value) && value >= min) return value;
+  throw new Error(`${name} must be a whole number of at least ${min} (got ${shown(value)})`);
+}
+
 /** `value` if it is a finite number in (`min`, `max`] (`min` itself allowed when `closed`), else an Error. */
 export function number(name, value, min, max, { closed = false } = {}) {
   if (typeof value === 'number' && Number.isFinite(value) && (closed ? value >= min : value > min) && value <= max) return value;

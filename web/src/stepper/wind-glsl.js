@@ -455,21 +455,37 @@ int solidInOrder(int row, int k, int solids) {
   return 0;
 }
 
+/** Whether x lies inside a solid; its signed distance and normal in \`dn\` when it does. */
+bool insideSolid(int row, int solids, vec3 x, out vec4 dn) {
+  for (int k = 0; k < solids; k++) {
+    dn = solidDistance(row, solidInOrder(row, k, solids), x, 0.0);
+    if (dn.w < 0.0) return true;
+  }
+  return false;
+}
+
 vec3 pushOut(int row, vec3 x) {
   int solids = int(tableTexel(row, 5).x);
   float gap = 1e-4 * tableTexel(row, 5).y;
+  vec3 start = x;
+  vec3 normal = vec3(0.0, 1.0, 0.0);
+  vec4 dn;
   for (int round_ = 0; round_ < 4; round_++) {
-    int inside = -1;
-    vec4 dn;
-    for (int k = 0; k < solids && inside < 0; k++) {
-      int j = solidInOrder(row, k, solids);
-      dn = solidDistance(row, j, x, 0.0);
-      if (dn.w < 0.0) inside = j;
-    }
-    if (inside < 0) return x;
+    if (!insideSolid(row, solids, x, dn)) return x;
     vec3 ax = abs(x);
     float g = gap + 4.0 * 1.1920929e-7 * max(ax.x, max(ax.y, ax.z));
     x += dn.xyz * (g - dn.w);
+    normal = dn.xyz;
+  }
+  if (!insideSolid(row, solids, x, dn)) return x;
+  // Overlapping solids sent it back and forth: the shortest of seven ways out of them all.
+  vec3 ways[7] = vec3[7](normal, vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0),
+    vec3(0, 0, 1), vec3(0, 0, -1));
+  for (float t = max(gap, 1e-4); t < 1e3; t *= 1.25) {
+    for (int w = 0; w < 7; w++) {
+      vec3 y = start + ways[w] * t;
+      if (!insideSolid(row, solids, y, dn)) return y;
+    }
   }
   return x;
 }
