@@ -109,6 +109,7 @@ test('each tile of a flipbook is the still of its frame, byte for byte', () => {
   const sheet = join(dir, 'book.png');
   cli(['flipbook', scene, '--frames', '20..25', '--fps', '15', '--grid', '3×2', '--tile', '40x30', '--out', sheet]);
   const description = JSON.parse(readFileSync(join(dir, 'book.json'), 'utf8'));
+  assert.equal(readFileSync(join(dir, 'book.png.json'), 'utf8'), readFileSync(join(dir, 'book.json'), 'utf8'));
   assert.deepEqual(
     [description.columns, description.rows, description.fps, description.tile_width, description.tile_height, description.frame_count],
     [3, 2, 15, 40, 30, 5],

@@ -116,9 +116,15 @@ fn field(scene: &Scene) -> Result<(), ParamError> {
     check::range("field.time_period", f.time_period, 1e-3, 1e6)?;
     check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
     // The layer over a solid: thinner than half the field's shortest period, so the ramp never
-    // spans a whole period of the eddies it turns.
+    // spans a whole period of the eddies it turns. It acts only on solids: a scene without
+    // them keeps any period the field allows, whatever the (default) width.
     let half = 0.5 * f.period.iter().copied().fold(f64::INFINITY, f64::min);
-    if !(f.boundary_width.is_finite() && f.boundary_width > 0.0 && f.boundary_width <= half) {
+    let bound = if scene.has_solids() {
+        half
+    } else {
+        f64::INFINITY
+    };
+    if !(f.boundary_width.is_finite() && f.boundary_width > 0.0 && f.boundary_width <= bound) {
         return Err(ParamError::new(
             "field.boundary_width",
             format!(

@@ -99,6 +99,10 @@ impl Names {
     }
 }
 
+fn is_zero(v: &u32) -> bool {
+    *v == 0
+}
+
 /// What makes a sequence's bytes, and the frames it claims (see the module's comment).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -112,8 +116,10 @@ pub struct Manifest {
     pub scene: String,
     /// Frames per second: frame k is the scene at t = k / fps.
     pub fps: f64,
-    /// Image size in pixels (0 × 0 for a sequence of volumes).
+    /// Image size in pixels (absent, read as 0, for a sequence of volumes).
+    #[serde(default, skip_serializing_if = "is_zero")]
     pub width: u32,
+    #[serde(default, skip_serializing_if = "is_zero")]
     pub height: u32,
     /// Voxel side in metres, for a sequence of volumes (`volume --frames`); absent for stills.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -6,6 +6,7 @@ use super::{
     check_seconds, grouped, read_input, read_scene, simulated, wall, write_atomically, Failure,
     Input,
 };
+use crate::output;
 use crate::sequence::{Output, Sequence};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -60,6 +61,14 @@ fn input(e: ParamError) -> Failure {
 /// The description's path: the sheet's with `.json` in place of its extension.
 pub fn description_path(sheet: &Path) -> PathBuf {
     sheet.with_extension("json")
+}
+
+/// The same description's second name: the sheet's whole name with `.json` after it (the way
+/// `generate` names its parameters), so a pipeline that looks either way finds it.
+pub fn description_alias(sheet: &Path) -> PathBuf {
+    let mut name = sheet.as_os_str().to_owned();
+    name.push(".json");
+    PathBuf::from(name)
 }
 
 pub fn flipbook(args: FlipbookArgs) -> Result<(), Failure> {
@@ -117,10 +126,21 @@ pub fn flipbook(args: FlipbookArgs) -> Result<(), Failure> {
     let (bytes, description) = job.finish(&name).map_err(Failure::Io)?;
     let json = serde_json::to_string_pretty(&description).expect("descriptions serialise") + "\n";
     let json_path = description_path(&args.out);
-    write_atomically(&args.out, |w| std::io::Write::write_all(w, &bytes))?;
-    write_atomically(&json_path, |w| {
-        std::io::Write::write_all(w, json.as_bytes())
-    })?;
+    let alias = description_alias(&args.out);
+    output::write_together(&[
+        output::Output {
+            path: &args.out,
+            write: Box::new(|w| std::io::Write::write_all(w, &bytes)),
+        },
+        output::Output {
+            path: &json_path,
+            write: Box::new(|w| std::io::Write::write_all(w, json.as_bytes())),
+        },
+        output::Output {
+            path: &alias,
+            write: Box::new(|w| std::io::Write::write_all(w, json.as_bytes())),
+        },
+    ])?;
     eprintln!(
         "wrote {} ({}×{}: {} frames in {columns}×{rows} tiles of {tile_width}×{tile_height}{}) and {}, {}",
         args.out.display(),

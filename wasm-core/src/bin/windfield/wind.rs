@@ -33,7 +33,7 @@ pub struct WindArgs {
     #[arg(long, required_unless_present = "bounds", conflicts_with_all = ["bounds", "cells"])]
     points: Option<PathBuf>,
     /// A box X0,Y0,Z0,X1,Y1,Z1 (m): the wind at the centres of its NX × NY × NZ cells (--n),
-    /// x fastest, written as .npy (float32, shape (NZ, NY, NX, 3)) or .json.
+    /// x fastest, written as .npy (float32, shape (NZ, NY, NX, 3)), .vdb (a Vec3SGrid `wind`) or .json.
     #[arg(
         long = "box",
         id = "bounds",
@@ -51,7 +51,7 @@ pub struct WindArgs {
         allow_hyphen_values = true
     )]
     cells: Option<String>,
-    /// Output file: .json, or for a box .npy too.
+    /// Output file: .json, or for a box .npy or .vdb too.
     #[arg(long)]
     out: PathBuf,
 }
