@@ -224,7 +224,10 @@ test('the pages and the standalone player run under a strict Content Security Po
   await open(page, './?view=points');
   await page.evaluate(() => window.windfield.step(3));
   // The CPU still is shown (drawn on a canvas: a data: or blob: image would be refused).
-  await page.locator('#panel .lil-title', { hasText: 'Share and export' }).click();
+  // The folder opens from its title when it is closed (it starts open on a wide screen).
+  await page.locator('#panel .lil-title', { hasText: 'Share and export' }).evaluate((title) => {
+    if (title.parentElement.classList.contains('lil-closed')) title.click();
+  });
   await page.locator('.lil-controller', { hasText: 'render still (CPU)' }).click();
   await expect(page.locator('#still-figure')).toBeVisible({ timeout: 60_000 });
   const still = await page.locator('#still').evaluate((c) => {

@@ -37,6 +37,8 @@ const MAX_WORKER_STEPS_PER_FRAME = 30;
 /** Longest time (s) one frame may account for: a slower frame lets the simulation fall behind. */
 const MAX_FRAME_SECONDS = 0.5;
 /** The settings a player starts with on a machine that draws the full version. */
+/** Why 'auto' steps in the worker on a browser that draws 3-D in software. */
+const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps the gas faster than its GPU passes';
 const FULL = Object.freeze({ view: 'raymarch', quality: 'standard', resolution: 'auto', stepper: 'auto', blobCap: null });
 
 /** How long (ms) a lost GPU context may stay lost before the player reports it. */
@@ -1051,7 +1053,10 @@ export class Player {
   /** Puts the gas where the choice of stepper says: on the GPU where it can be, else in the worker. */
   async #engage() {
     const st = this.#stepper;
-    st.reason = st.choice === 'cpu' ? null : this.#gpuUnavailable();
+    st.reason = st.choice === 'cpu' ? null : this.#gpuUnavailable()
+      // Drawn in software, the GPU's passes run on the CPU too, many times slower than the
+      // worker's core: 'auto' leaves the gas to the worker there ('gpu' still asks for it).
+      ?? (st.choice === 'auto' && this.#machine.software ? SOFTWARE_STEPPER : null);
     const wanted = st.choice !== 'cpu' && !st.reason ? 'gpu' : 'cpu';
     if (wanted === st.active || !this.#state.scene) return;
     if (wanted === 'gpu') await this.#toGpu();
