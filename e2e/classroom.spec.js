@@ -8,6 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { expect, test, collectErrors } from './helpers.js';
 import { cliPath } from '../tests/support/core.js';
+import { reader } from '../tests/support/readers.js';
 import { decodePng } from '../tests/support/png.js';
 
 test('classroom: the spectrum plot shows what windfield stats reports', async ({ page }) => {
@@ -30,6 +31,31 @@ test('classroom: the spectrum plot shows what windfield stats reports', async ({
       expect(Math.abs(series.spread[i][1] - s.temporal_spread)).toBeLessThan(1e-3 * Math.max(1, s.temporal_spread));
     });
     expect(Math.abs(report.slope - cli.slope)).toBeLessThan(1e-3);
+    // The wind taken along: the page's OpenVDB file and 3-D texture are `windfield generate`'s.
+    const grids = await page.evaluate(async () => {
+      const vdb = await window.classroom.windGrid('vdb');
+      const texture = await window.classroom.windGrid('rgb32f');
+      return { vdb: [...vdb.bytes], texture: [...texture.bytes], description: texture.description };
+    });
+    execFileSync(cliPath, ['generate', '--size', '32', '--seed', '1', '--out', join(dir, 'wind.vdb')]);
+    execFileSync(cliPath, ['generate', '--size', '32', '--seed', '1', '--out', join(dir, 'wind.rgb32f')]);
+    const texture = readFileSync(join(dir, 'wind.rgb32f'));
+    const cliTexels = new Float32Array(texture.buffer.slice(texture.byteOffset, texture.byteOffset + texture.length));
+    const pageTexels = new Float32Array(new Uint8Array(grids.texture).buffer);
+    expect(pageTexels.length).toBe(32 * 32 * 32 * 3);
+    const largest = cliTexels.reduce((m, v) => Math.max(m, Math.abs(v)), 0);
+    const worst = pageTexels.reduce((m, v, i) => Math.max(m, Math.abs(v - cliTexels[i])), 0);
+    expect(worst / largest).toBeLessThan(1e-6);
+    // The WASM and native syntheses agree to a float's last bits, not always in them.
+    const description = JSON.parse(readFileSync(join(dir, 'wind.rgb32f.json'), 'utf8'));
+    expect(Math.abs(grids.description.max_speed / description.max_speed - 1)).toBeLessThan(1e-6);
+    expect({ ...grids.description, max_speed: 0 }).toEqual({ ...description, max_speed: 0 });
+    // The page's VDB, read by OpenVDB itself beside the command line's.
+    writeFileSync(join(dir, 'page.vdb'), Buffer.from(grids.vdb));
+    const r = reader('vdb_compare.py', join(dir, 'page.vdb'), join(dir, 'wind.vdb'));
+    expect(r.active).toEqual([32 ** 3, 32 ** 3]);
+    expect([r.same_box, r.same_transform, r.same_metadata]).toEqual([true, true, true]);
+    expect(r.worst).toBeLessThan(1e-6);
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }

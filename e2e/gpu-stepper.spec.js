@@ -209,7 +209,7 @@ test('the real-time view of a 250,000-blob GPU-stepped plume matches the referen
   const out = await page.evaluate(async () => {
     const w = window.windfield;
     await w.setStepper('gpu');
-    await w.step(200);
+    await w.step(220);
     const size = { width: 96, height: 72 };
     return {
       stepper: w.stats().stepper,

@@ -325,8 +325,11 @@ test('the scene editor adds, edits, switches off and removes primitives, emitter
 
 test('wind guides draw over the view; the drag handle moves an emitter', async ({ page }) => {
   const errors = collectErrors(page);
+  // A view large enough that the handle's arrow lies clear of the status line and the buttons.
+  await page.setViewportSize({ width: 1100, height: 720 });
   await open(page);
   await page.evaluate(() => window.windfield.pause());
+  await page.evaluate(() => window.windfield.step(60));
   await settle(page);
   const withGuides = await canvasShot(page);
   await page.keyboard.press('g');
@@ -400,6 +403,8 @@ test('the real-time view shows its resolution and volume; a fixed resolution siz
   const errors = collectErrors(page);
   await open(page, './');
   await page.evaluate(() => window.windfield.pause());
+  // Some gas first: paused at once after loading, the scene may not have stepped yet.
+  await page.evaluate(() => window.windfield.step(60));
   await expect(page.locator('#status')).toContainText(/resolution \d+ %/);
   await expect(page.locator('#status')).toContainText(/volume \d+×\d+×\d+/);
   const sim = await openFolder(page, 'Simulation');

@@ -185,6 +185,45 @@ impl WindField {
         self.inner.sample_lattice([x, y, z, t]).to_vec()
     }
 
+    /// One time slice of this field as the world's wind (`export::vector_grid::VectorGrid::
+    /// field_slice`): `period` (m, three), `time_period` (s), `amplitude` and the time `t` (s)
+    /// map it as a scene's `field` does. `format` is `"vdb"` (a Vec3SGrid `wind`, the bytes
+    /// `windfield generate --out wind.vdb` writes) or `"rgb32f"` (the raw texture); its JSON
+    /// description (the `.rgb32f.json` beside a texture) is `windGridDescription`.
+    #[wasm_bindgen(js_name = windGrid)]
+    pub fn wind_grid(
+        &self,
+        period: Vec<f64>,
+        time_period: f64,
+        amplitude: f64,
+        t: f64,
+        format: &str,
+    ) -> Result<Vec<u8>, JsError> {
+        let grid = self.wind_slice(&period, time_period, amplitude, t)?;
+        match format {
+            "vdb" => Ok(grid.to_vdb()),
+            "rgb32f" => Ok(grid.to_rgb32f()),
+            _ => Err(JsError::new(&format!(
+                "format: must be 'vdb' or 'rgb32f' (got {format:?})"
+            ))),
+        }
+    }
+
+    /// The JSON description of `windGrid`'s raw texture for the same arguments.
+    #[wasm_bindgen(js_name = windGridDescription)]
+    pub fn wind_grid_description(
+        &self,
+        period: Vec<f64>,
+        time_period: f64,
+        amplitude: f64,
+        t: f64,
+    ) -> Result<String, JsError> {
+        let grid = self.wind_slice(&period, time_period, amplitude, t)?;
+        serde_json::to_string_pretty(&grid.description())
+            .map(|text| text + "\n")
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
     /// The plane z = `z` at time `t` (lattice units) on a `width × height` grid over one
     /// period in x and y (`TurbulentField::slice_xy`).
     pub fn slice_xy(&self, z: f64, t: f64, width: u32, height: u32) -> Vec<f32> {
@@ -204,6 +243,37 @@ impl WindField {
         };
         let report = statistics::analyse(&self.inner, &spectrum);
         serde_json::to_string(&report).map_err(js_error)
+    }
+}
+
+impl WindField {
+    /// The checked slice behind `windGrid` and `windGridDescription`.
+    fn wind_slice(
+        &self,
+        period: &[f64],
+        time_period: f64,
+        amplitude: f64,
+        t: f64,
+    ) -> Result<crate::export::vector_grid::VectorGrid, JsError> {
+        let period: [f64; 3] = period
+            .try_into()
+            .map_err(|_| JsError::new("period: must be three lengths in metres"))?;
+        let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
+        if !period.iter().all(|&l| ok(l, 1e-3, 1e4)) {
+            return Err(JsError::new("period: each must be from 0.001 to 10000 m"));
+        }
+        if !ok(time_period, 1e-3, 1e6) || !ok(amplitude, 0.0, 1e3) || !ok(t, 0.0, 1e5) {
+            return Err(JsError::new(
+                "time_period (0.001 to 10⁶ s), amplitude (0 to 1000) and t (0 to 10⁵ s) must be in range",
+            ));
+        }
+        Ok(crate::export::vector_grid::VectorGrid::field_slice(
+            &self.inner,
+            period,
+            time_period,
+            amplitude,
+            t,
+        ))
     }
 }
 

@@ -20,7 +20,9 @@ use crate::gas::limits::{
     MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS, MAX_SHAPES, MAX_SHAPES_BLOBS,
     MAX_SHAPE_BLOBS,
 };
-use crate::gas::scene::{Emitter, GasSettings, Primitive, Scene, SCENE_VERSION};
+use crate::gas::scene::{
+    Emitter, GasSettings, Primitive, Scene, DEFAULT_BOUNDARY_WIDTH, SCENE_VERSION,
+};
 use crate::gas::shapes::{Shape, Solid};
 use crate::gas::solids::Body;
 
@@ -116,14 +118,11 @@ fn field(scene: &Scene) -> Result<(), ParamError> {
     check::range("field.time_period", f.time_period, 1e-3, 1e6)?;
     check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
     // The layer over a solid: thinner than half the field's shortest period, so the ramp never
-    // spans a whole period of the eddies it turns. It acts only on solids: a scene without
-    // them keeps any period the field allows, whatever the (default) width.
+    // spans a whole period of the eddies it turns. The layer acts only on solids: a scene
+    // without them and with the default width keeps any period the field allows.
     let half = 0.5 * f.period.iter().copied().fold(f64::INFINITY, f64::min);
-    let bound = if scene.has_solids() {
-        half
-    } else {
-        f64::INFINITY
-    };
+    let unused_default = !scene.has_solids() && f.boundary_width == DEFAULT_BOUNDARY_WIDTH;
+    let bound = if unused_default { f64::INFINITY } else { half };
     if !(f.boundary_width.is_finite() && f.boundary_width > 0.0 && f.boundary_width <= bound) {
         return Err(ParamError::new(
             "field.boundary_width",

@@ -325,6 +325,17 @@ export function createHandlers(core, progress, memory = () => 0) {
       return { result: { data, width, height }, transfer: [data.buffer] };
     },
     sample: ({ x, y, z, t }) => ({ result: Array.from(session.requireField().sample(x, y, z, t)) }),
+    // The field as the world's wind at time `t` (s), mapped by the scene's `field` (period,
+    // time period, amplitude): an OpenVDB Vec3SGrid or a raw RGB32F texture with its description.
+    windGrid: ({ format, t = 0 }) => {
+      const field = session.requireField();
+      const f = session.current.scene.field;
+      const bytes = field.windGrid(new Float64Array(f.period), f.time_period, f.amplitude, t, format);
+      const description = format === 'rgb32f'
+        ? JSON.parse(field.windGridDescription(new Float64Array(f.period), f.time_period, f.amplitude, t))
+        : null;
+      return { result: { bytes, description }, transfer: [bytes.buffer] };
+    },
     fieldStats: ({ spectrum }) => ({ result: JSON.parse(session.requireField().stats(spectrum ? JSON.stringify(spectrum) : '')) }),
   };
 }

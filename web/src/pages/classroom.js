@@ -51,11 +51,37 @@ function chart(id, spec) {
   new ResizeObserver(draw).observe(canvas);
 }
 
+/**
+ * The field's export buttons: the wind at t = 0, mapped to the world as a scene's field with the
+ * defaults maps it, as OpenVDB (`wind.vdb`) or as a raw RGB32F 3-D texture with its JSON
+ * description (`wind.rgb32f`, `wind.rgb32f.json`): the bytes `windfield generate` writes.
+ * `classroom.windGrid(format)` gives them to a test.
+ */
+function takeTheWind(engine) {
+  classroom.windGrid = (format) => engine.request('windGrid', { format });
+  const save = (name, parts) => {
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(new Blob(parts));
+    a.download = name;
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10_000);
+  };
+  $('#wind-vdb').addEventListener('click', async () => {
+    save('wind.vdb', [(await classroom.windGrid('vdb')).bytes]);
+  });
+  $('#wind-texture').addEventListener('click', async () => {
+    const { bytes, description } = await classroom.windGrid('rgb32f');
+    save('wind.rgb32f', [bytes]);
+    save('wind.rgb32f.json', [`${JSON.stringify(description, null, 2)}\n`]);
+  });
+}
+
 async function fieldLesson() {
   const engine = new Engine({ onError: (m) => showMessage(m) });
   await engine.request('load', { scene: fieldScene(DEFAULT_FIELD) });
   const report = await engine.request('fieldStats');
   classroom.report = report;
+  takeTheWind(engine);
   classroom.series = spectrumSeries(report);
   const s = classroom.series;
   const ys = (...lists) => lists.flat().map(([, y]) => y);
