@@ -11,7 +11,7 @@
 const SOFTWARE = /swiftshader|llvmpipe|softpipe|microsoft basic render|software rasterizer|mesa offscreen/i;
 
 /** The lighter version's settings. */
-export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.5, stepper: 'cpu', blobCap: 100_000 });
+export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.5, stepper: 'cpu', blobCap: 15_000 });
 
 /** Frames a second below which a machine counts as slow once measured (the view at its lightest full settings). */
 export const SLOW_FPS = 10;
