@@ -100,7 +100,7 @@ export interface WindFieldMethods {
    */
   exportFlipbook(options?: ExportFlipbookOptions): Promise<Blob & { description: FlipbookDescription }>;
   /** The gas's density (and emission) as an OpenVDB file, voxels of `voxel` m; the bytes of `windfield volume`. */
-  exportVolume(options: { voxel: number }): Promise<Blob>;
+  exportVolume(options: { voxel: number; format?: 'vdb' }): Promise<Blob>;
   /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many there were. */
   cancelExport(): Promise<number>;
 }

@@ -61,6 +61,11 @@ fn peak_rss_mib() -> Option<f64> {
 }
 
 fn main() {
+    // `cargo run --release --example bench -- solids`: the solid objects' figures alone.
+    if std::env::args().any(|a| a == "solids") {
+        solid_objects();
+        return;
+    }
     field_generate(32, 7);
     let mut sim =
         Simulation::new(Scene::from_json(BLOB_STEP_SCENE).expect("valid")).expect("valid");

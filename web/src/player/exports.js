@@ -81,6 +81,10 @@ export function flipbookRequest(options, camera) {
 /** The worker request of `exportVolume({voxel})`: the voxel side in metres. */
 export function volumeRequest(options) {
   const voxel = options?.voxel;
+  // OpenVDB is the one volume format: `format` may name it, and nothing else.
+  if (options?.format !== undefined && options.format !== 'vdb') {
+    throw new Error(`exportVolume: format must be 'vdb' (got ${JSON.stringify(options.format)})`);
+  }
   if (!(typeof voxel === 'number' && Number.isFinite(voxel) && voxel > 0 && voxel <= 1e4)) {
     throw new Error(`exportVolume: voxel must be a side in metres, greater than 0 and at most 10000 (got ${JSON.stringify(voxel)})`);
   }
