@@ -202,14 +202,14 @@ test('a turbulent plume stepped 240 times on each: the same count, mass and stat
 test('the real-time view of a 250,000-blob GPU-stepped plume matches the reference still of its read-back blobs', async ({ page }) => {
   test.setTimeout(240_000);
   const plume = fixture('small-plume');
-  Object.assign(plume.emitters[0], { rate: 75_000, radius: 0.2, sigma0: 0.01, mass0: 2e-5 });
+  Object.assign(plume.emitters[0], { rate: 150_000, radius: 0.2, sigma0: 0.01, mass0: 2e-5 });
   Object.assign(plume.gas, { max_blobs: 300_000, dissipation: 0.05, min_mass: 1e-6, diffusion: 5e-5 });
   plume.render.medium.extinction = 3;
   await open(page, plume);
   const out = await page.evaluate(async () => {
     const w = window.windfield;
     await w.setStepper('gpu');
-    await w.step(220);
+    await w.step(115);
     const size = { width: 96, height: 72 };
     return {
       stepper: w.stats().stepper,
