@@ -138,7 +138,12 @@ test('stirring at 2 frames a second pushes the gas aside, and a drag while pause
   expect(stirShift).toBeGreaterThan(0.05);
   expect(stirShift).toBeGreaterThan(3 * calmShift);
   // Paused: the drag's motion waits for the steps, which give it to the gas.
-  const still = await page.evaluate(async () => { await window.windfield.pause(); return window.windfield.stats().time; });
+  // step(0) waits for a frame still in flight when the pause came, so the time read is final.
+  const still = await page.evaluate(async () => {
+    await window.windfield.pause();
+    await window.windfield.step(0);
+    return window.windfield.stats().time;
+  });
   const before = await band();
   await drag();
   await page.waitForTimeout(500);

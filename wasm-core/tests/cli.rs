@@ -1158,3 +1158,32 @@ fn every_command_makes_the_folder_it_writes_into() {
     ]);
     assert!(field.exists() && dir.join("fields/f.npy.json").exists());
 }
+
+#[test]
+fn a_still_without_out_is_written_beside_as_the_scenes_name_and_a_sequence_needs_a_pattern() {
+    let dir = scratch("no-out");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(scene("default.json")).unwrap()).unwrap();
+    v["render"]["image"]["width"] = 32.into();
+    v["render"]["image"]["height"] = 24.into();
+    let input = write(&dir, "small-smoke.json", &v);
+    let out = Command::new(bin())
+        .args(["render", &input, "--seconds", "0.5"])
+        .current_dir(&*dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let png = dir.join("small-smoke.png");
+    assert!(stderr(&out).contains("small-smoke.png"), "{}", stderr(&out));
+    let with_out = dir.join("with-out.png");
+    ok(&["render", &input, "--seconds", "0.5", "--out", s(&with_out)]);
+    assert_eq!(
+        std::fs::read(&png).unwrap(),
+        std::fs::read(&with_out).unwrap()
+    );
+    let message = refused(&["render", &input, "--frames", "0..2", "--fps", "4"]);
+    assert!(
+        message.contains("--out: a sequence needs a pattern"),
+        "{message}"
+    );
+}

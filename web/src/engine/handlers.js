@@ -136,8 +136,9 @@ export function createHandlers(core, progress, memory = () => 0) {
   const session = new Session(core, progress);
   const sim = () => session.requireSim();
   /**
-   * The pointer's motion not yet given to the gas: {position (m), displacement (m), radius (m)},
-   * or null. The next steps consume it (`stirred`), however long they are in coming.
+   * The pointer's motion not yet given to the gas: {start and position (m: where that motion
+   * began, and the middle of its path), displacement (m), radius (m)}, or null. The next steps
+   * consume it (`stirred`), however long they are in coming.
    */
   let stir = null;
   /**
@@ -199,8 +200,17 @@ export function createHandlers(core, progress, memory = () => 0) {
       if (!(Number.isFinite(radius) && radius > 0 && radius <= 1e3)) throw new Error(`stir: radius must be between 0 and 1000 m (got ${radius})`);
       sim();
       const d = vector(displacement, 'displacement');
+      const end = vector(position, 'position');
+      // Where the motion not yet used began: the stir acts at the middle of its path, so a drag
+      // made while no step runs (paused, or between slow frames) pushes the gas along its length.
+      const start = stir?.start ?? end.map((v, k) => v - d[k]);
       const before = stir?.displacement ?? [0, 0, 0];
-      stir = { position: vector(position, 'position'), displacement: before.map((b, k) => b + d[k]), radius };
+      stir = {
+        start,
+        position: end.map((v, k) => (v + start[k]) / 2),
+        displacement: before.map((b, k) => b + d[k]),
+        radius,
+      };
       return { result: null };
     },
     advance: ({ id, steps }) => stirred(steps, () => {

@@ -87,10 +87,12 @@ enum Command {
 struct RenderArgs {
     /// A blob list (JSON), or a scene (JSON with "version").
     input: PathBuf,
-    /// Output PNG (8-bit RGB, in the input's image encoding); with --frames, a pattern with one
-    /// %0Nd for the frame number (frames/f%04d.png).
+    /// Output PNG (8-bit RGB, in the input's image encoding; RGBA with --alpha), or OpenEXR
+    /// for a name ending in .exr; default for one still: the input's name with .png, in this
+    /// folder. With --frames (then required), a pattern with one %0Nd for the frame number
+    /// (frames/f%04d.png).
     #[arg(long)]
-    out: PathBuf,
+    out: Option<PathBuf>,
     /// Image width in pixels, 1 to 8192 (overrides the input's).
     #[arg(long, allow_hyphen_values = true)]
     width: Option<i64>,
@@ -764,11 +766,17 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
             ))
         }
     };
-    let format = StillFormat::of_name(&args.out.to_string_lossy());
+    let Some(out) = &args.out else {
+        return Err(Failure::Input(
+            "--out: a sequence needs a pattern with one %0Nd for the frame number (frames/f%04d.png)"
+                .into(),
+        ));
+    };
+    let format = StillFormat::of_name(&out.to_string_lossy());
     let job = sequence::Sequence::parse(
         frames,
         args.fps,
-        &args.out,
+        out,
         args.shard.as_deref(),
         args.force,
         sequence::Output::Image { size, format },
@@ -807,7 +815,12 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
     let renderer = Renderer::new(&list, size, RenderOptions::default())
         .map_err(|e| Failure::Input(format!("{}: {e}", args.input.display())))?;
     let image = renderer.render();
-    let format = StillFormat::of_name(&args.out.to_string_lossy());
+    // One still without --out: the input's name with .png, in the current folder.
+    let out = args.out.clone().unwrap_or_else(|| {
+        let stem = args.input.file_stem().unwrap_or_default();
+        PathBuf::from(stem).with_extension("png")
+    });
+    let format = StillFormat::of_name(&out.to_string_lossy());
     let info = ExrInfo {
         camera: Some(list.camera.clone()),
         time,
@@ -815,14 +828,14 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
         note: String::new(),
     };
     let bytes = still::encode(&image, format, list.image.encoding, &info).map_err(Failure::Io)?;
-    write_atomically(&args.out, |w| std::io::Write::write_all(w, &bytes))?;
+    write_atomically(&out, |w| std::io::Write::write_all(w, &bytes))?;
     let when = match time {
         Some(t) => format!("at t = {t:.2} s"),
         None => format!("from {}", args.input.display()),
     };
     eprintln!(
         "wrote {} ({}×{}): {} blobs {when}, {}",
-        args.out.display(),
+        out.display(),
         image.width,
         image.height,
         grouped(list.blobs.len()),
