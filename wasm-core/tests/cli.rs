@@ -1063,7 +1063,7 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
             r#"--seed: must be a whole number (got "1.5")"#,
         ),
         (
-            vec!["render", &default],
+            vec!["simulate", &default, "--seconds", "1"],
             "the following required arguments were not provided",
         ),
         (vec!["paint"], "unrecognized subcommand 'paint'"),
