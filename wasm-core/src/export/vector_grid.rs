@@ -164,8 +164,7 @@ impl VectorGrid {
                 "the box must be X0,Y0,Z0,X1,Y1,Z1 with each upper corner above the lower",
             ));
         }
-        let cell = [0, 1, 2].map(|a| (hi[a] - lo[a]) / dims[a] as f64);
-        let first = [0, 1, 2].map(|a| lo[a] + 0.5 * cell[a]);
+        let (first, cell) = Self::cells_of_box(lo, hi, dims);
         let t = sim.time();
         let mut values = Vec::with_capacity(dims.iter().product());
         for k in 0..dims[2] {
@@ -190,6 +189,13 @@ impl VectorGrid {
             periodic: false,
             source: "the whole wind of a scene (Eq. 3)".into(),
         })
+    }
+
+    /// The first cell's centre and the cells' sides (m) of `dims` cells filling the box from
+    /// `lo` to `hi` (m).
+    pub fn cells_of_box(lo: [f64; 3], hi: [f64; 3], dims: [usize; 3]) -> ([f64; 3], [f64; 3]) {
+        let cell = [0, 1, 2].map(|a| (hi[a] - lo[a]) / dims[a] as f64);
+        ([0, 1, 2].map(|a| lo[a] + 0.5 * cell[a]), cell)
     }
 
     /// The raw texture: little-endian RGB32F, x fastest (see the module's comment).

@@ -233,10 +233,10 @@ fn write_box(
     let n = cells.n;
     match format {
         Format::Vdb => {
-            let cell = [0, 1, 2].map(|a| (cells.hi[a] - cells.lo[a]) / n[a] as f64);
+            let (first, cell) = VectorGrid::cells_of_box(cells.lo, cells.hi, n);
             let grid = VectorGrid {
                 dims: n,
-                first: [0, 1, 2].map(|a| cells.lo[a] + 0.5 * cell[a]),
+                first,
                 cell,
                 values: u.iter().map(|v| v.to_array()).collect(),
                 time: seconds,
