@@ -1,7 +1,9 @@
 // The GPU stepper against the core: one step from the same state agrees blob by blob (also with
 // solid objects and carried eddies, after which no blob is inside a solid); 240 steps of a
 // turbulent plume agree in their statistics (paths diverge through chaos, statistics must not);
-// the real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still of its
+// the frame the views draw holds the state's blobs sorted by σ class as its description says,
+// and the real-time view draws it as it draws the worker's frame of the same blobs; the
+// real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still of its
 // read-back blobs; without float render targets, or with more solids than it takes, the worker
 // steps, and says so.
 import { test, expect } from './helpers.js';
@@ -9,6 +11,9 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 import { encodeScene } from '../web/src/state/url-codec.js';
+import { WORDS_PER_BLOB } from '../web/src/generated/contract.js';
+import { frameDescription } from '../web/src/views/scene-view.js';
+import { classOf } from '../web/src/views/volume/grid.js';
 
 const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
 
@@ -197,6 +202,134 @@ test('a turbulent plume stepped 240 times on each: the same count, mass and stat
     expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
     expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);
   }
+});
+
+/**
+ * The small plume (on a smaller lattice) from three emitters of blobs `sigma0` wide (m) each,
+ * side by side, `rate` blobs a second each.
+ */
+function plumes(sigma0, { diffusion = 0.0015, rate = 600 } = {}) {
+  const plume = fixture('small-plume');
+  plume.field.size = [16, 16, 16, 16];
+  plume.emitters = sigma0.map((s, i) => ({ ...plume.emitters[0], center: [0.3 * (i - 1), 0, 0], rate, sigma0: s }));
+  Object.assign(plume.gas, { max_blobs: 4 * rate, diffusion });
+  return plume;
+}
+
+/**
+ * A few classes (each cut into steps), over 36 rows of slots (two chunks of rows); and more
+ * classes than the bins take (σ of 1 mm, 2 cm and 30 cm without diffusion: classes 28, 36 and
+ * 44, the widest past the window, left unsorted).
+ */
+const sortScenes = [
+  ['a few σ classes', plumes([0.01, 0.02, 0.04], { rate: 12_000 })],
+  ['more σ classes than the bins', plumes([0.001, 0.02, 0.3], { diffusion: 0 })],
+];
+
+for (const [name, scene] of sortScenes) {
+  test(`the GPU sorts its blobs by σ class for the views (${name}): class after class as the frame says, the state's blobs in a stable order`, async ({ page }) => {
+    await open(page, scene);
+    const out = await page.evaluate(async (s) => {
+      const w = window.windfield;
+      const stepper = await w.setStepper('gpu');
+      await w.setScene(s);
+      await w.step(60);
+      const own = await w.inspectStepper();
+      return {
+        stepper,
+        sigma: Array.from(own.sigma), mass: Array.from(own.mass), centre: Array.from(own.centre), slot: own.slot,
+        words: Array.from(own.frame.words), info: Array.from(own.frame.info),
+      };
+    }, scene);
+    expect(out.stepper).toBe('gpu');
+    const frame = frameDescription(Float32Array.from(out.info));
+    const floats = new Float32Array(Uint32Array.from(out.words).buffer);
+    const blob = (i) => ({ centre: Array.from(floats.subarray(WORDS_PER_BLOB * i, WORDS_PER_BLOB * i + 3)), sigma: floats[WORDS_PER_BLOB * i + 3], mass: floats[WORDS_PER_BLOB * i + 4] });
+    // The state's blobs, read back slot by slot, by their centre and mass.
+    const key = (centre, mass) => `${centre.join()}|${mass}`;
+    const unsorted = new Map();
+    out.mass.forEach((m, i) => unsorted.set(key(out.centre.slice(3 * i, 3 * i + 3), m), i));
+    expect(unsorted.size).toBe(out.mass.length);
+    expect(frame.count).toBe(out.mass.length);
+    expect(frame.count).toBeGreaterThan(1500);
+    if (name.startsWith('a few')) expect(Math.max(...out.slot)).toBeGreaterThan(32 * 1024);
+    // The ranges follow one another from the first blob, classes ascending, a mixed one last.
+    let next = 0;
+    for (const [i, c] of frame.classes.entries()) {
+      expect(c.offset).toBe(next);
+      next += c.count;
+      if (i > 0) expect(c.mixed || c.index >= frame.classes[i - 1].index).toBe(true);
+      if (c.mixed) expect(i).toBe(frame.classes.length - 1);
+    }
+    expect(next).toBe(frame.count);
+    // Each blob in the range that says it holds it (its class, within the range's σ bounds), one
+    // of the state's blobs, each once, σ as the state has it, the slots ascending in each range.
+    const wrong = [];
+    const seen = new Set();
+    for (const c of frame.classes) {
+      let lastSlot = -1;
+      for (let i = c.offset; i < c.offset + c.count; i++) {
+        const b = blob(i);
+        if (!c.mixed && classOf(b.sigma) !== c.index) wrong.push(`blob ${i}: class ${classOf(b.sigma)} in a range of class ${c.index}`);
+        if (!c.mixed && !(b.sigma >= c.sigmaLow * (1 - 1e-6) && b.sigma <= c.sigmaMax * (1 + 1e-6))) wrong.push(`blob ${i}: σ ${b.sigma} outside [${c.sigmaLow}, ${c.sigmaMax}]`);
+        const slot = unsorted.get(key(b.centre, b.mass));
+        if (slot === undefined || seen.has(slot)) {
+          wrong.push(`blob ${i}: ${slot === undefined ? 'not in the state' : 'twice'}`);
+          continue;
+        }
+        seen.add(slot);
+        if (!(Math.abs(b.sigma - out.sigma[slot]) <= 1e-6 * out.sigma[slot])) wrong.push(`blob ${i}: σ ${b.sigma}, the state's ${out.sigma[slot]}`);
+        if (!(out.slot[slot] > lastSlot)) wrong.push(`blob ${i}: slot ${out.slot[slot]} after slot ${lastSlot}`);
+        lastSlot = out.slot[slot];
+      }
+    }
+    expect(wrong.slice(0, 5)).toEqual([]);
+    const classes = new Set(frame.classes.filter((c) => !c.mixed).map((c) => c.index));
+    const mixed = frame.classes.filter((c) => c.mixed);
+    console.log(`${name}: ${frame.count} blobs in ${frame.classes.length} ranges of ${classes.size} classes, ${mixed.length ? mixed[0].count : 0} unsorted`);
+    if (name.startsWith('a few')) {
+      // Each class cut into steps of σ: more ranges than classes, none left unsorted.
+      expect(classes.size).toBeGreaterThanOrEqual(3);
+      expect(frame.classes.length).toBeGreaterThan(classes.size);
+      expect(mixed.length).toBe(0);
+    } else {
+      // The widest blobs lie past the window of classes: unsorted, in a mixed range at the end.
+      expect(mixed.length).toBe(1);
+      expect(mixed[0].count).toBeGreaterThan(0);
+    }
+  });
+}
+
+test('the real-time view draws the GPU-sorted frame as it draws the worker\'s frame of the same blobs', async ({ page }) => {
+  const scene = plumes([0.01, 0.02, 0.04]);
+  scene.emitters.forEach((e) => { e.mass0 = 0.02; });
+  await open(page, scene);
+  const out = await page.evaluate(async (s) => {
+    const w = window.windfield;
+    await w.setStepper('gpu');
+    await w.setScene(s);
+    await w.step(60);
+    const size = { mode: 'raymarch', quality: 'standard', width: 160, height: 120 };
+    const gpu = { stepper: w.stats().stepper, shot: await w.captureGPU(size) };
+    // The centres go back to the worker, which packs and sorts its own frame of the same blobs.
+    await w.setStepper('cpu');
+    return { gpu, cpu: { stepper: w.stats().stepper, shot: await w.captureGPU(size) } };
+  }, scene);
+  expect(out.gpu.stepper).toBe('gpu');
+  expect(out.cpu.stepper).toBe('cpu');
+  const bytes = (url) => Buffer.from(url.split(',')[1], 'base64');
+  writeFileSync(test.info().outputPath('gpu-sorted.png'), bytes(out.gpu.shot));
+  writeFileSync(test.info().outputPath('worker.png'), bytes(out.cpu.shot));
+  const [gpu, cpu] = [decodePng(bytes(out.gpu.shot)).rgb, decodePng(bytes(out.cpu.shot)).rgb];
+  // The gas covers much of the picture: channels away from the background's (the first pixel's).
+  const gas = cpu.filter((v, i) => Math.abs(v - cpu[i % 3]) > 10).length;
+  const db = psnr(gpu, cpu);
+  // Channels more than two levels apart: blending the same blobs in another order moves none.
+  const apart = gpu.filter((v, i) => Math.abs(v - cpu[i]) > 2).length;
+  console.log(`GPU-sorted frame against the worker's: PSNR ${db.toFixed(1)} dB, ${apart} channels apart, ${gas} channels of gas`);
+  expect(gas).toBeGreaterThan(3000);
+  expect(db).toBeGreaterThanOrEqual(50);
+  expect(apart).toBeLessThanOrEqual(0.001 * gas);
 });
 
 test('the real-time view of a 250,000-blob GPU-stepped plume matches the reference still of its read-back blobs', async ({ page }) => {

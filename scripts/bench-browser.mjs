@@ -1,7 +1,8 @@
 // Browser benchmarks over the built site (dist/) in Debian's chromium with SwiftShader:
 // navigation to first frame; the worker's step, packing and frame size at 100,000 and 1,000,000
-// blobs against one GPU step of the same gas; the real-time view's frame at 10,000, 100,000 and
-// 1,000,000 blobs of one plume (640×360) against the points view's. SwiftShader runs shaders on the CPU: compare the ratios, not the
+// blobs against one GPU step of the same gas and its sorting by σ class; the real-time view's
+// frame at 10,000, 100,000 and 1,000,000 blobs of one plume (640×360) against the points view's,
+// and at 1,000,000 the frame of the GPU-stepped gas against the worker's. SwiftShader runs shaders on the CPU: compare the ratios, not the
 // times. Prints {name, value, unit} objects.
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
@@ -62,20 +63,21 @@ export async function benchBrowser() {
       const mid = (t) => t.sort((a, b) => a - b)[3];
       return { step: mid(step), pack: mid(pack), bytes: w.stats().frameBytes };
     });
-    // One GPU step of the same gas (the state handed over, one step taken, then timed passes).
-    // With `view`, also the real-time view's frame of the state as the GPU holds it (its slots
-    // unsorted by σ: one mixed class).
+    // One GPU step of the same gas (the state handed over, one step taken, then timed passes),
+    // and the sorting of its slots by σ class for the views that follows each step. With `view`,
+    // also the real-time view's frame of the state as the GPU holds it (sorted on the GPU).
     const gpuStep = ({ view = false } = {}) => page.evaluate(async (withView) => {
       const w = window.windfield;
       w.setView('points');
       const stepper = await w.setStepper('gpu');
       await w.step(1);
       const ms = stepper === 'gpu' ? await w.timeGpuStep({ repeats: 5 }) : null;
+      const sort = stepper === 'gpu' ? (await w.timeGpuSort({ repeats: 5 })).ms : null;
       const frame = stepper === 'gpu' && withView
         ? await w.timeFrames({ mode: 'raymarch', width: 640, height: 360, frames: 5, quality: 'standard' }) : null;
       await w.setStepper('cpu');
       w.setView('raymarch');
-      return { ms, frame };
+      return { ms, sort, frame };
     }, view);
     const frame = (mode) => page.evaluate((m) => window.windfield.timeFrames({ mode: m, width: 640, height: 360, frames: 5, quality: 'standard' }), mode);
 
@@ -86,7 +88,10 @@ export async function benchBrowser() {
     emit(`worker_pack_${k}_ms`, worker.pack, 'ms');
     emit(`frame_bytes_${k}`, worker.bytes, 'bytes');
     const gpu100 = await gpuStep();
-    if (gpu100.ms !== null) emit('gpu_step_100k_ms', gpu100.ms, 'ms');
+    if (gpu100.ms !== null) {
+      emit('gpu_step_100k_ms', gpu100.ms, 'ms');
+      emit('gpu_sort_100k_ms', gpu100.sort, 'ms');
+    }
 
     const view = {};
     const points = {};
@@ -108,10 +113,12 @@ export async function benchBrowser() {
     const gpu1m = await gpuStep({ view: true });
     if (gpu1m.ms !== null) {
       emit('gpu_step_1m_ms', gpu1m.ms, 'ms');
+      emit('gpu_sort_1m_ms', gpu1m.sort, 'ms');
       emit('worker_over_gpu_step_1m', (worker1m.step + worker1m.pack) / gpu1m.ms, 'ratio');
       emit('view_frame_640x360_1m_gpu_stepped_ms', gpu1m.frame, 'ms');
     }
     view[1000] = await frame('raymarch');
+    if (gpu1m.ms !== null) emit('view_frame_640x360_1m_gpu_stepped_over_worker', gpu1m.frame / view[1000], 'ratio');
     points[1000] = await frame('points');
     emit('view_frame_640x360_1m_ms', view[1000], 'ms');
     emit('view_frame_640x360_1m_over_100k', view[1000] / view[100], 'ratio');

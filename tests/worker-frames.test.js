@@ -77,10 +77,16 @@ test('a class cut at a width: every narrower blob in its narrow part, every othe
       }
     }
   }
-  // Without the words (the GPU stepper's state) a class goes whole into both.
-  const whole = cutClasses(info.classes, null, info.sigmaMin * 1.2);
-  assert.deepEqual(whole.narrow, info.classes);
-  assert.deepEqual(whole.wide, info.classes);
+  // Without the words (the GPU stepper's state) a class goes whole into each part its σ bounds
+  // reach: below every class none is splatted, above every class none goes through the mesh.
+  const widest = Math.max(...info.classes.map((c) => c.sigmaMax));
+  for (const limit of [0.5 * info.classes[0].sigmaLow, 1.01 * info.sigmaMin, 2 * widest]) {
+    const whole = cutClasses(info.classes, null, limit);
+    assert.deepEqual(whole.narrow, info.classes.filter((c) => c.sigmaLow < limit));
+    assert.deepEqual(whole.wide, info.classes.filter((c) => c.sigmaMax >= limit));
+  }
+  assert.equal(cutClasses(info.classes, null, 0.5 * info.classes[0].sigmaLow).narrow.length, 0);
+  assert.equal(cutClasses(info.classes, null, 2 * widest).wide.length, 0);
 });
 
 test('the exact march\'s frame is whole typed arrays too', async () => {

@@ -224,10 +224,18 @@ export interface WindFieldPageAPI extends WindFieldMethods {
   fieldStats(spectrum?: Partial<Scene['field']['spectrum']>): Promise<unknown>;
   /** The small-scale field at lattice coordinates (x, y, z, t), quadrilinearly: velocity in lattice units. */
   sample(x: number, y: number, z: number, t: number): Promise<unknown>;
-  /** The GPU stepper's own σ (m) and mass of every blob, slot order; null while the worker steps. */
-  inspectStepper(): Promise<{ sigma: Float32Array; mass: Float32Array } | null>;
+  /**
+   * The GPU stepper's own σ (m), mass and centre (xyz, m) of every blob and its slot, slot order,
+   * and the views' frame of them as the GPU sorted and packed it; null while the worker steps.
+   */
+  inspectStepper(): Promise<{
+    sigma: Float32Array; mass: Float32Array; centre: Float32Array; slot: number[];
+    frame: { words: Uint32Array; info: Float32Array };
+  } | null>;
   /** The median time (ms) of one GPU step of the current gas, finished on the GPU; null while the worker steps. */
   timeGpuStep(options?: { repeats?: number }): Promise<number | null>;
+  /** The median time (ms) of sorting the GPU stepper's gas by σ class and packing it for the views, and of each pass; null while the worker steps. */
+  timeGpuSort(options?: { repeats?: number }): Promise<{ ms: number; passes: Record<string, number> } | null>;
   /** The engine's health: its memory (bytes), the blob count, blobs whose centre is not finite. */
   health(): Promise<{ wasmBytes: number; blobs: number; nonFinite: number }>;
 }

@@ -475,7 +475,7 @@ export class Player {
     }
     this.lastFrame = frame;
     this.#view.setFrame(frame);
-    // A GPU frame draws every slot (`count`), of which `live` hold blobs.
+    // A GPU frame holds the blobs the GPU sorted (`count`); `live` is the core's count of them.
     this.stats.blobs = frame.live ?? frame.count;
     this.stats.time = frame.time;
     if (steps > 0) this.stats.stepMs = frame.stepMs;
@@ -643,7 +643,6 @@ export class Player {
       const before = { size: this.#view.size(), mode: this.#state.mode, quality: this.#state.quality, guides: this.#view.showGuides, volumeScale: this.#view.volumeScale };
       Object.assign(this.#state, { mode, quality });
       Object.assign(this.#view, { standIns, showGuides: false, volumeScale: 1 });
-      this.#exactGpuFrame();
       try {
         this.#view.resize(width, height);
         return await fn();
@@ -678,7 +677,6 @@ export class Player {
    */
   inspectVolume({ quality = this.#state.quality } = {}) {
     return this.exclusive(async () => {
-      this.#exactGpuFrame();
       const volume = this.#view.volume;
       if (!volume.prepare(this.#view.renderer, quality)) return null;
       const gpu = volume.read(this.#view.renderer);
@@ -696,11 +694,18 @@ export class Player {
   }
 
   /**
-   * The GPU stepper's own σ (m) and mass of every blob it holds (slot order), or null while
-   * the worker steps the gas. For tests: the core's are in `exportBlobs`.
+   * The GPU stepper's own σ (m), mass and centre of every blob it holds and the slot holding it
+   * (slot order), and the views' frame of them as the GPU sorted and packed it (`frame`: its
+   * words and description); null while the worker steps the gas. For tests: the core's blobs are
+   * in `exportBlobs`.
    */
   inspectStepper() {
-    return this.exclusive(async () => (this.#stepper.active === 'gpu' ? this.#stepper.gpu.readSigmaAndMass() : null));
+    return this.exclusive(async () => {
+      const gpu = this.#stepper.active === 'gpu' ? this.#stepper.gpu : null;
+      if (!gpu) return null;
+      const { words, info } = gpu.readFrame(this.#state.scene.render.medium.albedo);
+      return { ...gpu.readSigmaAndMass(), frame: { words, info } };
+    });
   }
 
   /**
@@ -729,6 +734,17 @@ export class Player {
    */
   timeGpuStep({ repeats = 5 } = {}) {
     return this.exclusive(async () => (this.#stepper.active === 'gpu' ? this.#stepper.gpu.timeStep(repeats) : null));
+  }
+
+  /**
+   * The median time (ms) of sorting the GPU stepper's gas by σ class and packing it for the
+   * views, as after each of its steps (`repeats` times, each pass finished on the GPU): {ms,
+   * passes: {keys, counts, gather, bounds, pack}}, or null while the worker steps it. For
+   * benchmarks.
+   */
+  timeGpuSort({ repeats = 5 } = {}) {
+    const albedo = () => this.#state.scene.render.medium.albedo;
+    return this.exclusive(async () => (this.#stepper.active === 'gpu' ? this.#stepper.gpu.timeSort(repeats, albedo()) : null));
   }
 
   /**
@@ -1115,16 +1131,9 @@ export class Player {
     st.gpu.apply(steps, { dt: simulation.dt, kappa: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
   }
 
-  /** The views' frame of the GPU stepper's state (`exact`: its bounds read at once, for captures). */
-  #gpuFrame(exact = false) {
-    return this.#stepper.gpu.frame(this.#state.scene.render.medium.albedo, { exact });
-  }
-
-  /** While the GPU steps: the frame shown again with bounds read at once (captures, checks). */
-  #exactGpuFrame() {
-    if (this.#stepper.active !== 'gpu' || !this.lastFrame) return;
-    this.lastFrame = { ...this.lastFrame, ...this.#gpuFrame(true) };
-    this.#view.setFrame(this.lastFrame);
+  /** The views' frame of the GPU stepper's state. */
+  #gpuFrame() {
+    return this.#stepper.gpu.frame(this.#state.scene.render.medium.albedo);
   }
 
   /**
@@ -1251,6 +1260,7 @@ export class Player {
       inspectVolume: (options) => this.inspectVolume(options),
       inspectStepper: () => this.inspectStepper(),
       timeFrames: (options) => this.timeFrames(options),
+      timeGpuSort: (options) => this.timeGpuSort(options),
       timeGpuStep: (options) => this.timeGpuStep(options),
     };
   }

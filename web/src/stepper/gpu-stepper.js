@@ -1,9 +1,10 @@
 // The GPU stepper: the gas's centres advected on the GPU (paper §4, Eq. 14) through the wind the
 // core freezes for each step, while the core in the worker keeps the rest of the gas (births,
 // σ, mass, removal, the cap: `gas::slots`). Per step only the newborns, the emptied slots and the
-// frozen wind cross to the GPU; the views draw the packed state where it is (a recording too);
-// the centres come back only on demand (`readCentres`: a reference still, a blob export, the
-// exact view, or stepping in the worker again).
+// frozen wind cross to the GPU; the views draw the state where it is (a recording too), sorted
+// by σ class on the GPU as the worker's frames are (`binning.js`) and packed; the centres come
+// back only on demand (`readCentres`: a reference still, a blob export, the exact view, or
+// stepping in the worker again).
 //
 // WebGL2 with float render targets (EXT_color_buffer_float) and three draw buffers is enough:
 // every pass is a per-texel map (four with carried turbulence, which every WebGL2 has). Where
@@ -11,15 +12,15 @@
 // MAX_GPU_SOLIDS (each is tested at every blob).
 
 import * as THREE from 'three';
-import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS } from '../generated/contract.js';
+import { BLOB_FLOATS, BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB } from '../generated/contract.js';
+import { Binning } from './binning.js';
+import { binClasses, binLayout } from './class-bins.js';
 import { BoundsPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
 import { HEADER_TEXELS, MAX_GPU_SOLIDS, PRIMITIVE_TEXELS } from './wind-glsl.js';
 
 /** Widest lattice texture row (texels); a lattice fills rows of this many points. */
 const LATTICE_WIDTH = 4096;
-/** Most steps the bounds read without a stall may lag behind the state. */
-const MAX_BOUNDS_LAG = 4;
 /** Most lattice points the GPU takes (64 MiB as RGBA32F); larger fields are stepped in the worker. */
 export const MAX_GPU_LATTICE = 1 << 22;
 
@@ -71,6 +72,7 @@ export class GpuStepper {
     this.writePass = new WritePass();
     this.packPass = new PackPass();
     this.boundsPass = new BoundsPass();
+    this.binning = new Binning();
     this.copyMoving = new CopyPass(2);
     this.copyCarried = new CopyPass(4);
     this.copyFixed = new CopyPass(3);
@@ -84,8 +86,9 @@ export class GpuStepper {
     this.emissive = false;
     this.spheres = new Float32Array(0);
     this.time = 0;
-    /** Steps taken since the bounds were last read (the async read's lag). */
-    this.stepsSinceBounds = 0;
+    /** Changes of the state, and the change last sorted and described (`frame`). */
+    this.version = 0;
+    this.sorted = null;
   }
 
   /**
@@ -110,8 +113,8 @@ export class GpuStepper {
     renderer.setRenderTarget(null);
     this.highWater = slots;
     this.time = time;
-    this.boundsPass.bounds = boundsOfRecords(records);
-    this.stepsSinceBounds = 0;
+    [this.count, ...this.sigmaRange] = extentOfRecords(records);
+    this.version += 1;
   }
 
   /**
@@ -221,43 +224,50 @@ export class GpuStepper {
     this.emissive = steps.emissive;
     this.spheres = steps.spheres;
     this.time = steps.time;
-    this.stepsSinceBounds += n;
+    this.version += 1;
   }
 
   /**
-   * The views' frame of the current state, on the GPU: the packed blob texture, the frame's
-   * description (`frame::packed` info: one σ class over every slot; bounds from the GPU) and the
-   * moving spheres. While playing the bounds come back without a stall, a step or two behind
-   * and padded for it; with `exact` (captures), or after more steps than the padding covers,
-   * they are read at once.
+   * The views' frame of the current state, on the GPU: the blobs sorted by σ class and packed
+   * (`binning.js`; `frame::packed`), the frame's description (`frame::packed` info: the classes
+   * from the bins' counts, the bounds by reduction) and the moving spheres. The state is sorted
+   * once a change (a start, the steps of `apply`), and only then do the bins' counts and the
+   * bounds come back: a few floats, read once the GPU has done the steps, which drawing the frame
+   * waits for anyway.
    */
-  frame(mediumAlbedo, { exact = false } = {}) {
+  frame(mediumAlbedo) {
     const renderer = this.renderer;
-    const texture = this.packPass.pack(renderer, this.state, mediumAlbedo);
-    const wait = exact || this.stepsSinceBounds > MAX_BOUNDS_LAG;
-    if (this.boundsPass.update(renderer, this.state, { wait })) this.stepsSinceBounds = 0;
+    if (this.sorted?.version !== this.version) this.sorted = this.#sort();
+    const { order, count, info } = this.sorted;
+    const texture = this.packPass.pack(renderer, this.state, order, count, mediumAlbedo);
     renderer.setRenderTarget(null);
-    const b = this.boundsPass.bounds;
-    const info = new Float32Array(INFO_HEADER + INFO_PER_CLASS);
-    info[0] = this.highWater;
-    if (b) {
-      // The gas moves a little while its bounds come back: pad by a tenth and 2 cm.
-      for (let a = 0; a < 3; a++) {
-        const pad = wait ? 0 : 0.1 * (b[3 + a] - b[a]) + 0.02;
-        info[1 + a] = b[a] - pad;
-        info[4 + a] = b[3 + a] + pad;
-      }
-    }
+    return { texture, count, live: this.count, info, spheres: this.spheres, time: this.time };
+  }
+
+  /**
+   * Sorts the state into its bins and describes the sorted frame: {version, order, count,
+   * info}. `clock` may time the passes (`Binning.sort`).
+   */
+  #sort(clock = () => {}) {
+    const renderer = this.renderer;
     const [sigmaMin, sigmaMax] = this.sigmaRange;
+    const layout = binLayout(sigmaMin, sigmaMax);
+    const { order, counts } = this.binning.sort(renderer, this.state, this.highWater, layout, clock);
+    this.boundsPass.update(renderer, this.state);
+    clock('bounds');
+    renderer.setRenderTarget(null);
     // σ on the GPU may round a little above the core's: the widest class reaches past it.
-    const reach = 1.0001 * sigmaMax;
+    const classes = binClasses(layout, counts, 1.0001 * sigmaMax);
+    const count = counts.reduce((a, b) => a + b, 0);
+    const info = new Float32Array(INFO_HEADER + INFO_PER_CLASS * classes.length);
+    info[0] = count;
+    const b = this.boundsPass.bounds;
+    if (b) info.set(b, 1);
     info[7] = this.emissive ? 1 : 0;
     info[8] = sigmaMin;
-    info[9] = this.highWater > 0 ? 1 : 0;
-    // One mixed class (index −1): the slots are not sorted by σ; the views sort each blob
-    // into its class themselves.
-    info.set([-1, 0, this.highWater, reach], INFO_HEADER);
-    return { texture, count: this.highWater, live: this.count, info, spheres: this.spheres, time: this.time };
+    info[9] = classes.length;
+    classes.forEach((c, i) => info.set(c, INFO_HEADER + INFO_PER_CLASS * i));
+    return { version: this.version, order, count, info };
   }
 
   /**
@@ -287,6 +297,42 @@ export class GpuStepper {
     return times.sort((a, b) => a - b)[Math.floor(times.length / 2)];
   }
 
+  /**
+   * The median time (ms) of sorting the current state into its bins and packing it for the
+   * views (`frame` after a step), run `repeats` times, each pass finished on the GPU before the
+   * next: {ms, passes: the median of each pass (the bins' keys; their counts, running sums and
+   * totals read back; the gathering of the order; the bounds; the packing, with the medium's
+   * albedo `mediumAlbedo`)}. For benchmarks.
+   */
+  timeSort(repeats, mediumAlbedo) {
+    const runs = [];
+    for (let i = 0; i <= repeats; i++) {
+      const times = {};
+      const t0 = performance.now();
+      let last = t0;
+      const clock = (name) => {
+        this.#wait();
+        const now = performance.now();
+        times[name] = now - last;
+        last = now;
+      };
+      this.sorted = this.#sort(clock);
+      this.packPass.pack(this.renderer, this.state, this.sorted.order, this.sorted.count, mediumAlbedo);
+      clock('pack');
+      times.ms = last - t0;
+      if (i > 0) runs.push(times);
+    }
+    this.renderer.setRenderTarget(null);
+    const median = (name) => runs.map((r) => r[name]).sort((a, b) => a - b)[Math.floor(runs.length / 2)];
+    const passes = Object.fromEntries(Object.keys(runs[0]).filter((k) => k !== 'ms').map((k) => [k, median(k)]));
+    return { ms: median('ms'), passes };
+  }
+
+  /** Waits until the GPU has done everything asked of it (reads one texel of the state back). */
+  #wait() {
+    this.renderer.readRenderTargetPixels(this.state.now, 0, 0, 1, 1, new Float32Array(4));
+  }
+
   /** Attachment `k` of the moving state, every slot in use (RGBA per slot), read back (a stall). */
   #read(k) {
     const rows = Math.ceil(this.highWater / BLOBS_PER_ROW);
@@ -303,18 +349,42 @@ export class GpuStepper {
     return out;
   }
 
-  /** σ (m) and mass of every slot holding a blob, in slot order, read back (for tests). */
+  /**
+   * σ (m), mass and centre (xyz, m) of every slot holding a blob, in slot order, and the slots'
+   * numbers, read back (for tests).
+   */
   readSigmaAndMass() {
     const a = this.#read(0);
     const b = this.#read(1);
     const sigma = [];
     const mass = [];
+    const centre = [];
+    const slot = [];
     for (let i = 0; i < this.highWater; i++) {
       if (!(b[4 * i] > 0)) continue;
       sigma.push(Math.sqrt(a[4 * i + 3]));
       mass.push(b[4 * i]);
+      centre.push(...a.subarray(4 * i, 4 * i + 3));
+      slot.push(i);
     }
-    return { sigma: Float32Array.from(sigma), mass: Float32Array.from(mass) };
+    return { sigma: Float32Array.from(sigma), mass: Float32Array.from(mass), centre: Float32Array.from(centre), slot };
+  }
+
+  /**
+   * The views' frame of the current state as they read it: its packed words (WORDS_PER_BLOB a
+   * blob, sorted) and its description, read back (for tests).
+   */
+  readFrame(mediumAlbedo) {
+    const { count, info } = this.frame(mediumAlbedo);
+    const rows = Math.ceil(count / BLOBS_PER_ROW);
+    const words = new Uint32Array(WORDS_PER_BLOB * BLOBS_PER_ROW * rows);
+    if (rows > 0) {
+      const gl = this.renderer.getContext();
+      this.renderer.setRenderTarget(this.packPass.target);
+      gl.readPixels(0, 0, (WORDS_PER_BLOB / 4) * BLOBS_PER_ROW, rows, gl.RGBA_INTEGER, gl.UNSIGNED_INT, words);
+      this.renderer.setRenderTarget(null);
+    }
+    return { words: words.subarray(0, WORDS_PER_BLOB * count), info };
   }
 
   /** The carried offsets of every slot in use (phase a xyz, phase b xyz per slot), read back (for tests). */
@@ -335,7 +405,7 @@ export class GpuStepper {
     this.lattice?.dispose();
     this.potential?.dispose();
     this.windTable?.dispose();
-    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
+    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.binning, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
   }
 }
 
@@ -350,16 +420,17 @@ function latticeTexture(data) {
   return texture;
 }
 
-/** The bounds of blob records (centre ± FOOTPRINT σ of those with mass): [lo xyz, hi xyz], or null. */
-function boundsOfRecords(records) {
-  const b = [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity];
+/** The blobs of records (those with mass), and their narrowest and widest σ (m; 0 without blobs). */
+function extentOfRecords(records) {
+  let count = 0;
+  let lo = Infinity;
+  let hi = 0;
   for (let i = 0; i < records.length; i += BLOB_FLOATS) {
     if (!(records[i + 4] > 0)) continue;
-    const reach = FOOTPRINT * Math.sqrt(Math.max(records[i + 3], 0));
-    for (let a = 0; a < 3; a++) {
-      b[a] = Math.min(b[a], records[i + a] - reach);
-      b[3 + a] = Math.max(b[3 + a], records[i + a] + reach);
-    }
+    const sigma = Math.fround(Math.sqrt(Math.max(records[i + 3], 0)));
+    count += 1;
+    lo = Math.min(lo, sigma);
+    hi = Math.max(hi, sigma);
   }
-  return b[0] <= b[3] ? b : null;
+  return count > 0 ? [count, lo, hi] : [0, 0, 0];
 }

@@ -1,6 +1,7 @@
 // The GPU stepper's passes, each a pure per-texel map (no atomics, so WebGL2 fragment shaders
 // carry them): the step of paper §4 for every slot, the writing of newborn and emptied slots,
-// the packing of the state into the views' blob texture, and the reduction to the gas's bounds.
+// the packing of the state into the views' blob texture (in the order `binning.js` sorts it
+// into), and the reduction to the gas's bounds.
 
 import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT } from '../generated/contract.js';
@@ -301,7 +302,8 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
 /**
  * The state packed as the views read a frame (`frame::packed`: eight 32-bit words a blob, two
  * RGBA32UI texels): centre, σ, mass, albedo (the medium's where the blob has none) and the
- * emitted source (1 − Ω)Q as halves. Empty slots pack with mass 0.
+ * emitted source (1 − Ω)Q as halves, blob after blob in the sorted order (`binning.js`: at each
+ * place the number of its slot); the places past the `count` sorted pack as zeros.
  */
 export class PackPass extends ScreenPass {
   constructor() {
@@ -310,11 +312,19 @@ uniform highp sampler2D centres;
 uniform highp sampler2D masses;
 uniform highp sampler2D albedos;
 uniform highp sampler2D emissions;
+uniform highp sampler2D order;
+uniform int count;
 uniform vec3 mediumAlbedo;
 layout(location = 0) out highp uvec4 words;
 void main() {
   ivec2 t = ivec2(gl_FragCoord.xy);
-  ivec2 p = ivec2(t.x / 2, t.y);
+  int place = t.y * ${BLOBS_PER_ROW} + t.x / 2;
+  if (place >= count) {
+    words = uvec4(0u);
+    return;
+  }
+  int slot = int(texelFetch(order, ivec2(place % ${BLOBS_PER_ROW}, place / ${BLOBS_PER_ROW}), 0).x);
+  ivec2 p = ivec2(slot % ${BLOBS_PER_ROW}, slot / ${BLOBS_PER_ROW});
   vec4 a = texelFetch(centres, p, 0);
   if (t.x % 2 == 0) {
     words = uvec4(floatBitsToUint(a.xyz), floatBitsToUint(sqrt(max(a.w, 0.0))));
@@ -330,13 +340,18 @@ void main() {
       masses: { value: null },
       albedos: { value: null },
       emissions: { value: null },
+      order: { value: null },
+      count: { value: 0 },
       mediumAlbedo: { value: new THREE.Vector3(1, 1, 1) },
     });
     this.target = null;
   }
 
-  /** Packs `state` into its blob texture (sized to the state); returns the texture. */
-  pack(renderer, state, mediumAlbedo) {
+  /**
+   * Packs the `count` blobs of `state` that `order` puts first (the slots' numbers, place by
+   * place) into its blob texture (sized to the state); returns the texture.
+   */
+  pack(renderer, state, order, count, mediumAlbedo) {
     if (!this.target || this.target.height !== state.rows) {
       this.target?.dispose();
       this.target = new THREE.WebGLRenderTarget(2 * BLOBS_PER_ROW, state.rows, {
@@ -354,6 +369,8 @@ void main() {
     u.masses.value = state.now.textures[1];
     u.albedos.value = state.fixed.textures[1];
     u.emissions.value = state.fixed.textures[2];
+    u.order.value = order;
+    u.count.value = count;
     u.mediumAlbedo.value.fromArray(mediumAlbedo);
     this.draw(renderer, this.target);
     return this.target.texture;
@@ -398,7 +415,6 @@ void main() {
     this.first = reduce(true);
     this.rest = reduce(false);
     this.levels = [];
-    this.pending = null;
     /** The last bounds read back: [lo xyz, hi xyz] (m), or null. */
     this.bounds = null;
   }
@@ -422,12 +438,10 @@ void main() {
   }
 
   /**
-   * Reduces `state` to its bounds on the GPU and reads them back: without waiting (`bounds`
-   * then holds the last result read, one or more steps behind; the caller pads for it), or with
-   * `wait` at once (a stall until the GPU has stepped; `bounds` is then the state's own).
-   * Returns whether it read (or began to read) this state's bounds.
+   * Reduces `state` to its bounds on the GPU and reads them back (`bounds`: [lo xyz, hi xyz], m,
+   * or null without blobs): a wait for the GPU to finish what it was given before.
    */
-  update(renderer, state, { wait = false } = {}) {
+  update(renderer, state) {
     const levels = this.#levelsFor(BLOBS_PER_ROW, state.rows);
     let from = [BLOBS_PER_ROW, state.rows];
     let source = state.now;
@@ -445,26 +459,9 @@ void main() {
     const last = levels.at(-1);
     const lo = new Float32Array(4);
     const hi = new Float32Array(4);
-    const take = () => {
-      this.bounds = lo[0] <= hi[0] ? [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]] : null;
-    };
-    if (wait) {
-      renderer.readRenderTargetPixels(last, 0, 0, 1, 1, lo, undefined, 0);
-      renderer.readRenderTargetPixels(last, 0, 0, 1, 1, hi, undefined, 1);
-      take();
-      return true;
-    }
-    if (this.pending) return false;
-    const reads = [
-      renderer.readRenderTargetPixelsAsync(last, 0, 0, 1, 1, lo, undefined, 0),
-      renderer.readRenderTargetPixelsAsync(last, 0, 0, 1, 1, hi, undefined, 1),
-    ];
-    // three.js leaves its pixel-pack buffer bound while it waits, which would turn every other
-    // read of pixels meanwhile into an error: unbind it (it binds it again to read).
-    const gl = renderer.getContext();
-    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
-    this.pending = Promise.all(reads).then(take, () => {}).finally(() => { this.pending = null; });
-    return true;
+    renderer.readRenderTargetPixels(last, 0, 0, 1, 1, lo, undefined, 0);
+    renderer.readRenderTargetPixels(last, 0, 0, 1, 1, hi, undefined, 1);
+    this.bounds = lo[0] <= hi[0] ? [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]] : null;
   }
 
   dispose() {

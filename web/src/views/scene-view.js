@@ -365,8 +365,10 @@ function opaqueTarget(width, height) {
  * A frame's description (`info`, the core's `frame::packed::PackedFrame::info`: INFO_HEADER
  * floats, count, lo xyz, hi xyz, emissive, σ_min, classes, then INFO_PER_CLASS a σ class) as an
  * object; each σ class {index, offset, count, sigmaMax, sigmaLow (its lower bound,
- * `classSigma(index)`)}. A class of index −1 is `mixed`: blobs of every σ up to `sigmaMax`,
- * unsorted (the GPU stepper's state, drawn slot by slot), its lower bound 0.
+ * `classSigma(index)`)}. A class may come as several ranges in a row, each a step of its σ (the
+ * GPU stepper's bins, `stepper/class-bins.js`): a range after the first then starts at the σ_max
+ * of the one before. A class of index −1 is `mixed`: blobs of any σ up to `sigmaMax`, unsorted,
+ * its lower bound 0.
  */
 export function frameDescription(info) {
   const classes = [];
@@ -374,7 +376,9 @@ export function frameDescription(info) {
     const at = INFO_HEADER + INFO_PER_CLASS * k;
     const [index, offset, count, sigmaMax] = info.subarray(at, at + INFO_PER_CLASS);
     const mixed = index < 0;
-    classes.push({ index, offset, count, sigmaMax, sigmaLow: mixed ? 0 : classSigma(index), mixed });
+    const before = classes.at(-1);
+    const sigmaLow = mixed ? 0 : before?.index === index ? before.sigmaMax : classSigma(index);
+    classes.push({ index, offset, count, sigmaMax, sigmaLow, mixed });
   }
   return {
     count: info[0],

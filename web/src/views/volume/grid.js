@@ -57,8 +57,9 @@ function firstWhere(floats, cls, test) {
  * may be narrower than `limit`, and `wide`, those that may be as wide or wider ({...class,
  * offset, count}; empty parts left out). The packed order (`orderKey`) lets a class be cut by
  * bisection over `words`; a cut errs on the side of drawing a blob in both parts (the passes
- * test each blob's width), never in neither. Without `words` (the GPU stepper's state), a mixed
- * class, or the open first and last classes, a class goes whole into both.
+ * test each blob's width), never in neither. Without `words` (the GPU stepper's state, whose
+ * classes come in steps of σ) a range goes whole into the parts its σ bounds (`sigmaLow`,
+ * `sigmaMax`) reach; a mixed range, or one of the open first and last classes, into both.
  */
 export function cutClasses(classes, words, limit) {
   const narrow = [];
@@ -67,9 +68,12 @@ export function cutClasses(classes, words, limit) {
   const high = orderKey(limit * (1 + 1e-5));
   const floats = words && new Float32Array(words.buffer, words.byteOffset, words.length);
   for (const c of classes) {
-    const sorted = floats && !c.mixed && c.index > 0 && c.index < LAST_CLASS;
-    const end = sorted ? firstWhere(floats, c, (key) => key > high) : c.offset + c.count;
-    const start = sorted ? firstWhere(floats, c, (key) => key >= low) : c.offset;
+    const open = c.mixed || c.index <= 0 || c.index >= LAST_CLASS;
+    const sorted = floats && !open;
+    const below = open || c.sigmaLow < limit * (1 + 1e-5);
+    const above = open || c.sigmaMax >= limit * (1 - 1e-5);
+    const end = sorted ? firstWhere(floats, c, (key) => key > high) : below ? c.offset + c.count : c.offset;
+    const start = sorted ? firstWhere(floats, c, (key) => key >= low) : above ? c.offset : c.offset + c.count;
     if (end > c.offset) narrow.push({ ...c, count: end - c.offset });
     if (start < c.offset + c.count) wide.push({ ...c, offset: start, count: c.offset + c.count - start });
   }
