@@ -1,5 +1,7 @@
 // Playwright: Debian's chromium (never a downloaded browser) with WebGL2 through SwiftShader,
-// against the built site (dist/) served by `vite preview`.
+// against the built site (dist/) served by `vite preview`. One page at a time unless `--workers`
+// says more; `npm test` runs two at a time except the tests tagged @timing (they time the page:
+// frame rates, delays, deadlines), which it runs alone afterwards.
 import { defineConfig } from '@playwright/test';
 
 const chromium = process.env.CHROMIUM_PATH || '/usr/bin/chromium';
