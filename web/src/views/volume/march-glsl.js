@@ -19,6 +19,7 @@ uniform sampler3D densityVolume;
 uniform sampler3D sourceVolume;
 uniform bool emissive;
 uniform float stepScale;
+uniform float densityScale; // the density volume holds ρ · densityScale
 
 // Interleaved gradient noise: a fixed jitter per pixel in [0, 1).
 float jitter(vec2 px) {
@@ -46,7 +47,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     }
     vec4 d = sampleVolume(densityVolume, grid, x);
     if (d.x <= 0.0) continue;
-    vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));
+    vec3 absorbed = 1.0 - exp(-kappa * (d.x / densityScale * ds));
     vec3 albedo = d.yzw / d.x;
     vec3 L = vec3(0.0);
     for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
