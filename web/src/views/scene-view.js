@@ -19,6 +19,7 @@ import { BlobTexture } from './blob-texture.js';
 import { ExactMarchLayer } from './exact/exact-layer.js';
 import { gasUniforms, setLights } from './gas-uniforms.js';
 import { PointsLayer } from './points-layer.js';
+import { gpuFormats } from './precision.js';
 import { classSigma } from './volume/grid.js';
 import { VolumeLayer } from './volume/volume-layer.js';
 import { CameraLimits } from './camera-limits.js';
@@ -69,10 +70,14 @@ export class SceneView {
     this.spheresKey = '';
     /** Uniforms every gas-aware shader shares; the layers add their own entries to it. */
     this.gas = gasUniforms();
+    /** What the GPU stores, blends and filters in floats, and its largest textures (`precision.js`). */
+    this.formats = gpuFormats(this.renderer);
     this.blobs = new BlobTexture();
     this.exact = new ExactMarchLayer(this.gas);
     this.volume = new VolumeLayer(this.gas, this.blobs);
     this.points = new PointsLayer(this.gas, this.blobs);
+    this.volume.formats = this.formats;
+    this.points.formats = this.formats;
     /** The objects that cast shadows: the scene's objects and the frame's repulsor spheres. */
     this.occluders = new Occluders(this.gas);
     this.sceneObjects = [];

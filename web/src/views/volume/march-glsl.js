@@ -20,6 +20,7 @@ uniform sampler3D densityVolume;
 uniform sampler3D sourceVolume;
 uniform bool emissive;
 uniform float stepScale;
+uniform float densityScale; // the density volume holds ρ · densityScale
 
 // The column ∫ρ ds from x towards light l (unit d, dist away): the first NEAR_COLUMN_VOXELS
 // voxels summed here through the density volume, the rest read from the light volume where
@@ -33,7 +34,7 @@ float shadowColumn(int l, vec3 x, vec3 d, float dist) {
     sum += sampleVolume(densityVolume, grid, x + d * ((float(k) + 0.5) * ds)).x;
   }
   float far = reach < dist ? volumeColumn(l, x + d * reach, d, dist - reach) : 0.0;
-  return sum * ds + far;
+  return sum * ds / densityScale + far;
 }
 
 // Interleaved gradient noise: a fixed jitter per pixel in [0, 1).
@@ -62,7 +63,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     }
     vec4 d = sampleVolume(densityVolume, grid, x);
     if (d.x <= 0.0) continue;
-    vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));
+    vec3 absorbed = 1.0 - exp(-kappa * (d.x / densityScale * ds));
     vec3 albedo = d.yzw / d.x;
     vec3 L = vec3(0.0);
     for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
