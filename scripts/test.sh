@@ -21,11 +21,5 @@ npx vite build --config web/vite.config.js --logLevel warn
 npx vite build --config web/vite.embed.config.js --logLevel warn
 step "js unit tests"
 node --test tests/
-# Two pages at a time (most tests wait on the page more than they work the CPU), then the tests
-# tagged @timing, which time the page (frame rates, delays, deadlines), alone.
-step "end-to-end tests (chromium), two at a time"
-e2e=0
-npx playwright test --config e2e/playwright.config.js --workers 2 --grep-invert @timing || e2e=1
-step "end-to-end tests (chromium) that time the page, one at a time"
-npx playwright test --config e2e/playwright.config.js --grep @timing || e2e=1
-exit "$e2e"
+step "end-to-end tests (chromium)"
+npx playwright test --config e2e/playwright.config.js
