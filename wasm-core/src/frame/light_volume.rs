@@ -88,8 +88,13 @@ pub fn column(volume: &DensityVolume, light: Towards, x: Vec3, step: f32) -> f32
         return 0.0;
     }
     let n = (length / (step * grid.h)).ceil().max(1.0);
-    let ds = length / n;
-    (0..n as usize)
+    midpoint_column(volume, x, d, length, n as u32)
+}
+
+/// ∫ρ ds over x + s·d, 0 ≤ s ≤ `length`, through `volume` as a midpoint sum of `n` equal steps.
+fn midpoint_column(volume: &DensityVolume, x: Vec3, d: Vec3, length: f32, n: u32) -> f32 {
+    let ds = length / n as f32;
+    (0..n)
         .map(|k| volume.rho(x + d * ((k as f32 + 0.5) * ds)))
         .sum::<f32>()
         * ds
@@ -178,11 +183,7 @@ pub fn march_column(
 ) -> f32 {
     let (d, to_light) = light.from(x);
     let reach = (NEAR_COLUMN_VOXELS * volume.grid.h).min(to_light);
-    let ds = reach / NEAR_COLUMN_STEPS as f32;
-    let near: f32 = (0..NEAR_COLUMN_STEPS)
-        .map(|n| volume.rho(x + d * ((n as f32 + 0.5) * ds)))
-        .sum::<f32>()
-        * ds;
+    let near = midpoint_column(volume, x, d, reach, NEAR_COLUMN_STEPS);
     let far = if reach < to_light {
         stored_column(&volume.grid, light_grid, columns, k, light, x + d * reach)
     } else {
