@@ -76,12 +76,20 @@ test('a killed run leaves only whole frames, and a rerun finishes exactly', asyn
     '--width', '120', '--height', '90', '--out', `${out}/f%02d.png`];
   const killed = join(dir, 'killed');
   const child = spawn(cliPath, args(killed), { stdio: 'ignore' });
+  // The run's end, whether it exited or could not start: the wait below stops there too.
+  const ended = new Promise((r) => {
+    child.on('exit', (code, signal) => r(signal ?? `exit status ${code}`));
+    child.on('error', (err) => r(err.message));
+  });
+  let end = null;
+  ended.then((why) => { end = why; });
   // Kill it once a few frames are written, mid-run.
-  while (!existsSync(killed) || readdirSync(killed).filter((n) => n.endsWith('.png')).length < 3) {
+  while (end === null && (!existsSync(killed) || readdirSync(killed).filter((n) => n.endsWith('.png')).length < 3)) {
     await new Promise((r) => setTimeout(r, 20));
   }
+  assert.equal(end, null, 'the run ended before it wrote three frames');
   child.kill('SIGKILL');
-  await new Promise((r) => child.on('exit', r));
+  await ended;
   const written = readdirSync(killed).filter((n) => n.endsWith('.png'));
   assert.ok(written.length < 16, 'the run was stopped before its end');
   for (const name of written) {

@@ -21,7 +21,8 @@ const SHARE = 1 / 8;
 /**
  * Bytes a live blob takes at most, whoever steps it: in the worker 80 B in the core, 2 × 32 B
  * of packed frames in flight and 32 B of blob texture (176 B); with the GPU stepper 80 B in the
- * core and 144 B of GPU state (224 B); and room for the exact view's merged list.
+ * core, 144 B of GPU state and 13 B of its sort by σ class (`stepper/binning.js`: a block's
+ * keys, two sets of bin counts, the order), 237 B; and room for the exact view's merged list.
  */
 export const BYTES_PER_BLOB = 256;
 
