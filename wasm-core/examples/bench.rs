@@ -152,6 +152,24 @@ pub fn solid_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
         .collect()
 }
 
+/// The median wall time (ms) of one step of each of `sims` over 7 rounds, each round a step of
+/// every one in turn (after a warm-up round), so a machine's changing load falls on all alike.
+fn interleaved_medians<const N: usize>(sims: &mut [Simulation; N]) -> [f64; N] {
+    sims.iter_mut().for_each(Simulation::step);
+    let mut times = [[0.0; 7]; N];
+    for round in 0..7 {
+        for (sim, t) in sims.iter_mut().zip(&mut times) {
+            let s = Instant::now();
+            sim.step();
+            t[round] = s.elapsed().as_secs_f64() * 1e3;
+        }
+    }
+    times.map(|mut t| {
+        t.sort_by(f64::total_cmp);
+        t[3]
+    })
+}
+
 /// `count` solid spheres of radius 1.2 cm through the dense plume's region (x, z within
 /// 0.3 m of its axis, 0.15 to 1.2 m up; another low-discrepancy sequence), as scene objects.
 pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
@@ -172,7 +190,7 @@ pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
         .collect()
 }
 
-/// The step among 0, 16 and 256 solid spheres, two ways, medians of 7 after a first step:
+/// The step among 0, 16 and 256 solid spheres, two ways, medians of 7 interleaved rounds:
 ///
 /// - the blob-step scene's 100,000 blobs spread through its 4 m box in no order, among spheres
 ///   of radius 8 cm through its 3.6 m box (each a doublet in the uniform wind, its layer
@@ -180,33 +198,30 @@ pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
 /// - the worker's dense plume at 100,000 blobs (as [`worker_plume`], the blobs in the order
 ///   they were born), among spheres of radius 1.2 cm through the plume (layer 2 cm).
 ///
-/// Then what finding the solids costs: per blob with the grid (the nearest solid), and per blob
-/// and solid tested one by one; and the wind among the 256 spheres of the blob-step scene per
-/// point, against the wind without them.
+/// Then what finding the solids costs: the nearest solid per blob with the grid and with every
+/// solid visited, and one signed distance per blob and solid; the wind among the 256 spheres of
+/// the blob-step scene per point, against the wind without them; and the grid's size.
 fn solid_objects() {
-    let mut steps = Vec::new();
-    for count in [0, 16, 256] {
+    let counts = [0, 16, 256];
+    let mut sims = counts.map(|count| {
         let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
         scene.render.objects = solid_spheres(count);
         let mut sim = Simulation::new(scene).expect("valid");
         seed_blobs(&mut sim, 100_000);
         // The first step puts the blobs seeded inside a sphere out.
         sim.step();
-        let ms = median_ms(7, || sim.step());
+        sim
+    });
+    let ms = interleaved_medians(&mut sims);
+    for (count, ms) in counts.iter().zip(ms) {
         emit(
             &format!("blob_step_100k_solids_{count}_native_ms"),
             ms,
             "ms",
         );
-        steps.push(ms);
     }
-    emit(
-        "blob_step_256_solids_over_none",
-        steps[2] / steps[0],
-        "ratio",
-    );
-    let mut steps = Vec::new();
-    for count in [0, 16, 256] {
+    emit("blob_step_256_solids_over_none", ms[2] / ms[0], "ratio");
+    let mut sims = counts.map(|count| {
         let mut scene =
             Scene::from_json(include_str!("../../tests/fixtures/dense-plume.json")).expect("valid");
         scene.emitters[0].rate = 20_000.0;
@@ -215,19 +230,17 @@ fn solid_objects() {
         scene.render.objects = plume_spheres(count);
         let mut sim = Simulation::new(scene).expect("valid");
         sim.run(sim.steps_for(5.0));
-        let ms = median_ms(7, || sim.step());
+        sim
+    });
+    let ms = interleaved_medians(&mut sims);
+    for (count, ms) in counts.iter().zip(ms) {
         emit(
             &format!("worker_step_100k_solids_{count}_native_ms"),
             ms,
             "ms",
         );
-        steps.push(ms);
     }
-    emit(
-        "worker_step_256_solids_over_none",
-        steps[2] / steps[0],
-        "ratio",
-    );
+    emit("worker_step_256_solids_over_none", ms[2] / ms[0], "ratio");
     let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
     let plain = Simulation::new(scene.clone()).expect("valid");
     scene.render.objects = solid_spheres(256);

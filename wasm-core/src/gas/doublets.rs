@@ -50,6 +50,10 @@ impl Doublets {
     /// Σ over the solids of `around` but `skip` of their doublets' ψ or u at `x`.
     #[inline(always)]
     pub fn sum(&self, part: Part, x: Vec3A, around: &Around, skip: usize) -> Vec3A {
+        let mut sum = Vec3A::ZERO;
+        if around.spheres.is_empty() && around.others.is_empty() {
+            return sum;
+        }
         let mut lanes = [Vec4::ZERO; 3];
         let mut quad = [Vec4::ZERO; 4];
         let mut k = 0;
@@ -66,8 +70,10 @@ impl Doublets {
         if k > 0 {
             self.add_spheres(part, &mut lanes, &quad, k, x);
         }
-        let [a, b, c] = lanes;
-        let mut sum = Vec3A::new(a.element_sum(), b.element_sum(), c.element_sum());
+        if !around.spheres.is_empty() {
+            let [a, b, c] = lanes;
+            sum = Vec3A::new(a.element_sum(), b.element_sum(), c.element_sum());
+        }
         for &j in around.others {
             if let (true, Some(d)) = (j as usize != skip, &self.doublets[j as usize]) {
                 let (psi, u) = d.at(x);
