@@ -78,6 +78,8 @@ test('export arguments are refused with their name and range; a flipbook carries
   const result = await page.evaluate(async () => {
     const w = window.windfield;
     await w.pause();
+    // Gas to measure: an empty scene's volume is empty, and accepted at any voxel.
+    await w.step(20);
     const t0 = w.stats().time;
     const refusal = (p) => p.then(() => 'accepted', (e) => e.message);
     return {
@@ -91,6 +93,7 @@ test('export arguments are refused with their name and range; a flipbook carries
       sheet: await refusal(w.exportFlipbook({ frames: [0, 4], grid: [4, 1], tile: [8192, 8] })),
       fps: await refusal(w.exportFlipbook({ frames: [0, 4], fps: 0 })),
       frames: await refusal(w.exportFlipbook({ frames: [5, 5] })),
+      blobs: w.stats().blobs,
       book: await w.exportFlipbook({ frames: [6, 10], fps: 12, grid: [2, 2], tile: [24, 18] }).then((b) => ({ type: b.type, size: b.size, description: b.description })),
       time: w.stats().time,
     };
@@ -99,6 +102,7 @@ test('export arguments are refused with their name and range; a flipbook carries
   expect(result.format).toMatch(/^exportStill: format must be 'png' or 'exr'/);
   expect(result.alpha).toMatch(/^exportStill: alpha must be true or false/);
   expect(result.voxel).toMatch(/^exportVolume: voxel must be a side in metres/);
+  expect(result.blobs).toBeGreaterThan(0);
   expect(result.budget).toMatch(/^voxel: .*2\^28/);
   expect(result.grid).toMatch(/^grid: 3×3 = 9 tiles cannot hold the 10 frames/);
   expect(result.sheet).toMatch(/^grid, tile: the sheet would be 32768×8 pixels, more than 16384 a side/);

@@ -29,7 +29,8 @@ test('a scene that stops the engine twice is not reloaded: back to the last scen
   await crash();
   // The first time, the scene is reloaded from its start.
   await expect.poll(() => page.evaluate(() => window.windfield.getScene()?.seed)).toBe(99);
-  await page.waitForTimeout(500);
+  // The restarted engine has the scene again (a step waits for the reload) before it crashes again.
+  await page.evaluate(() => window.windfield.step(1));
   await crash();
   // The second time, the page says so and goes back to the scene that ran before.
   await expect(page.locator('#message')).toContainText('stopped the engine twice');
@@ -85,7 +86,7 @@ test('a scene nested thousands deep is refused with a message, not a hang', asyn
   expect(message).not.toBe('accepted');
 });
 
-test('a worker that quits without a word: the request times out with a message and the engine restarts', async ({ page }) => {
+test('a worker that quits without a word: the request times out with a message and the engine restarts', { tag: '@timing' }, async ({ page }) => {
   await open(page, await linkTo(smallPlume, '?view=points&timeout=3'));
   await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(10); });
   await page.workers().at(-1).evaluate(() => setTimeout(() => self.close()));
@@ -99,7 +100,7 @@ test('a worker that quits without a word: the request times out with a message a
   await expect.poll(() => page.evaluate(() => window.windfield.step(2).then(() => 'ok', (e) => e.message)), { timeout: 20_000 }).toBe('ok');
 });
 
-test('a 1×1 window neither hangs nor freezes the page', async ({ page }) => {
+test('a 1×1 window neither hangs nor freezes the page', { tag: '@timing' }, async ({ page }) => {
   await open(page, await linkTo(smallPlume, '?view=raymarch'));
   await page.setViewportSize({ width: 1, height: 1 });
   const lags = await page.evaluate(async () => {
@@ -117,7 +118,7 @@ test('a 1×1 window neither hangs nor freezes the page', async ({ page }) => {
   expect(shot).toMatch(/^data:image\/png/);
 });
 
-test('frames slower than the display do not starve a call: each runs after at most the frame in flight', async ({ page }) => {
+test('frames slower than the display do not starve a call: each runs after at most the frame in flight', { tag: '@timing' }, async ({ page }) => {
   // `?profile` waits for the GPU after every pass: each frame of the playing default scene
   // takes longer than the display's interval, so the next animation frame is always due when
   // one ends. A call that waits for its turn must still get it.

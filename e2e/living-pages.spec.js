@@ -26,7 +26,7 @@ async function openPlayground(page, url = './?view=points') {
   await page.evaluate(() => window.windfield.ready);
 }
 
-test('a removed player rejects every pending call within a second with an AbortError, and 20 mounts leave no worker behind', async ({ page }) => {
+test('a removed player rejects every pending call within a second with an AbortError, and 20 mounts leave no worker behind', { tag: '@timing' }, async ({ page }) => {
   test.setTimeout(120_000);
   const errors = collectErrors(page);
   await bare(page, 'mounts', '<div id="host"></div>');

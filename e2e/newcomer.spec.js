@@ -192,7 +192,7 @@ test('an upward orbit drag of 300 px leaves a view that is not black; the camera
   expect(distance).toBeLessThanOrEqual(4 * Math.hypot(...position.map((v, a) => v - target[a])) + 1e-6);
 });
 
-test('the status line\'s frames per second agree with frames counted over its five seconds', async ({ page }) => {
+test('the status line\'s frames per second agree with frames counted over its five seconds', { tag: '@timing' }, async ({ page }) => {
   await open(page);
   const out = await page.evaluate(async () => {
     const w = window.windfield;

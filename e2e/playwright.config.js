@@ -1,5 +1,6 @@
 // Playwright: Debian's chromium (never a downloaded browser) with WebGL2 through SwiftShader,
-// against the built site (dist/) served by `vite preview`.
+// against the built site (dist/) served by `vite preview`, one page at a time. The tests tagged
+// @timing time the page (frame rates, delays, deadlines): `--grep @timing` picks them out.
 import { defineConfig } from '@playwright/test';
 
 const chromium = process.env.CHROMIUM_PATH || '/usr/bin/chromium';

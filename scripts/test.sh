@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="${CARGO_HOME:-$HOME/.cargo}/bin:$PATH"
-step() { printf '\n== %s\n' "$*"; }
+started=$SECONDS
+step() { printf '\n== %s (%d s in)\n' "$*" "$((SECONDS - started))"; }
 
 step "setup"
 bash scripts/setup.sh --browser --readers
@@ -23,3 +24,4 @@ step "js unit tests"
 node --test tests/
 step "end-to-end tests (chromium)"
 npx playwright test --config e2e/playwright.config.js
+step "done"

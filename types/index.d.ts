@@ -50,7 +50,16 @@ export interface WindFieldStats {
   stepperReason?: string;
   /** With the playground's `?profile`: the real-time view's passes on the GPU (ms). */
   passes?: Record<string, number>;
+  /** How each pass stores its floats: 16-bit where the GPU cannot render to, blend or filter 32-bit ones. Absent before the scene is loaded. */
+  precision?: { density: WindFieldPrecision; light: WindFieldPrecision; points: WindFieldPrecision };
+  /** On a small device, the memory the player keeps within (bytes), the most live blobs and the most bytes of the real-time view's targets; else null. */
+  memoryBudget?: { bytes: number; blobCap: number; volumeBytes: number } | null;
+  /** What this device gives up against a full one, one phrase each (empty on a full GPU). */
+  gaveUp?: string[];
 }
+
+/** How a GPU pass stores floats. */
+export type WindFieldPrecision = 'float32' | 'float16';
 
 export interface CaptureOptions {
   mode?: WindFieldView;

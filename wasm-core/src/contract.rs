@@ -7,7 +7,7 @@
 
 use crate::field::lattice::{MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
 use crate::frame::gpu_steps::BLOB_FLOATS;
-use crate::frame::light_volume::VIEW_LIGHTS;
+use crate::frame::light_volume::{NEAR_COLUMN_STEPS, NEAR_COLUMN_VOXELS, VIEW_LIGHTS};
 use crate::frame::packed::{
     BLOBS_PER_ROW, CLASS_BIAS, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS, SUBCLASS_BITS,
     WORDS_PER_BLOB,
@@ -92,6 +92,10 @@ pub fn sections() -> Vec<Section> {
             "A wider mesh blur samples its Gaussian out to this many of its standard deviations."),
         shared!(VIEW_LIGHTS in "frame::light_volume":
             "Most lights the GPU views draw (the light volume holds one per channel)."),
+        shared!(NEAR_COLUMN_VOXELS in "frame::light_volume":
+            "How far towards a light (density voxels) the march sums the shadow column itself before reading the light volume."),
+        shared!(NEAR_COLUMN_STEPS in "frame::light_volume":
+            "Midpoint steps of that near part of the shadow column."),
     ];
     let exact_march = vec![
         shared!(TRUNCATION in "render::gaussian": "Blobs are truncated at this many σ."),

@@ -6,6 +6,8 @@ import { Engine } from './engine/client.js';
 import { removedError } from './engine/removed.js';
 import { FramePace } from './player/frame-pace.js';
 import { describeRenderer, LIGHT, lightenedWords, SLOW_FPS, userChoices } from './player/machine.js';
+import { budgetWords, memoryBudget } from './player/memory.js';
+import { formatsGaveUp, passPrecision } from './views/precision.js';
 import { atLeast, boolean, nonFinite, number, oneOf, shown, wholeNumber } from './player/arguments.js';
 import { MAX_IMAGE_SIDE } from './generated/contract.js';
 import { exportBlob, flipbookRequest, stillRequest, volumeRequest } from './player/exports.js';
@@ -114,6 +116,10 @@ export class Player {
   #lighter = null;
   /** The user's own settings this player started with (`player/machine.js`, `userChoices`). */
   #choices = {};
+  /** The memory budget of a small device (`player/memory.js`), or null where none applies. */
+  #memory = null;
+  /** The scene (its JSON text) whose memory cap was last told of, so it is told once. */
+  #memoryTold = null;
   /** Calls waiting their turn in `exclusive`, woken at once when the player ends. */
   #sleepers = new Set();
   /** Loads asked for and not yet ended (`#loadTurn`). */
@@ -125,11 +131,12 @@ export class Player {
    * @param {HTMLCanvasElement} canvas
    * @param {{onProgress?: (p: number, stage: string) => void, onMessage?: (text: string) => void,
    *          onFrame?: (frame: object) => void, onScene?: (scene: object) => void,
-   *          onFault?: (message: string) => void, requestTimeoutMs?: number,
+   *          onFault?: (message: string) => void, onNotice?: (text: string) => void, requestTimeoutMs?: number,
    *          playing?: boolean, profile?: boolean, adapt?: boolean, choices?: object,
    *          onLighter?: (lighter: {reason: string, gaveUp: string[], renderer: string}) => void}} hooks
    *   (`onFault`: the player cannot go on as it is, e.g. its GPU context was lost for good or its
-   *   scene stops the engine; `profile`: time the volume view's passes on the GPU, reported by
+   *   scene stops the engine; `onNotice`: news that is no fault, e.g. a small device's memory
+   *   budget holds the scene to fewer blobs (else `onMessage` hears it); `profile`: time the volume view's passes on the GPU, reported by
    *   `stats().passes`; slower, for benchmarks; `adapt` (true unless false): a machine that draws
    *   in software, or is measured slow, gets the lighter version, and `onLighter` hears of it;
    *   `choices`: the user's own settings, standing over the lighter version (by default this
@@ -162,6 +169,8 @@ export class Player {
     this.#view = new SceneView(canvas);
     this.#view.volume.profile = Boolean(hooks.profile);
     this.#machine = describeRenderer(this.#view.renderer.getContext());
+    this.#memory = memoryBudget(navigator.deviceMemory, this.#view.formats);
+    this.#view.volume.memoryBytes = this.#memory?.volumeBytes ?? Infinity;
     const choices = hooks.choices ?? userChoices();
     this.#choices = choices;
     for (const name of Object.keys(FULL)) if (Object.hasOwn(choices, name)) this.#choose(name, choices[name]);
@@ -295,7 +304,7 @@ export class Player {
 
   /** Sends the load of `text` to the engine; resolves with its result. */
   #requestLoad(text) {
-    return this.#engine.request('load', { scene: text, blobCap: this.#state.blobCap }, {
+    return this.#engine.request('load', { scene: text, blobCap: this.#blobCap() }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
   }
@@ -320,6 +329,7 @@ export class Player {
     this.stepsSinceLoad = 0;
     this.stats.sceneBlobCap = info.blobCap;
     const scene = this.#adopt(info.sceneJson);
+    this.#tellMemoryCap();
     this.stats.fieldMs = info.fieldMs;
     this.#view.setCamera(scene.render.camera, scene.render.objects);
     this.#view.setRenderSettings(scene.render);
@@ -331,6 +341,45 @@ export class Player {
     await this.advance(0);
     await this.hooks.onScene?.(scene);
     return scene;
+  }
+
+  /**
+   * The blob cap the engine runs the scene under: the chosen or the lighter version's
+   * (`setBlobCap`), within the memory budget's; null for none.
+   */
+  #blobCap() {
+    const caps = [this.#state.blobCap, this.#memory?.blobCap].filter((c) => Number.isInteger(c));
+    return caps.length > 0 ? Math.min(...caps) : null;
+  }
+
+  /** Whether the running scene is held to fewer blobs by the memory budget. */
+  #memoryCapped() {
+    return this.#memory !== null && this.stats.sceneBlobCap === this.#memory.blobCap;
+  }
+
+  /** Tells the page, once a scene, that the memory budget holds the scene to fewer blobs. */
+  #tellMemoryCap() {
+    if (!this.#memoryCapped() || this.#memoryTold === this.#sceneJson) return;
+    this.#memoryTold = this.#sceneJson;
+    const notice = this.hooks.onNotice ?? this.hooks.onMessage;
+    notice?.(`This device has little memory for 3-D: the scene runs with at most ${this.#memory.blobCap.toLocaleString('en')} blobs `
+      + `(fewer, heavier blobs of the same gas), within ${budgetWords(this.#memory)}.`);
+  }
+
+  /**
+   * What this device gave up against a full one, one phrase each (`stats().gaveUp`): the float
+   * formats its GPU lacks (`views/precision.js`), and what the memory budget and the largest
+   * texture held back.
+   */
+  #deviceGaveUp() {
+    const formats = this.#view.formats;
+    const out = formatsGaveUp(formats);
+    const grid = ({ voxels, of }) => `the real-time view's grid of ${voxels.toLocaleString('en')} voxels instead of ${of.toLocaleString('en')}`;
+    if (this.#memoryCapped()) out.push(`${budgetWords(this.#memory)}: at most ${this.#memory.blobCap.toLocaleString('en')} blobs`);
+    const shrunk = this.#view.volume.grid ? this.#view.volume.shrunk : {};
+    if (shrunk.memory) out.push(`${budgetWords(this.#memory)}: ${grid(shrunk.memory)}`);
+    if (shrunk.textureSize) out.push(`textures of at most ${formats.maxTextureSize} texels a side: ${grid(shrunk.textureSize)}`);
+    return out;
   }
 
   /** Takes the normalised scene `json` as the current scene; returns it parsed. */
@@ -360,12 +409,13 @@ export class Player {
     // when the stepper's choice changed to the worker).
     const scene = JSON.parse(text);
     if (this.#stepper.active === 'gpu' && (sceneKeepsGpuAway(scene) || this.#stepper.choice === 'cpu')) await this.#toCpu();
-    const info = await this.#engine.request('edit', { scene: text, blobCap: this.#state.blobCap }, {
+    const info = await this.#engine.request('edit', { scene: text, blobCap: this.#blobCap() }, {
       onProgress: (p) => this.hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
     this.stats.sceneBlobCap = info.blobCap;
     const camera = this.#state.scene?.render.camera;
     const next = this.#adopt(info.sceneJson);
+    this.#tellMemoryCap();
     const { render } = next;
     if (info.restarted || !sameCamera(camera, render.camera)) this.#view.setCamera(render.camera, render.objects);
     else this.#view.limits.set(render.camera, render.objects);
@@ -995,6 +1045,9 @@ export class Player {
       renderer: this.#machine.renderer,
       software: this.#machine.software,
       lighter: this.#lighter ? { reason: this.#lighter, gaveUp: this.#gaveUp() } : null,
+      precision: passPrecision(this.#view.formats),
+      memoryBudget: this.#memory && { bytes: this.#memory.bytes, blobCap: this.#memory.blobCap, volumeBytes: this.#memory.volumeBytes },
+      gaveUp: this.#deviceGaveUp(),
       ...(this.#view.volume.timings && { passes: { ...this.#view.volume.timings } }),
     };
   }

@@ -88,8 +88,13 @@ pub fn column(volume: &DensityVolume, light: Towards, x: Vec3, step: f32) -> f32
         return 0.0;
     }
     let n = (length / (step * grid.h)).ceil().max(1.0);
-    let ds = length / n;
-    (0..n as usize)
+    midpoint_column(volume, x, d, length, n as u32)
+}
+
+/// ∫ρ ds over x + s·d, 0 ≤ s ≤ `length`, through `volume` as a midpoint sum of `n` equal steps.
+fn midpoint_column(volume: &DensityVolume, x: Vec3, d: Vec3, length: f32, n: u32) -> f32 {
+    let ds = length / n as f32;
+    (0..n)
         .map(|k| volume.rho(x + d * ((k as f32 + 0.5) * ds)))
         .sum::<f32>()
         * ds
@@ -118,13 +123,81 @@ pub fn light_columns(
     (grid, out)
 }
 
-/// S_k at `x` inside the gas as the real-time march takes it (Eq. 25, `march-glsl.js`): zero
-/// where an object of `objects` lies between `x` and the light ([`occluded`]), else
-/// exp(−κ_t × the column of channel `k` of the light volume `columns` on `light_grid`,
-/// interpolated trilinearly at `x`).
-pub fn transmittance(
+/// How far towards a light the real-time march sums the column itself, through the density
+/// volume, before it reads the light volume: in voxels of the density grid (two voxels of the
+/// light grid). The light volume holds columns at centres 2h apart; in dense, fine gas a column
+/// grows from nothing to several optical depths within one blob, and trilinear interpolation
+/// across that jump lends the lit skin of the gas the column of its inside. Read past the near
+/// part, the light volume is interpolated where the path has left that skin.
+pub const NEAR_COLUMN_VOXELS: f32 = 4.0;
+/// Midpoint steps of the near part of the column (one density voxel each).
+pub const NEAR_COLUMN_STEPS: u32 = 4;
+
+/// The light volume's column (channel `k` of `columns` on `light_grid`) towards `light` from
+/// `x`, as the march and the objects' material read it (`volumeColumn` in
+/// `web/src/views/shaders/volume-shadow.js`): interpolated at `x` inside the density grid's box
+/// `box_grid`; outside it, where the path to the light enters the box (no gas lies outside), or
+/// 0 if it never does.
+pub fn stored_column(
+    box_grid: &VoxelGrid,
     light_grid: &VoxelGrid,
     columns: &[f32],
+    k: usize,
+    light: Towards,
+    x: Vec3,
+) -> f32 {
+    let (lo, hi) = (box_grid.lo, box_grid.hi());
+    let mut p = x;
+    if x.cmplt(lo).any() || x.cmpgt(hi).any() {
+        let (d, to_light) = light.from(x);
+        let Some(enter) = box_span(x, d, to_light, lo, hi) else {
+            return 0.0;
+        };
+        p = x + d * enter;
+    }
+    light_grid.sample(columns, VIEW_LIGHTS, k, p)
+}
+
+/// Where the ray x + s·d, 0 ≤ s ≤ `s_max`, enters the box [lo, hi] (slab test), or None if it
+/// misses.
+fn box_span(x: Vec3, d: Vec3, s_max: f32, lo: Vec3, hi: Vec3) -> Option<f32> {
+    let inv = d.recip();
+    let (a, b) = ((lo - x) * inv, (hi - x) * inv);
+    let (t_min, t_max) = (a.min(b), a.max(b));
+    let near = t_min.max_element().max(0.0);
+    let far = t_max.min_element().min(s_max);
+    (near <= far).then_some(near)
+}
+
+/// The column ∫ρ ds from `x` towards `light` as the real-time march takes it (`shadowColumn` in
+/// `march-glsl.js`): the first [`NEAR_COLUMN_VOXELS`]·h (short of a point light) as a midpoint
+/// sum of [`NEAR_COLUMN_STEPS`] samples of `volume`, the rest from the light volume
+/// ([`stored_column`]) at the near part's end.
+pub fn march_column(
+    volume: &DensityVolume,
+    light_grid: &VoxelGrid,
+    columns: &[f32],
+    k: usize,
+    light: Towards,
+    x: Vec3,
+) -> f32 {
+    let (d, to_light) = light.from(x);
+    let reach = (NEAR_COLUMN_VOXELS * volume.grid.h).min(to_light);
+    let near = midpoint_column(volume, x, d, reach, NEAR_COLUMN_STEPS);
+    let far = if reach < to_light {
+        stored_column(&volume.grid, light_grid, columns, k, light, x + d * reach)
+    } else {
+        0.0
+    };
+    near + far
+}
+
+/// S_k at `x` inside the gas as the real-time march takes it (Eq. 25, `march-glsl.js`): zero
+/// where an object of `objects` lies between `x` and the light ([`occluded`]), else
+/// exp(−κ_t × [`march_column`]).
+pub fn transmittance(
+    volume: &DensityVolume,
+    (light_grid, columns): (&VoxelGrid, &[f32]),
     k: usize,
     light: Towards,
     objects: &[Object],
@@ -135,7 +208,7 @@ pub fn transmittance(
     if occluded(objects, x, d, to_light) {
         return Vec3::ZERO;
     }
-    (-kappa * light_grid.sample(columns, VIEW_LIGHTS, k, x)).exp()
+    (-kappa * march_column(volume, light_grid, columns, k, light, x)).exp()
 }
 
 /// The light volume of `frame` on `grid`: [`light_columns`] towards the first [`VIEW_LIGHTS`]

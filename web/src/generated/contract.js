@@ -47,6 +47,12 @@ export const BLUR_REACH = 3;
 /** Most lights the GPU views draw (the light volume holds one per channel). (`frame::light_volume::VIEW_LIGHTS`) */
 export const VIEW_LIGHTS = 4;
 
+/** How far towards a light (density voxels) the march sums the shadow column itself before reading the light volume. (`frame::light_volume::NEAR_COLUMN_VOXELS`) */
+export const NEAR_COLUMN_VOXELS = 4;
+
+/** Midpoint steps of that near part of the shadow column. (`frame::light_volume::NEAR_COLUMN_STEPS`) */
+export const NEAR_COLUMN_STEPS = 4;
+
 // The exact march (the reference renderer's rules)
 
 /** Blobs are truncated at this many σ. (`render::gaussian::TRUNCATION`) */

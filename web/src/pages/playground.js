@@ -47,6 +47,7 @@ const player = new Player($('#canvas'), {
   profile: query.has('profile'),
   onProgress: showProgress,
   onMessage: (text) => showMessage(text),
+  onNotice: (text) => showMessage(text, { info: true }),
   onLighter: (lighter) => showLighterNotice(lighter),
   onFrame: () => {
     updateStatus();

@@ -14,6 +14,13 @@ export function fpsText(fps) {
   return fps < 10 ? fps.toFixed(1) : String(Math.round(fps));
 }
 
+/** The blob cap the scene runs under, and whose it is: the memory budget's or the lighter version's. */
+function capText(stats) {
+  if (!stats.sceneBlobCap) return '';
+  const whose = stats.sceneBlobCap === stats.memoryBudget?.blobCap ? 'memory budget' : 'lighter version';
+  return ` (${whose}: at most ${stats.sceneBlobCap.toLocaleString('en')})`;
+}
+
 /**
  * The status text for `stats` (the player's `stats()`) in view `mode`, with the real-time
  * view's volume (`[nx, ny, nz]` voxels, or null) and whether the pointer stirs.
@@ -21,7 +28,7 @@ export function fpsText(fps) {
 export function statusText(stats, { mode, volume = null, stirring = false }) {
   const parts = [
     `t = ${stats.time.toFixed(2)} s`,
-    `${stats.blobs.toLocaleString('en')} blobs${stats.sceneBlobCap ? ` (lighter version: at most ${stats.sceneBlobCap.toLocaleString('en')})` : ''}`,
+    `${stats.blobs.toLocaleString('en')} blobs${capText(stats)}`,
     `${fpsText(stats.fps)} fps (${LIMITS[stats.limitedBy] ?? stats.limitedBy})`,
     `step ${stats.stepMs.toFixed(2)} ms (${stats.stepper === 'gpu' ? 'GPU' : `worker${stats.stepperReason ? `: ${stats.stepperReason}` : ''}`})`,
     `field ${stats.fieldMs.toFixed(0)} ms`,

@@ -6,9 +6,15 @@
 // exact view, or stepping in the worker again).
 //
 // WebGL2 with float render targets (EXT_color_buffer_float) and three draw buffers is enough:
-// every pass is a per-texel map (four with carried turbulence, which every WebGL2 has). Where
-// these are missing the worker steps the gas, and for scenes with more solid objects than
-// MAX_GPU_SOLIDS (each is tested at every blob).
+// every pass is a per-texel map (four with carried turbulence, which every WebGL2 has), and
+// none blends. The state must be 32-bit: a centre a metre from the origin moves by about a
+// millimetre a step, which is one step of a half float there (2⁻¹⁰ m), so in half floats the
+// gas would move in jumps or not at all; a GPU with only half-float targets (many phones) has
+// the worker step the gas. At the WebGL2 phones' 4096 texels a side every texture fits any
+// scene (the state 1024 slots a row: the most live blobs and four steps' most births fill 1,369
+// rows, 2,054 once grown by half; the lattice 4096 points a row: 2²² points in 1,024 rows). Where these are missing the
+// worker steps the gas, and for scenes with more solid objects than MAX_GPU_SOLIDS (each is
+// tested at every blob).
 
 import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT, INFO_HEADER, INFO_PER_CLASS } from '../generated/contract.js';

@@ -8,13 +8,17 @@
 //
 // The sprites' optical depths τ and depth-weighted colours τc are summed in a float target
 // (order-independent, so a million faint blobs add up where an 8-bit blend would drop each of
-// them), fragments behind the objects left out by the opaque pass's depth. A full-screen pass
-// then lays the gas over the objects and the background: opacity 1 − exp(−Στ) (Beer–Lambert
-// through the summed columns), colour Στc / Στ. A preview, not the image: the real-time view
-// and the stills are.
+// them), fragments behind the objects left out by the opaque pass's depth. The target holds
+// 32-bit floats where the GPU blends them, else 16-bit ones (`precision.js`): sums kept to a
+// half float's 11 significant bits draw the same preview (docs/BENCHMARKS.md), and each
+// fragment's τ is held under TAU_MOST so that the sums stay finite (a fragment that deep is
+// opaque either way). A full-screen pass then lays the gas over the objects and the
+// background: opacity 1 − exp(−Στ) (Beer–Lambert through the summed columns), colour Στc / Στ.
+// A preview, not the image: the real-time view and the stills are.
 
 import * as THREE from 'three';
 import { VIEW_LIGHTS } from '../generated/contract.js';
+import { passPrecision, texelType } from './precision.js';
 import { ScreenPass } from './screen-pass.js';
 import { BLOB_GLSL } from './shaders/blob-record.js';
 import { LIGHTS_GLSL } from './shaders/lights.js';
@@ -27,6 +31,8 @@ import { LIGHTS_GLSL } from './shaders/lights.js';
 const REACH = { draft: 2, standard: 3, high: 3 };
 /** Smallest sprite (pixels): a blob smaller than this spreads its opacity over it. */
 const MIN_SIZE = 2;
+/** Most optical depth one fragment adds (e^−64 of the light passes it): 1,000 of them stay under a half float's 65,504. */
+const TAU_MOST = 64;
 
 const vertexShader = /* glsl */ `
 precision highp float;
@@ -77,7 +83,7 @@ void main() {
   float r2 = dot(p, p);
   if (r2 > vReach * vReach) discard;
   if (gl_FragCoord.z > texture(opaqueDepth, gl_FragCoord.xy / viewSize).x) discard;
-  float tau = vDepth * exp(-0.5 * r2);
+  float tau = min(vDepth * exp(-0.5 * r2), ${TAU_MOST.toFixed(1)});
   outColor = vec4(vColor * tau, tau);
 }
 `;
@@ -132,6 +138,8 @@ export class PointsLayer {
     });
     /** The summed (τc, τ) of the sprites, the view's size. */
     this.sums = null;
+    /** The GPU's float formats (`gpuFormats`), set by the view. */
+    this.formats = null;
   }
 
   /** Shows the blobs of the blob texture. */
@@ -155,8 +163,11 @@ export class PointsLayer {
     const { width, height } = opaque;
     if (!this.sums || this.sums.width !== width || this.sums.height !== height) {
       this.sums?.dispose();
-      const type = renderer.extensions.has('EXT_float_blend') ? THREE.FloatType : THREE.HalfFloatType;
-      this.sums = new THREE.WebGLRenderTarget(width, height, { type, depthBuffer: false });
+      const type = texelType(passPrecision(this.formats).points);
+      // Read texel for texel: no filterable format needed.
+      this.sums = new THREE.WebGLRenderTarget(width, height, {
+        type, depthBuffer: false, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter,
+      });
     }
     const u = this.material.uniforms;
     u.opaqueDepth.value = opaque.depthTexture;

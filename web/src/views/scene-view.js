@@ -19,6 +19,7 @@ import { BlobTexture } from './blob-texture.js';
 import { ExactMarchLayer } from './exact/exact-layer.js';
 import { gasUniforms, setLights } from './gas-uniforms.js';
 import { PointsLayer } from './points-layer.js';
+import { gpuFormats } from './precision.js';
 import { classSigma } from './volume/grid.js';
 import { VolumeLayer } from './volume/volume-layer.js';
 import { CameraLimits } from './camera-limits.js';
@@ -28,6 +29,16 @@ import { modelMesh } from './models.js';
 import { shadowedLambert } from './object-material.js';
 import { Occluders } from './occluders.js';
 import { releaseGeometries } from './context-loss.js';
+
+/**
+ * Half the side of a plane object's mesh (m), and the camera's far plane twice that. The
+ * reference's planes are infinite: a pixel whose centre sees the plane a hair below the horizon
+ * (a tenth of a pixel at 120 rows is 4 km away from a camera 2.4 m up) must see it here too.
+ */
+const PLANE_REACH = 1e6;
+/** Cells from a plane's centre to its edge, and the narrowest cell there (m). */
+const PLANE_CELLS = 32;
+const PLANE_FINEST = 0.25;
 
 /** The colour the views draw for a transparent `render.background` (the scene format's default). */
 const SHOWN_FOR_TRANSPARENT = [0.05, 0.06, 0.08];
@@ -43,7 +54,7 @@ export class SceneView {
     this.canvas = canvas;
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(1);
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 4000);
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.05, 2 * PLANE_REACH);
     this.controls = new OrbitControls(this.camera, canvas);
     // Without damping the controls update the camera only on user input, so an untouched
     // camera stays exactly where the scene put it (deterministic exports).
@@ -59,10 +70,14 @@ export class SceneView {
     this.spheresKey = '';
     /** Uniforms every gas-aware shader shares; the layers add their own entries to it. */
     this.gas = gasUniforms();
+    /** What the GPU stores, blends and filters in floats, and its largest textures (`precision.js`). */
+    this.formats = gpuFormats(this.renderer);
     this.blobs = new BlobTexture();
     this.exact = new ExactMarchLayer(this.gas);
     this.volume = new VolumeLayer(this.gas, this.blobs);
     this.points = new PointsLayer(this.gas, this.blobs);
+    this.volume.formats = this.formats;
+    this.points.formats = this.formats;
     /** The objects that cast shadows: the scene's objects and the frame's repulsor spheres. */
     this.occluders = new Occluders(this.gas);
     this.sceneObjects = [];
@@ -386,11 +401,6 @@ export function frameDescription(info) {
   };
 }
 
-/** Half the side of a plane object's mesh (m): it reaches the horizon as far as the camera sees. */
-const PLANE_REACH = 2000;
-/** Cells from a plane's centre to its edge, and the narrowest cell there (m). */
-const PLANE_CELLS = 16;
-const PLANE_FINEST = 0.25;
 
 /**
  * A plane object's mesh: 2·PLANE_REACH metres a side, its cells PLANE_FINEST metres wide at the

@@ -12,6 +12,7 @@ ${VOXEL_GRID_GLSL}
 uniform sampler3D lightVolume;
 uniform Grid grid;
 uniform Grid lightGrid;
+uniform float columnScale; // the light volume holds ∫ρ ds · columnScale
 
 // The part [near, far] of the ray x + s·d, 0 ≤ s ≤ sMax, inside the density grid's box (slab
 // test); near > far if it misses.
@@ -33,6 +34,6 @@ float volumeColumn(int l, vec3 x, vec3 toLight, float toLightDistance) {
     if (span.x > span.y) return 0.0;
     x += toLight * span.x;
   }
-  return sampleVolume(lightVolume, lightGrid, x)[l];
+  return sampleVolume(lightVolume, lightGrid, x)[l] / columnScale;
 }
 `;

@@ -4,7 +4,9 @@
 // box and short of a point light, in ⌈length / (step·h)⌉ equal steps — as
 // `frame::light_volume::light_columns` in the core. Drawn in one draw into a 2-D atlas of the light
 // grid's slices (then copied into a 3-D texture, `slice-copy.js`). The march and the objects
-// read S_k = exp(−κ_t · column) from it (Eq. 25).
+// read S_k = exp(−κ_t · column) from it (Eq. 25). It reads densities stored times densityScale
+// and stores columns times columnScale (optical depths, `volume-layer.js`), at most 65,504 (a
+// half float's largest: a column that deep lets no light through).
 
 import { ScreenPass } from '../screen-pass.js';
 import { VIEW_LIGHTS } from '../../generated/contract.js';
@@ -19,6 +21,8 @@ uniform sampler3D densityVolume;
 uniform Grid grid;       // the density grid
 uniform Grid lightGrid;  // voxels of 2h
 uniform float columnStep;
+uniform float densityScale;
+uniform float columnScale;
 uniform int lightCols;   // light grid slice k is the atlas tile at column k mod lightCols, row ⌊k / lightCols⌋
 ${LIGHTS_GLSL}
 out vec4 outColumns;
@@ -36,7 +40,7 @@ float column(vec3 x, int l) {
     if (float(k) >= n) break;
     sum += sampleVolume(densityVolume, grid, x + d * ((float(k) + 0.5) * ds)).x;
   }
-  return sum * ds;
+  return sum * ds / densityScale;
 }
 
 void main() {
@@ -51,12 +55,12 @@ void main() {
     if (l >= lightCount) break;
     c[l] = column(x, l);
   }
-  outColumns = c;
+  outColumns = min(c * columnScale, vec4(65504.0));
 }
 `;
 
 export class LightPass extends ScreenPass {
-  /** @param {object} shared uniforms: the gas uniforms, densityVolume, grid, lightGrid */
+  /** @param {object} shared uniforms: the gas uniforms (with densityScale, columnScale, grid, lightGrid), densityVolume */
   constructor(shared) {
     super(fragmentShader, { ...shared, columnStep: { value: 1 }, lightCols: { value: 1 } });
   }

@@ -3,13 +3,14 @@
 // the voxel grid, `volumeColumn`), which the objects' material reads too, and the objects'
 // shadows (`../shaders/occluders.js`: `lightBlocked`, row 1 + l for light l).
 
-import { VIEW_LIGHTS } from '../../generated/contract.js';
+import { NEAR_COLUMN_STEPS, NEAR_COLUMN_VOXELS, VIEW_LIGHTS } from '../../generated/contract.js';
 import { BRICK_GLSL } from './occupancy-pass.js';
 
 export const MAX_MARCH_STEPS = 1024;
 
 /**
- * The march: front-to-back compositing of the voxel density (the rendering model of docs/FORMATS.md on the volume). Samples
+ * The march: front-to-back compositing of the voxel density (the rendering model of docs/FORMATS.md on the volume), each
+ * sample lit through `shadowColumn` (the near part of the column summed, the rest read). Samples
  * sit at s0 + (k + j)·ds; where a brick holds no gas the march goes on at the first such sample
  * past the brick, so it takes the same samples wherever there is gas as a march without leaps.
  */
@@ -19,6 +20,22 @@ uniform sampler3D densityVolume;
 uniform sampler3D sourceVolume;
 uniform bool emissive;
 uniform float stepScale;
+uniform float densityScale; // the density volume holds ρ · densityScale
+
+// The column ∫ρ ds from x towards light l (unit d, dist away): the first NEAR_COLUMN_VOXELS
+// voxels summed here through the density volume, the rest read from the light volume where
+// the near part ends (frame::light_volume::march_column in the core). Read at x itself, the light volume's
+// columns, stored 2h apart, would lend dense gas's lit skin the column of its inside.
+float shadowColumn(int l, vec3 x, vec3 d, float dist) {
+  float reach = min(${NEAR_COLUMN_VOXELS.toFixed(1)} * grid.h, dist);
+  float ds = reach / ${NEAR_COLUMN_STEPS.toFixed(1)};
+  float sum = 0.0;
+  for (int k = 0; k < ${NEAR_COLUMN_STEPS}; k++) {
+    sum += sampleVolume(densityVolume, grid, x + d * ((float(k) + 0.5) * ds)).x;
+  }
+  float far = reach < dist ? volumeColumn(l, x + d * reach, d, dist - reach) : 0.0;
+  return sum * ds / densityScale + far;
+}
 
 // Interleaved gradient noise: a fixed jitter per pixel in [0, 1).
 float jitter(vec2 px) {
@@ -46,7 +63,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     }
     vec4 d = sampleVolume(densityVolume, grid, x);
     if (d.x <= 0.0) continue;
-    vec3 absorbed = 1.0 - exp(-kappa * (d.x * ds));
+    vec3 absorbed = 1.0 - exp(-kappa * (d.x / densityScale * ds));
     vec3 albedo = d.yzw / d.x;
     vec3 L = vec3(0.0);
     for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
@@ -54,7 +71,7 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
       float dist;
       vec3 toLight = towardsLight(l, x, dist);
       if (hasShadows && lightBlocked(1 + l, x, toLight, dist)) continue;
-      vec3 S = hasShadows ? exp(-kappa * volumeColumn(l, x, toLight, dist)) : vec3(1.0);
+      vec3 S = hasShadows ? exp(-kappa * shadowColumn(l, x, toLight, dist)) : vec3(1.0);
       L += phase(dot(rd, toLight)) * S * lightColor[l];
     }
     vec3 C = albedo * L;

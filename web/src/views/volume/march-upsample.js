@@ -11,15 +11,28 @@ import { ScreenPass } from '../screen-pass.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
 
+/**
+ * `stoppedAt(d)`: the view depth (m) of depth-buffer value d, the far plane where nothing was
+ * drawn, and at most 60 km, so that it fits the march's target in half floats too (the far
+ * plane lies a million metres out, past the ground planes' edges).
+ */
+const STOPPED_AT_GLSL = /* glsl */ `
+float stoppedAt(float d) {
+  return min(d < 1.0 ? viewDepth(d) : camFar, 6.0e4);
+}
+`;
+
 /** The march's own outputs in its split form (after MARCH_PREAMBLE's outColor, location 0). */
 export const SPLIT_OUTPUTS_GLSL = /* glsl */ `
 layout(location = 1) out vec4 outTransmittance;
-// Radiance (rgb) and transmittance (rgb) of the gas, and the view depth (m) where the ray stopped.
+${STOPPED_AT_GLSL}
+// Radiance (rgb) and transmittance (rgb) of the gas, and the view depth (m) where the ray stopped,
+// at most MAX_DEPTH.
 void writeSplit(vec3 rad, vec3 T) {
   float d;
   behindAt(vUv, d);
   outColor = vec4(rad, 1.0);
-  outTransmittance = vec4(T, d < 1.0 ? viewDepth(d) : camFar);
+  outTransmittance = vec4(T, stoppedAt(d));
 }
 `;
 
@@ -28,11 +41,12 @@ ${MARCH_PREAMBLE}
 ${LIGHTS_GLSL}
 uniform sampler2D marchRadiance;
 uniform sampler2D marchTransmittance;
+${STOPPED_AT_GLSL}
 
 void main() {
   float d;
   vec3 behind = behindAt(vUv, d);
-  float z = d < 1.0 ? viewDepth(d) : camFar;
+  float z = stoppedAt(d);
   ivec2 size = textureSize(marchRadiance, 0);
   vec2 p = vUv * vec2(size) - 0.5;
   ivec2 p0 = ivec2(floor(p));

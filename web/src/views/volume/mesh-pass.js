@@ -56,6 +56,7 @@ uniform vec2 atlasSize;
 uniform int classOffset;
 uniform int sigmaClass;   // k: blobs of other classes are left out (a mixed range holds them all)
 uniform int layers;       // 2: one vertex a blob writes both slices; 1: one vertex a slice
+uniform float densityScale; // stored per unit density (κ̄h: optical depths, \`volume-layer.js\`)
 flat out vec2 vFraction;  // bilinear fractions towards the next voxel in x and y
 flat out vec4 vScale;     // density of each attachment (outputs 0–3), before the xy weights
 flat out vec3 vAlbedo;
@@ -83,7 +84,7 @@ void main() {
   vec3 i0 = min(floor(g), max(top - 1.0, vec3(0.0)));
   vFraction = g.xy - i0.xy;
   float fz = g.z - i0.z;
-  float rho = mass / (grid.h * grid.h * grid.h);
+  float rho = densityScale * mass / (grid.h * grid.h * grid.h);
   // Outputs: (even, odd) × (lower slice, upper slice), or (even, odd) × (density, source) of slice s.
   float wz = s == 0 ? 1.0 - fz : fz;
   vScale = layers == 2
@@ -183,7 +184,7 @@ const ZERO = new Float32Array(4);
 
 export class MeshPass {
   /**
-   * @param {object} shared uniforms: blobTex, grid, atlasCols, atlasSize
+   * @param {object} shared uniforms: blobTex, grid, densityScale, atlasCols, atlasSize
    */
   constructor(shared) {
     this.shared = shared;

@@ -3,7 +3,8 @@
 // atlas, renormalised over the footprint so the mass is kept, exactly as `frame::volume::splat`
 // in the core does. The sprite covers the footprint's rows and columns in a slice's tile; its
 // fragments are voxels. Additive blending into float targets: [ρ, ρΩ] and [ρ(1 − Ω)Q, 0] (the
-// density-weighted source of docs/FORMATS.md). Blobs are drawn σ class by class
+// density-weighted source of docs/FORMATS.md), each times `densityScale` (stored as optical
+// depths, `volume-layer.js`). Blobs are drawn σ class by class
 // (`frameDescription` in `scene-view.js`); wider blobs are culled here and go through the
 // particle mesh (`mesh-pass.js`).
 //
@@ -32,6 +33,7 @@ uniform int atlasCols;   // slice k is the tile at column k mod atlasCols, row �
 uniform vec2 atlasSize;  // texels
 uniform int classOffset;
 uniform int slices;       // points a blob: one a slice, or 1 with LAYERS
+uniform float densityScale; // stored per unit density (κ̄h)
 flat out vec3 vCentre;
 flat out float vInvWidth;
 flat out float vScale;
@@ -72,7 +74,7 @@ void main() {
   }
   vCentre = c;
   vInvWidth = inv;
-  vScale = mass / (grid.h * grid.h * grid.h) / (nx * ny);
+  vScale = densityScale * mass / (grid.h * grid.h * grid.h) / (nx * ny);
 #ifdef LAYERS
   for (int l = 0; l < 4; l++) vLayers[l] = k + float(l) <= last.z ? total(grid.lo.z, grid.h, c.z, inv, k + float(l), k + float(l)) / nz : 0.0;
 #else
@@ -158,7 +160,7 @@ void main() {
 export const SPLAT_LAYERS = 4;
 
 export class SplatPass {
-  /** @param {{blobTex: {value: THREE.Texture}, grid: {value: object}, atlasCols: {value: number}, atlasSize: {value: number[]}}} shared uniforms */
+  /** @param {{blobTex: {value: THREE.Texture}, grid: {value: object}, densityScale: {value: number}, atlasCols: {value: number}, atlasSize: {value: number[]}}} shared uniforms */
   constructor(shared) {
     this.shared = shared;
     this.scene = new THREE.Scene();

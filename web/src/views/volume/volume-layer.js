@@ -7,6 +7,12 @@
 // trilinear sampling. A view larger than the quality's march budget is marched at a lower
 // resolution and upsampled by depth. The volumes are rebuilt only when the frame, the quality
 // or the lights change: orbiting a paused scene re-runs the march alone.
+// Precision (`../precision.js`): the atlases and volumes hold 32-bit floats where the GPU blends
+// and filters them, else 16-bit ones. Either way they hold optical depths, not densities: a
+// density volume voxel holds κ̄ρh (the optical depth across the voxel, κ̄ the largest of the
+// medium's extinctions), a light column κ̄∫ρds, numbers of order 10⁻⁴ to 10² for any visible gas,
+// well inside a half float's range (6·10⁻⁵ to 65,504 at full precision), whatever the scene's
+// units of mass and length.
 // A lost WebGL context: while it is lost nothing is built or read, and the layer lets go of its
 // raw WebGL copier and of three.js's objects for its targets and passes; once it is restored
 // the next `prepare` makes them again and rebuilds the volumes from the frame it holds.
@@ -21,6 +27,7 @@ import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
 import { OCCLUDERS_GLSL } from '../shaders/occluders.js';
 import { VOLUME_SHADOW_GLSL } from '../shaders/volume-shadow.js';
+import { gpuFormats, passPrecision, texelType } from '../precision.js';
 import { atlasLayout, cutClasses, fitGrid, halved, minVoxelFor } from './grid.js';
 import { gridUniform } from './glsl.js';
 import { LightPass } from './light-pass.js';
@@ -77,13 +84,18 @@ const VOLUME_STEP = 16;
 
 const roundUp = (n, step, max) => Math.min(max, Math.ceil(n / step) * step);
 
-/** True if `target` (of `sizes`) holds `needed` and is not over four times larger. */
-function fits(sizes, needed, step, max) {
+/**
+ * True if `target` (of `sizes`) holds `needed` and is at most `slack` times larger than it
+ * rounded up: 4, so that a target is kept while the gas grows and shrinks, or 1 under a memory
+ * budget, which counts the targets at their rounded sizes.
+ */
+function fits(sizes, needed, step, max, slack) {
   const area = (v) => v.reduce((a, b) => a * b, 1);
   return sizes.every((n, a) => n >= needed[a])
-    && area(sizes) <= 4 * area(needed.map((n) => roundUp(n, step, max)));
+    && area(sizes) <= slack * area(needed.map((n) => roundUp(n, step, max)));
 }
 
+/** The volumes' options: filtered (trilinear samples between voxel centres). */
 const TARGET_OPTIONS = {
   format: THREE.RGBAFormat,
   depthBuffer: false,
@@ -93,19 +105,24 @@ const TARGET_OPTIONS = {
   generateMipmaps: false,
 };
 
-/** The splat's atlas (`count` float targets) holding `layout`, reusing `target` if it can. */
-function atlasTarget(target, layout, type, count, maxSize) {
+/**
+ * An atlas (`count` float targets) holding `layout`, reusing `target` if it can. Atlases are
+ * read texel by texel (texelFetch), never filtered, so they need no filterable format.
+ */
+function atlasTarget(target, layout, type, count, maxSize, slack) {
   const needed = [layout.width, layout.height];
   if (target && target.textures.length === count && target.texture.type === type
-      && fits([target.width, target.height], needed, ATLAS_STEP, maxSize)) return target;
+      && fits([target.width, target.height], needed, ATLAS_STEP, maxSize, slack)) return target;
   target?.dispose();
   const [w, h] = needed.map((n) => roundUp(n, ATLAS_STEP, maxSize));
-  return new THREE.WebGLRenderTarget(w, h, { ...TARGET_OPTIONS, type, count });
+  return new THREE.WebGLRenderTarget(w, h, {
+    ...TARGET_OPTIONS, type, count, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter,
+  });
 }
 
 /** A 3-D float target holding `dims` voxels, reusing `target` if it can. */
-function volumeTarget(target, dims, type, max) {
-  if (target && target.texture.type === type && fits([target.width, target.height, target.depth], dims, VOLUME_STEP, max)) return target;
+function volumeTarget(target, dims, type, max, slack) {
+  if (target && target.texture.type === type && fits([target.width, target.height, target.depth], dims, VOLUME_STEP, max, slack)) return target;
   target?.dispose();
   const [w, h, d] = dims.map((n) => roundUp(n, VOLUME_STEP, max));
   const t = new THREE.WebGL3DRenderTarget(w, h, d, { ...TARGET_OPTIONS, type });
@@ -114,6 +131,16 @@ function volumeTarget(target, dims, type, max) {
 }
 
 const sizeOf = (t) => [t.width, t.height, t.depth];
+
+/**
+ * Bytes a voxel of the density grid takes in the targets, for texels of `texelBytes` (16 for
+ * 32-bit floats, 8 for 16-bit): the splat's atlas, the mesh's four attachments and its
+ * scratch, the density volume (each but the mesh's twice for emissive gas: the source), and
+ * an eighth of a voxel each for the light atlas and the light volume.
+ */
+export function volumeBytesPerVoxel(texelBytes, emissive) {
+  return texelBytes * (4 + 3 * (emissive ? 2 : 1) + 2 / 8);
+}
 
 export class VolumeLayer extends MarchQuad {
   /** Set between the context's loss and its restoration. */
@@ -129,6 +156,10 @@ export class VolumeLayer extends MarchQuad {
       lightVolume: gas.lightVolume ?? { value: null },
       grid: gas.grid ?? { value: { ...EMPTY_GRID } },
       lightGrid: gas.lightGrid ?? { value: { ...EMPTY_GRID } },
+      // The units of the stored volumes: a density voxel holds ρ · densityScale, a light
+      // column ∫ρ ds · columnScale (κ̄h and κ̄: optical depths).
+      densityScale: gas.densityScale ?? { value: 1 },
+      columnScale: gas.columnScale ?? { value: 1 },
     });
     const own = {
       blobTex: { value: null },
@@ -152,8 +183,8 @@ export class VolumeLayer extends MarchQuad {
     this.blobs = blobs;
     this.own = own;
     this.atlasUniforms = { atlasCols: { value: 1 }, atlasSize: { value: [1, 1] } };
-    this.splat = new SplatPass({ blobTex: own.blobTex, grid: gas.grid, ...this.atlasUniforms });
-    this.mesh = new MeshPass({ blobTex: own.blobTex, grid: gas.grid, ...this.atlasUniforms });
+    this.splat = new SplatPass({ blobTex: own.blobTex, grid: gas.grid, densityScale: gas.densityScale, ...this.atlasUniforms });
+    this.mesh = new MeshPass({ blobTex: own.blobTex, grid: gas.grid, densityScale: gas.densityScale, ...this.atlasUniforms });
     this.light = new LightPass({ ...gas, densityVolume: own.densityVolume });
     this.occupancyPass = new OccupancyPass({ grid: gas.grid, ...this.atlasUniforms });
     /** Made on the first build (it needs the context). */
@@ -180,6 +211,18 @@ export class VolumeLayer extends MarchQuad {
      */
     this.profile = false;
     this.timings = null;
+    /** The precision of the last build's passes (`passPrecision`), for the stats. */
+    this.precision = null;
+    /**
+     * What the last build gave up to fit, each `{voxels, of}` (the grid's voxels, and those it
+     * would have had) or null: `memory` (a voxel budget held within `memoryBytes`) and
+     * `textureSize` (fewer voxels until the atlases fit the largest texture).
+     */
+    this.shrunk = { memory: null, textureSize: null };
+    /** Most bytes the targets may take (the player's memory budget: `player/memory.js`). */
+    this.memoryBytes = Infinity;
+    /** The GPU's float formats (`gpuFormats`), set by the view (else asked for at the first build). */
+    this.formats = null;
   }
 
   /** True while the renderer's context is lost: nothing can be built or read. */
@@ -221,19 +264,27 @@ export class VolumeLayer extends MarchQuad {
     this.builtKey = '';
   }
 
-  #ensureTargets(renderer, grid, layouts, emissive) {
-    const type = renderer.extensions.has('EXT_float_blend') ? THREE.FloatType : THREE.HalfFloatType;
-    const maxSize = renderer.capabilities.maxTextureSize;
-    const max3d = renderer.getContext().getParameter(renderer.getContext().MAX_3D_TEXTURE_SIZE);
+  /**
+   * The targets for `grid` (`layouts` its atlases) within the largest textures of `formats`
+   * (`gpuFormats`), in `precision` (`passPrecision`): the density atlases and volumes, added by
+   * blending and filtered, and the light columns, only filtered.
+   */
+  #ensureTargets(renderer, formats, precision, grid, layouts, emissive) {
+    this.precision = precision;
+    const type = texelType(this.precision.density);
+    const lightType = texelType(this.precision.light);
+    const { maxTextureSize: maxSize, max3dTextureSize: max3d } = formats;
     const count = emissive ? 2 : 1;
-    this.atlas = atlasTarget(this.atlas, layouts.density, type, count, maxSize);
+    const slack = Number.isFinite(this.memoryBytes) ? 1 : 4;
+    const atlas = (t, layout, kind, n) => atlasTarget(t, layout, kind, n, maxSize, slack);
+    this.atlas = atlas(this.atlas, layouts.density, type, count);
     // The mesh's atlas (the splat's layers before it) holds two classes in progress, its scratch one.
-    this.scratch = this.scratch.map((t, i) => atlasTarget(t, layouts.density, type, i === 0 ? Math.max(MESH_ATTACHMENTS, SPLAT_LAYERS) : count, maxSize));
-    this.lightAtlas = atlasTarget(this.lightAtlas, layouts.light, THREE.FloatType, 1, maxSize);
-    this.bricks = atlasTarget(this.bricks, layouts.bricks, type, 1, maxSize);
-    this.density = volumeTarget(this.density, grid.dims, type, max3d);
-    if (emissive) this.source = volumeTarget(this.source, grid.dims, type, max3d);
-    this.columns = volumeTarget(this.columns, halved(grid).dims, THREE.FloatType, max3d);
+    this.scratch = this.scratch.map((t, i) => atlas(t, layouts.density, type, i === 0 ? Math.max(MESH_ATTACHMENTS, SPLAT_LAYERS) : count));
+    this.lightAtlas = atlas(this.lightAtlas, layouts.light, lightType, 1);
+    this.bricks = atlas(this.bricks, layouts.bricks, type, 1);
+    this.density = volumeTarget(this.density, grid.dims, type, max3d, slack);
+    if (emissive) this.source = volumeTarget(this.source, grid.dims, type, max3d, slack);
+    this.columns = volumeTarget(this.columns, halved(grid).dims, lightType, max3d, slack);
     // Copies land in the 3-D textures before anything is drawn into them: allocate them now.
     for (const t of [this.density, this.source, this.columns]) if (t) renderer.initRenderTarget(t);
     this.copier ??= new SliceCopy(renderer);
@@ -264,7 +315,8 @@ export class VolumeLayer extends MarchQuad {
     if (this.#isLost(renderer)) return false;
     const info = this.info;
     const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
-    const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}`;
+    const kappa = this.gas.kappa.value;
+    const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}|${kappa.toArray()}|${this.memoryBytes}`;
     if (key === this.builtKey) return this.own.hasGas.value;
     this.builtKey = key;
     const hasGas = Boolean(info && info.count > 0);
@@ -275,10 +327,18 @@ export class VolumeLayer extends MarchQuad {
       this.gas.lightVolume.value = null;
       return false;
     }
-    const maxSize = renderer.capabilities.maxTextureSize;
+    const formats = this.formats ?? gpuFormats(renderer);
+    const maxSize = formats.maxTextureSize;
     const sigmaMax = Math.max(...info.classes.map((c) => c.sigmaMax));
     const minH = Math.max(minVoxelFor(sigmaMax), q.voxelPerSigma * info.sigmaMin);
-    let budget = q.budget * scale ** 3;
+    const precision = passPrecision(formats);
+    const wanted = q.budget * scale ** 3;
+    const most = Math.floor(this.memoryBytes / volumeBytesPerVoxel(precision.density === 'float32' ? 16 : 8, info.emissive));
+    let budget = Math.min(wanted, most);
+    // The voxels the quality would give, those the memory budget lets it have, those it gets.
+    const voxels = (g) => g.dims[0] * g.dims[1] * g.dims[2];
+    const full = voxels(fitGrid(info.lo, info.hi, { budget: wanted, minH }));
+    const allowed = budget < wanted ? voxels(fitGrid(info.lo, info.hi, { budget, minH })) : full;
     let grid;
     let layouts;
     for (;;) {
@@ -288,13 +348,23 @@ export class VolumeLayer extends MarchQuad {
         light: atlasLayout(halved(grid).dims, maxSize),
         bricks: atlasLayout(brickDims(grid.dims), maxSize),
       };
-      if (layouts.density) break;
+      if (layouts.density && layouts.light && layouts.bricks) break;
+      // Slices that cannot be tiled within the largest texture: fewer, larger voxels.
       budget /= 2;
     }
+    this.shrunk = {
+      memory: allowed < full ? { voxels: allowed, of: full } : null,
+      textureSize: voxels(grid) < allowed ? { voxels: voxels(grid), of: allowed } : null,
+    };
     const layout = layouts.density;
     const lightGrid = halved(grid);
     this.grid = grid;
-    this.#ensureTargets(renderer, grid, layouts, info.emissive);
+    this.#ensureTargets(renderer, formats, precision, grid, layouts, info.emissive);
+    // Stored optical depths (see the head of this file): κ̄h per unit density, κ̄ per unit column.
+    const unit = Math.max(kappa.x, kappa.y, kappa.z);
+    const perDensity = Number.isFinite(unit) && unit > 0 ? unit : 1;
+    this.gas.densityScale.value = perDensity * grid.h;
+    this.gas.columnScale.value = perDensity;
     this.gas.grid.value = gridUniform(grid, sizeOf(this.density));
     this.gas.lightGrid.value = gridUniform(lightGrid, sizeOf(this.columns));
     this.atlasUniforms.atlasCols.value = layout.cols;
@@ -338,29 +408,32 @@ export class VolumeLayer extends MarchQuad {
   }
 
   /**
-   * The volumes of the last build as the GPU holds them (for tests; slow): `density` [ρ, ρΩ]
+   * The volumes of the last build as the GPU holds them, in densities (for tests; slow): `density` [ρ, ρΩ]
    * per voxel, `source` [ρ(1 − Ω)Q, 0] per voxel if emissive, `light` the four columns per
    * voxel of the light grid (x fastest, then y, then z, as the core's twin). Null while the
    * context is lost or before a build with gas.
    */
   read(renderer) {
     if (this.#isLost(renderer) || !this.grid || !this.density) return null;
-    const layers = (target, dims) => {
+    // Each slice in, and back from the stored optical depths (`unit` of each) to densities and columns.
+    const layers = (target, dims, unit) => {
       const [nx, ny, nz] = dims;
       const out = new Float32Array(4 * nx * ny * nz);
-      const slice = new Float32Array(4 * nx * ny);
+      const half = target.texture.type === THREE.HalfFloatType;
+      const slice = half ? new Uint16Array(4 * nx * ny) : new Float32Array(4 * nx * ny);
       for (let k = 0; k < nz; k++) {
         renderer.setRenderTarget(target, k);
         renderer.readRenderTargetPixels(target, 0, 0, nx, ny, slice);
-        out.set(slice, 4 * nx * ny * k);
+        slice.forEach((v, i) => { out[4 * nx * ny * k + i] = (half ? THREE.DataUtils.fromHalfFloat(v) : v) / unit; });
       }
       return out;
     };
     const grid = this.grid;
+    const { densityScale, columnScale } = this.gas;
     const result = {
-      density: layers(this.density, grid.dims),
-      source: this.info.emissive ? layers(this.source, grid.dims) : null,
-      light: layers(this.columns, halved(grid).dims),
+      density: layers(this.density, grid.dims, densityScale.value),
+      source: this.info.emissive ? layers(this.source, grid.dims, densityScale.value) : null,
+      light: layers(this.columns, halved(grid).dims, columnScale.value),
     };
     renderer.setRenderTarget(null);
     return result;
