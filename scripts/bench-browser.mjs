@@ -19,6 +19,18 @@ export function gzipKiB(dir, pattern) {
   return total / 1024;
 }
 
+/**
+ * `count` solid spheres of radius 1.2 cm through the dense plume's region (as examples/bench.rs
+ * and scripts/bench.mjs).
+ */
+export const plumeSpheres = (count) => Array.from({ length: count }, (_, i) => {
+  const f = (k) => ((i + 0.5) * k) % 1;
+  return {
+    type: 'sphere', center: [0.6 * f(0.618034) - 0.3, 1.05 * f(0.4142136) + 0.15, 0.6 * f(0.7320508) - 0.3],
+    radius: 0.012, color: [0.5, 0.5, 0.5], solid: true,
+  };
+});
+
 /** Runs the benchmarks against the built site; returns the results. */
 export async function benchBrowser() {
   const results = [];
@@ -33,7 +45,7 @@ export async function benchBrowser() {
 
     // One plume, 5 s of emission, at `count` blobs: the same volume whatever the count.
     const plume = JSON.parse(readFileSync(`${root}tests/fixtures/dense-plume.json`, 'utf8'));
-    const plumeOf = (count) => page.evaluate(async ({ scene, n }) => {
+    const plumeOf = (count, scene = plume) => page.evaluate(async ({ scene, n }) => {
       const w = window.windfield;
       await w.pause();
       scene.emitters[0].rate = n / 5;
@@ -41,7 +53,7 @@ export async function benchBrowser() {
       await w.setScene(scene);
       await w.step(Math.round(5 / scene.simulation.dt));
       return w.stats().blobs;
-    }, { scene: structuredClone(plume), n: count });
+    }, { scene: structuredClone(scene), n: count });
 
     // The worker steps unless a benchmark below hands the gas to the GPU.
     await page.evaluate(() => window.windfield.setStepper('cpu'));
@@ -92,6 +104,22 @@ export async function benchBrowser() {
       emit('gpu_step_100k_ms', gpu100.ms, 'ms');
       emit('gpu_sort_100k_ms', gpu100.sort, 'ms');
     }
+
+    // The same plume among 16 and 256 solid spheres of radius 1.2 cm (as examples/bench.rs):
+    // the worker's step and the GPU's. The step shader tests every solid at every blob and
+    // takes at most 64; with 256 the worker steps (no GPU figure).
+    for (const count of [16, 256]) {
+      const among = structuredClone(plume);
+      among.field.boundary_width = 0.02;
+      among.render.objects = plumeSpheres(count);
+      const blobs = await plumeOf(100_000, among);
+      const k = `${Math.round(blobs / 1000)}k`;
+      const w = await workerStep();
+      emit(`worker_step_${k}_solids_${count}_ms`, w.step + w.pack, 'ms');
+      const g = await gpuStep();
+      if (g.ms !== null) emit(`gpu_step_${k}_solids_${count}_ms`, g.ms, 'ms');
+    }
+    await plumeOf(100_000);
 
     const view = {};
     const points = {};

@@ -152,63 +152,153 @@ pub fn solid_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
         .collect()
 }
 
-/// One RK2 step of 100,000 blobs of the blob-step scene with 0, 16 and 256 solid spheres among
-/// them (each a doublet in the uniform wind, its layer 0.1 m), and what finding the nearest
-/// solid costs: per blob with the grid, and per blob and solid tested one by one.
+/// The median wall time (ms) of one step of each of `sims` over 7 rounds, each round a step of
+/// every one in turn (after a warm-up round), so a machine's changing load falls on all alike.
+fn interleaved_medians<const N: usize>(sims: &mut [Simulation; N]) -> [f64; N] {
+    sims.iter_mut().for_each(Simulation::step);
+    let mut times = [[0.0; 7]; N];
+    for round in 0..7 {
+        for (sim, t) in sims.iter_mut().zip(&mut times) {
+            let s = Instant::now();
+            sim.step();
+            t[round] = s.elapsed().as_secs_f64() * 1e3;
+        }
+    }
+    times.map(|mut t| {
+        t.sort_by(f64::total_cmp);
+        t[3]
+    })
+}
+
+/// `count` solid spheres of radius 1.2 cm through the dense plume's region (x, z within
+/// 0.3 m of its axis, 0.15 to 1.2 m up; another low-discrepancy sequence), as scene objects.
+pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
+    (0..count)
+        .map(|i| {
+            let f = |k: f32| ((i as f32 + 0.5) * k).fract();
+            windfield::gas::blob_list::Object::Sphere {
+                center: [
+                    0.6 * f(0.618_034) - 0.3,
+                    1.05 * f(0.414_213_6) + 0.15,
+                    0.6 * f(0.732_050_8) - 0.3,
+                ],
+                radius: 0.012,
+                color: [0.5; 3],
+                solid: true,
+            }
+        })
+        .collect()
+}
+
+/// The step among 0, 16 and 256 solid spheres, two ways, medians of 7 interleaved rounds:
+///
+/// - the blob-step scene's 100,000 blobs spread through its 4 m box in no order, among spheres
+///   of radius 8 cm through its 3.6 m box (each a doublet in the uniform wind, its layer
+///   0.1 m);
+/// - the worker's dense plume at 100,000 blobs (as [`worker_plume`], the blobs in the order
+///   they were born), among spheres of radius 1.2 cm through the plume (layer 2 cm).
+///
+/// Then what finding the solids costs: the nearest solid per blob with the grid and with every
+/// solid visited, and one signed distance per blob and solid; the wind among the 256 spheres of
+/// the blob-step scene per point, against the wind without them; and the grid's size.
 fn solid_objects() {
-    let mut steps = Vec::new();
-    for count in [0, 16, 256] {
+    let counts = [0, 16, 256];
+    let mut sims = counts.map(|count| {
         let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
         scene.render.objects = solid_spheres(count);
         let mut sim = Simulation::new(scene).expect("valid");
         seed_blobs(&mut sim, 100_000);
         // The first step puts the blobs seeded inside a sphere out.
         sim.step();
-        let ms = median_ms(7, || sim.step());
+        sim
+    });
+    let ms = interleaved_medians(&mut sims);
+    for (count, ms) in counts.iter().zip(ms) {
         emit(
             &format!("blob_step_100k_solids_{count}_native_ms"),
             ms,
             "ms",
         );
-        steps.push(ms);
     }
-    emit(
-        "blob_step_256_solids_over_none",
-        steps[2] / steps[0],
-        "ratio",
-    );
+    emit("blob_step_256_solids_over_none", ms[2] / ms[0], "ratio");
+    let mut sims = counts.map(|count| {
+        let mut scene =
+            Scene::from_json(include_str!("../../tests/fixtures/dense-plume.json")).expect("valid");
+        scene.emitters[0].rate = 20_000.0;
+        scene.gas.max_blobs = 100_000;
+        scene.field.boundary_width = 0.02;
+        scene.render.objects = plume_spheres(count);
+        let mut sim = Simulation::new(scene).expect("valid");
+        sim.run(sim.steps_for(5.0));
+        sim
+    });
+    let ms = interleaved_medians(&mut sims);
+    for (count, ms) in counts.iter().zip(ms) {
+        emit(
+            &format!("worker_step_100k_solids_{count}_native_ms"),
+            ms,
+            "ms",
+        );
+    }
+    emit("worker_step_256_solids_over_none", ms[2] / ms[0], "ratio");
     let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
+    let plain = Simulation::new(scene.clone()).expect("valid");
     scene.render.objects = solid_spheres(256);
-    let wind = windfield::gas::wind::Wind::new(&scene, None);
-    let solids = &wind.walls().expect("solids").solids;
+    let sim = Simulation::new(scene).expect("valid");
+    let walls = sim.wind.walls().expect("solids");
+    let solids = &walls.solids;
     let points: Vec<glam::Vec3A> = (0..100_000)
         .map(|i| {
             let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 4.0 - 2.0;
             glam::Vec3A::new(f(0.754_877_7), f(0.569_840_3) + 1.0, f(0.430_159_7))
         })
         .collect();
-    let grid_ms = median_ms(7, || {
-        for &x in &points {
-            std::hint::black_box(solids.nearest(x, 0.1));
-        }
-    });
+    let per_point = |runs: usize, f: &dyn Fn(glam::Vec3A)| {
+        median_ms(runs, || points.iter().for_each(|&x| f(x))) * 1e6 / points.len() as f64
+    };
     emit(
         "solid_nearest_256_per_blob_ns",
-        grid_ms * 1e6 / points.len() as f64,
+        per_point(7, &|x| {
+            std::hint::black_box(solids.nearest(x));
+        }),
         "ns",
     );
-    let brute_ms = median_ms(3, || {
-        for &x in &points {
+    let every = solids.every_solid_visited();
+    emit(
+        "solid_nearest_256_every_solid_per_blob_ns",
+        per_point(3, &|x| {
+            std::hint::black_box(every.nearest(x));
+        }),
+        "ns",
+    );
+    emit(
+        "solid_distance_per_blob_and_solid_ns",
+        per_point(3, &|x| {
             for b in &solids.bodies {
                 std::hint::black_box(b.distance(x));
             }
-        }
-    });
-    emit(
-        "solid_distance_per_blob_and_solid_ns",
-        brute_ms * 1e6 / (points.len() * solids.bodies.len()) as f64,
+        }) / solids.len() as f64,
         "ns",
     );
+    let (with, without) = (sim.wind.frame(0.0), plain.wind.frame(0.0));
+    emit(
+        "wind_256_solids_per_point_ns",
+        per_point(7, &|x| {
+            std::hint::black_box(with.velocity_a(x));
+        }),
+        "ns",
+    );
+    emit(
+        "wind_no_solids_per_point_ns",
+        per_point(7, &|x| {
+            std::hint::black_box(without.velocity_a(x));
+        }),
+        "ns",
+    );
+    if let Some((cells, entries)) = solids.grid_size() {
+        emit("solid_grid_256_cells", cells as f64, "cells");
+        emit("solid_grid_256_entries", entries as f64, "entries");
+    }
 }
 
 /// The field with its vector potential (a scene with solid objects), against the field alone.

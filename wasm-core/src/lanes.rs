@@ -66,6 +66,29 @@ pub fn interleave3(a: &[f32], b: &[f32], c: &[f32], out: &mut [f32]) {
     }
 }
 
+/// The square roots of four lanes by one instruction where there is one (SSE2, WASM's SIMD),
+/// else lane by lane. glam's `Vec4::sqrt` takes four roots from libm, a routine rather than an
+/// instruction in WASM; every one of them is correctly rounded, so the bits are the same.
+#[inline(always)]
+pub fn sqrt4(v: Vec4) -> Vec4 {
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        Vec4::from(core::arch::wasm32::f32x4_sqrt(v.into()))
+    }
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        // SAFETY: SSE2 is enabled for this target (checked by the cfg).
+        Vec4::from(unsafe { core::arch::x86_64::_mm_sqrt_ps(v.into()) })
+    }
+    #[cfg(not(any(
+        all(target_arch = "wasm32", target_feature = "simd128"),
+        all(target_arch = "x86_64", target_feature = "sse2")
+    )))]
+    {
+        Vec4::new(v.x.sqrt(), v.y.sqrt(), v.z.sqrt(), v.w.sqrt())
+    }
+}
+
 /// e^x in four lanes, each exactly what `f32::exp` gives on this target. In WASM with SIMD,
 /// a four-wide form of the `expf` that `f32::exp` calls there (FreeBSD's, through Rust's libm):
 /// the same reduction x = k ln 2 + r, the same rational approximation of e^r and the same

@@ -475,3 +475,74 @@ fn objects_without_solid_play_exactly_as_before() {
     let b = &sa.gas.blobs;
     assert!((0..b.len()).any(|i| (b.center(i) - Vec3::Y).length() < 0.3));
 }
+
+/// The grid over the solids is only a way to find them: among 120 spheres and cylinders of
+/// mixed sizes above a solid floor, with a vortex and the field's small scales, the wind at
+/// points all over the scene (a third of them in the solids' layers) and every point put back
+/// outside are those of the same wind with every solid visited at every point, the wind up to
+/// the rounding of the doublets' sums (summed in another order).
+#[test]
+fn the_grid_over_many_solids_gives_the_wind_of_visiting_every_solid() {
+    let objects: Vec<Value> = (0..120)
+        .map(|i| {
+            let [u, v, w] = lds(i + 7);
+            let c = [3.0 * u - 1.5, 0.2 + 1.6 * v, 3.0 * w - 1.5];
+            let radius = 0.03 + 0.05 * lds(3 * i)[0];
+            if i % 3 == 2 {
+                let axis = direction(i);
+                json!({"type": "cylinder", "base": c, "axis": [axis.x, axis.y, axis.z],
+                       "radius": radius, "height": 0.25, "color": [1, 1, 1], "solid": true})
+            } else {
+                json!({"type": "sphere", "center": c, "radius": radius, "color": [1, 1, 1], "solid": true})
+            }
+        })
+        .chain([json!({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 1, 1], "solid": true})])
+        .collect();
+    let s = scene(json!({
+        "seed": 5,
+        "field": {"size": [16, 16, 16, 8], "period": [2, 2, 2], "time_period": 4, "amplitude": 0.5,
+                  "boundary_width": 0.06},
+        "wind": [{"type": "uniform", "velocity": [0.4, 0.3, -0.2]},
+                 {"type": "vortex", "position": [0.2, 1, 0.1], "axis": [0, 1, 0], "strength": 0.5, "radius": 0.3}],
+        "render": {"objects": objects}
+    }));
+    let sim = Simulation::new(s).unwrap();
+    let every = sim.wind.every_solid_visited();
+    let (grid, brute) = (sim.wind.frame(0.7), every.frame(0.7));
+    let walls = sim.wind.walls().unwrap();
+    let brute_walls = every.walls().unwrap();
+    let cells = walls.solids.grid_size().expect("a grid").0;
+    assert!(
+        brute_walls.solids.grid_size().is_none() && cells > 1000,
+        "{cells} cells"
+    );
+    let (mut near, mut among) = (0, 0);
+    for i in 0..30_000 {
+        let [u, v, w] = lds(i);
+        let mut x = Vec3A::new(3.6 * u - 1.8, 2.2 * v - 0.1, 3.6 * w - 1.8);
+        if i % 3 == 0 {
+            // Into the layer of one of the solids (or just inside it).
+            let b = &walls.solids.bodies[i / 3 % walls.solids.len()];
+            let (d, n) = b.distance(x);
+            x -= n * (d - 0.07 * lds(i + 1)[2] + 0.01);
+        }
+        let o = [Vec3A::ZERO; 2];
+        let ((gl, gs), (bl, bs)) = (grid.parts(x, o), brute.parts(x, o));
+        let tol = |w: Vec3A| 1e-5 * w.length().max(1.0);
+        assert!((gl - bl).length() <= tol(bl), "x = {x}: large {gl} vs {bl}");
+        assert!((gs - bs).length() <= tol(bs), "x = {x}: small {gs} vs {bs}");
+        let gap = walls.gap();
+        assert_eq!(
+            walls.solids.push_out(x, gap),
+            brute_walls.solids.push_out(x, gap),
+            "put back from {x}"
+        );
+        near += walls.solids.nearest(x).is_some() as usize;
+        let around = walls.solids.around(x);
+        among += (around.spheres.len() + around.others.len() > 3) as usize;
+    }
+    assert!(
+        near > 8000 && among > 5000,
+        "{near} near a solid, {among} among many"
+    );
+}

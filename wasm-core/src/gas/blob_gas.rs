@@ -316,6 +316,7 @@ impl Gas {
         let b = &mut self.blobs;
         let n = b.len();
         let carries = b.carries();
+        let own_velocity = b.has_own_velocity();
         let dtf = dt as f32;
         let walls = f0.walls();
         let own = OwnVelocity {
@@ -325,7 +326,7 @@ impl Gas {
         };
         let position = &mut b.position[..3 * n];
         let carried = &mut b.carried;
-        own.each(t, dtf, |i, v, to_half| {
+        let mut advance = |i: usize, v: Vec3A, to_half: f32| {
             let x = load3(position, 3 * i);
             let mut o = [Vec3A::ZERO; 2];
             if carries {
@@ -357,7 +358,13 @@ impl Gas {
                     (o[k] + moved).write_to_slice(&mut carried[6 * i + 3 * k..6 * i + 3 * k + 3]);
                 }
             }
-        });
+        };
+        // Without own velocities every v is zero: no exponentials.
+        if own_velocity {
+            own.each(t, dtf, advance);
+        } else {
+            (0..n).for_each(|i| advance(i, Vec3A::ZERO, 1.0));
+        }
     }
 
     /// κ, the split σ (or infinity) and the removal mass, in f32.

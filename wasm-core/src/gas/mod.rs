@@ -20,8 +20,9 @@
 //!   small-scale field ([`crate::field`]); [`spline`] moves the repulsors; [`wind_slice`]
 //!   samples it on a plane; [`frozen`] holds the primitives frozen at one time and
 //!   [`wind_table`] the frozen wind as the GPU reads it. [`solids`]: the solid objects it
-//!   goes round, and [`walls`] how it goes round them; [`carried`]: the small scales carried
-//!   by the large ones (§7).
+//!   goes round (found among many by [`solid_grid`]), and [`walls`] how it goes round them
+//!   ([`doublets`]: the spheres' doublets summed four at a time); [`carried`]: the small
+//!   scales carried by the large ones (§7).
 //! - [`emitter`], [`shapes`]: where blobs are born (§6), drawing from [`random`].
 //! - [`blobs`]: the blobs' state (Eq. 13); [`blob_gas`]: advection (Eq. 14), diffusion
 //!   (Eq. 15), dissipation (Eq. 16) and splitting, one step at a time.
@@ -34,6 +35,7 @@ pub mod blob_gas;
 pub mod blob_list;
 pub mod blobs;
 pub mod carried;
+pub mod doublets;
 pub mod emitter;
 pub mod figure1;
 pub mod frozen;
@@ -46,6 +48,7 @@ pub mod scene;
 pub mod shapes;
 pub mod simulation;
 pub mod slots;
+pub mod solid_grid;
 pub mod solids;
 pub mod sphere_flow;
 pub mod spline;

@@ -7,12 +7,14 @@
 //! - a cylinder (base b, axis â, radius R, height h): closed by its two caps; d is the distance
 //!   to the nearest of side, caps and rims outside, minus the distance to the nearest face inside.
 //!
-//! [`Solids`] finds the solid nearest to a point within a reach (a uniform grid over the finite
-//! solids, so a point costs a cell lookup and the few solids whose reach covers the cell; planes,
-//! which reach everywhere, are always tested) and puts points that ended inside a solid back on
-//! its surface, just outside.
+//! [`Solids`] finds the solid nearest to a point within the layer and the solids whose wind
+//! reaches a point (a uniform grid over the finite solids, [`SolidGrid`], so a point costs a
+//! cell lookup and the few solids that can matter in the cell; planes, which reach everywhere,
+//! are always tested) and puts points that ended inside a solid back on its surface, just
+//! outside.
 
 use crate::gas::blob_list::Object;
+use crate::gas::solid_grid::SolidGrid;
 use glam::Vec3A;
 
 /// The shape of one solid, normalised (unit directions), in world metres.
@@ -173,6 +175,19 @@ impl Body {
         }
     }
 
+    /// Whether `x` lies surely farther than `d` (m, d ≥ 0) from the sphere (by a margin over
+    /// the rounding of its distance, and without its root); false for other bodies.
+    #[inline]
+    pub fn surely_beyond(&self, x: Vec3A, d: f32) -> bool {
+        match *self {
+            Body::Sphere { center, radius } => {
+                let r = radius + d;
+                (x - center).length_squared() > r * r * (1.0 + 1e-5)
+            }
+            _ => false,
+        }
+    }
+
     /// A point the solid is gathered about (the sphere's centre, the middle of the cylinder's
     /// axis; a plane's `point`).
     pub fn centre(&self) -> Vec3A {
@@ -195,7 +210,7 @@ impl Body {
     }
 
     /// The axis-aligned box around the solid grown by `reach` (m); none for a plane.
-    fn bounds(&self, reach: f32) -> Option<(Vec3A, Vec3A)> {
+    pub(crate) fn bounds(&self, reach: f32) -> Option<(Vec3A, Vec3A)> {
         match *self {
             Body::Sphere { center, radius } => {
                 let r = Vec3A::splat(radius + reach);
@@ -227,102 +242,91 @@ pub struct Nearest {
     pub normal: Vec3A,
 }
 
-/// Most cells of the grid over the finite solids.
-const MAX_CELLS: usize = 1 << 18;
+/// The lists of one grid cell: the finite solids whose layer may hold a point of it, and the
+/// spheres and the other solids whose wind may reach one beyond their layer, each in the
+/// scene's order.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Around<'a> {
+    pub layers: &'a [u32],
+    pub spheres: &'a [u32],
+    pub others: &'a [u32],
+}
 
-/// The scene's solids, with a uniform grid over the finite ones.
+impl Around<'_> {
+    /// Whether any solid but `index` reaches the cell.
+    #[inline]
+    pub fn any_but(&self, index: usize) -> bool {
+        let listed = |l: &[u32]| l.contains(&(index as u32)) as usize;
+        self.spheres.len() + self.others.len() > listed(self.spheres) + listed(self.others)
+    }
+}
+
+/// The scene's solids, with a uniform grid over the finite ones ([`SolidGrid`]).
 #[derive(Debug, Clone, Default)]
 pub struct Solids {
     pub bodies: Vec<Body>,
     /// The rounding of each solid's edges the wind sees ([`Body::rounded_distance`]).
     pub edges: Vec<f32>,
+    /// The layer's width (m): how far from a solid [`Self::nearest`] looks.
+    layer: f32,
     /// Indices of the planes, tested at every point.
-    planes: Vec<usize>,
-    /// The grid: its lower corner, cells per metre and cell counts; `cells[c]` is the range of
-    /// `members` listing the finite solids whose reach covers cell c.
-    lo: Vec3A,
-    inv_cell: Vec3A,
-    dims: [usize; 3],
-    cells: Vec<(u32, u32)>,
-    members: Vec<u32>,
+    planes: Vec<u32>,
+    /// Without the grid (none): the finite solids, and the spheres and other solids whose wind
+    /// reaches beyond their layer, every one visited at every point.
+    grid: Option<SolidGrid>,
+    finite: Vec<u32>,
+    spheres: Vec<u32>,
+    others: Vec<u32>,
 }
 
 impl Solids {
-    /// The solid objects of `objects`, each reaching `reach[i]` metres around it (the layer
-    /// over it, and whatever else of the wind it shapes): beyond that it is never reported.
-    pub fn new(bodies: Vec<Body>, reach: &[f32]) -> Self {
+    /// The solid objects `bodies` with a layer `layer` metres wide over each (within it a
+    /// point has a nearest solid), whose wind reaches `reach[i]` metres from solid i (none:
+    /// no farther than its layer).
+    pub fn new(bodies: Vec<Body>, layer: f32, reach: &[Option<f32>]) -> Self {
         let edges = vec![0.0; bodies.len()];
-        Self::with_edges(bodies, edges, reach)
+        Self::with_edges(bodies, edges, layer, reach)
     }
 
     /// [`Self::new`] with the wind seeing each solid's edges rounded by `edges[i]` (m).
-    pub fn with_edges(bodies: Vec<Body>, edges: Vec<f32>, reach: &[f32]) -> Self {
-        let planes = (0..bodies.len())
-            .filter(|&i| matches!(bodies[i], Body::Plane { .. }))
-            .collect();
-        let boxes: Vec<(usize, (Vec3A, Vec3A))> = bodies
-            .iter()
-            .enumerate()
-            .filter_map(|(i, b)| b.bounds(reach[i]).map(|bx| (i, bx)))
-            .collect();
-        let mut solids = Self {
+    pub fn with_edges(
+        bodies: Vec<Body>,
+        edges: Vec<f32>,
+        layer: f32,
+        reach: &[Option<f32>],
+    ) -> Self {
+        let plane = |b: &Body| matches!(b, Body::Plane { .. });
+        let sphere = |b: &Body| matches!(b, Body::Sphere { .. });
+        let indices = |keep: &dyn Fn(usize) -> bool| -> Vec<u32> {
+            (0..bodies.len())
+                .filter(|&i| keep(i))
+                .map(|i| i as u32)
+                .collect()
+        };
+        Self {
+            planes: indices(&|i| plane(&bodies[i])),
+            finite: indices(&|i| !plane(&bodies[i])),
+            spheres: indices(&|i| sphere(&bodies[i]) && reach[i].is_some()),
+            others: indices(&|i| !sphere(&bodies[i]) && !plane(&bodies[i]) && reach[i].is_some()),
+            grid: Some(SolidGrid::new(&bodies, layer, reach)),
+            layer,
             bodies,
             edges,
-            planes,
-            ..Self::default()
-        };
-        if boxes.is_empty() {
-            return solids;
         }
-        let (mut lo, mut hi) = (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY));
-        let mut volume = 0.0f64;
-        for (_, (a, b)) in &boxes {
-            lo = lo.min(*a);
-            hi = hi.max(*b);
-            let e = (*b - *a).max(Vec3A::splat(1e-6));
-            volume += (e.x as f64) * (e.y as f64) * (e.z as f64);
+    }
+
+    /// The same solids without the grid: every solid visited at every point. What the grid
+    /// must find, for checks of it.
+    pub fn every_solid_visited(&self) -> Self {
+        Self {
+            grid: None,
+            ..self.clone()
         }
-        // Cells about the size of the mean box, four per box, within MAX_CELLS.
-        let extent = (hi - lo).max(Vec3A::splat(1e-6));
-        let total = (extent.x as f64) * (extent.y as f64) * (extent.z as f64);
-        let wanted =
-            (4.0 * boxes.len() as f64 * total / volume.max(1e-30)).clamp(1.0, MAX_CELLS as f64);
-        let cell = (total / wanted).cbrt() as f32;
-        let dims =
-            [extent.x, extent.y, extent.z].map(|e| ((e / cell).ceil() as usize).clamp(1, 64));
-        let inv_cell = Vec3A::new(
-            dims[0] as f32 / extent.x,
-            dims[1] as f32 / extent.y,
-            dims[2] as f32 / extent.z,
-        );
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
-        let clamp_cell = |p: Vec3A| {
-            let q = (p - lo) * inv_cell;
-            [q.x, q.y, q.z]
-                .iter()
-                .zip(dims)
-                .map(|(&v, n)| (v.floor().max(0.0) as usize).min(n - 1))
-                .collect::<Vec<_>>()
-        };
-        for (i, (a, b)) in &boxes {
-            let (c0, c1) = (clamp_cell(*a), clamp_cell(*b));
-            for z in c0[2]..=c1[2] {
-                for y in c0[1]..=c1[1] {
-                    for x in c0[0]..=c1[0] {
-                        lists[(z * dims[1] + y) * dims[0] + x].push(*i as u32);
-                    }
-                }
-            }
-        }
-        for list in lists {
-            let start = solids.members.len() as u32;
-            solids.members.extend(list);
-            solids.cells.push((start, solids.members.len() as u32));
-        }
-        solids.lo = lo;
-        solids.inv_cell = inv_cell;
-        solids.dims = dims;
-        solids
+    }
+
+    /// The grid's cells and the entries of their lists (none without the grid).
+    pub fn grid_size(&self) -> Option<(usize, usize)> {
+        self.grid.as_ref().map(SolidGrid::size)
     }
 
     pub fn is_empty(&self) -> bool {
@@ -333,35 +337,44 @@ impl Solids {
         self.bodies.len()
     }
 
-    /// The finite solids whose reach may cover `x` (the grid cell's list), then the planes.
-    #[inline]
-    pub fn candidates(&self, x: Vec3A) -> impl Iterator<Item = usize> + '_ {
-        let q = (x - self.lo) * self.inv_cell;
-        let inside = !self.cells.is_empty()
-            && q.cmpge(Vec3A::ZERO).all()
-            && q.x < self.dims[0] as f32
-            && q.y < self.dims[1] as f32
-            && q.z < self.dims[2] as f32;
-        let cell: &[u32] = if inside {
-            let (cx, cy, cz) = (q.x as usize, q.y as usize, q.z as usize);
-            let (a, b) = self.cells[(cz * self.dims[1] + cy) * self.dims[0] + cx];
-            &self.members[a as usize..b as usize]
-        } else {
-            &[]
-        };
-        cell.iter()
-            .map(|&i| i as usize)
-            .chain(self.planes.iter().copied())
+    /// The lists of the grid cell holding `x` (every solid's without the grid).
+    #[inline(always)]
+    pub fn around(&self, x: Vec3A) -> Around<'_> {
+        match &self.grid {
+            None => Around {
+                layers: &self.finite,
+                spheres: &self.spheres,
+                others: &self.others,
+            },
+            Some(g) => g.cell(x).map_or(Around::default(), |c| {
+                let [layers, spheres, others] = g.lists(c);
+                Around {
+                    layers,
+                    spheres,
+                    others,
+                }
+            }),
+        }
     }
 
     /// The solid with the smallest signed distance from `x` (edges rounded as the wind sees
-    /// them) among those closer than `reach` (m), or none.
+    /// them) among those closer than the layer's width, or none.
     #[inline]
-    pub fn nearest(&self, x: Vec3A, reach: f32) -> Option<Nearest> {
+    pub fn nearest(&self, x: Vec3A) -> Option<Nearest> {
+        self.nearest_among(self.around(x).layers, x)
+    }
+
+    /// [`Self::nearest`] among the finite solids `layers` (those of `x`'s cell) and the planes.
+    #[inline(always)]
+    pub fn nearest_among(&self, layers: &[u32], x: Vec3A) -> Option<Nearest> {
         let mut best: Option<Nearest> = None;
-        for i in self.candidates(x) {
+        for &i in layers.iter().chain(&self.planes) {
+            let i = i as usize;
+            if self.bodies[i].surely_beyond(x, self.layer) {
+                continue;
+            }
             let (d, n) = self.bodies[i].rounded_distance(x, self.edges[i]);
-            if d < reach && best.is_none_or(|b| d < b.distance) {
+            if d < self.layer && best.is_none_or(|b| d < b.distance) {
                 best = Some(Nearest {
                     index: i,
                     distance: d,
@@ -373,9 +386,14 @@ impl Solids {
     }
 
     /// Whether `x` lies inside a solid (d < 0).
+    #[inline(always)]
     pub fn inside(&self, x: Vec3A) -> Option<usize> {
-        self.candidates(x)
-            .find(|&i| self.bodies[i].distance(x).0 < 0.0)
+        self.around(x)
+            .layers
+            .iter()
+            .chain(&self.planes)
+            .map(|&i| i as usize)
+            .find(|&i| !self.bodies[i].surely_beyond(x, 0.0) && self.bodies[i].distance(x).0 < 0.0)
     }
 
     /// `x` put back on the surface, `gap` metres outside, if it lies inside a solid; else `x`.
@@ -484,17 +502,37 @@ mod tests {
             point: Vec3A::new(0.0, -3.5, 0.0),
             normal: Vec3A::Y,
         });
-        let reach = 0.25;
-        let solids = Solids::new(bodies.clone(), &vec![reach; bodies.len()]);
+        let layer = 0.25;
+        // Every third solid's wind ends with its layer; the others reach 2–8 times as far.
+        let reach: Vec<Option<f32>> = (0..bodies.len())
+            .map(|i| (i % 3 != 0).then_some(layer * (2.0 + (i % 7) as f32)))
+            .collect();
+        let solids = Solids::new(bodies.clone(), layer, &reach);
+        let (cells, _) = solids.grid_size().expect("a grid");
+        assert!(cells > 1000, "{cells} cells");
         for i in 0..20_000 {
             let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 8.0 - 4.0;
             let x = Vec3A::new(f(0.1234567), f(0.7654321), f(0.3141592));
             let brute = (0..bodies.len())
                 .map(|j| (j, bodies[j].distance(x).0))
-                .filter(|&(_, d)| d < reach)
+                .filter(|&(_, d)| d < layer)
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .map(|(j, _)| j);
-            assert_eq!(solids.nearest(x, reach).map(|n| n.index), brute, "at {x}");
+            assert_eq!(solids.nearest(x).map(|n| n.index), brute, "at {x}");
+            // Every solid whose wind reaches x is listed, in the scene's order, the spheres
+            // apart.
+            let around = solids.around(x);
+            for listed in [around.spheres, around.others] {
+                assert!(listed.windows(2).all(|w| w[0] < w[1]), "at {x}");
+            }
+            for (j, r) in reach.iter().enumerate() {
+                let reaches = r.is_some_and(|r| bodies[j].distance(x).0 < r);
+                let list = match bodies[j] {
+                    Body::Sphere { .. } => around.spheres,
+                    _ => around.others,
+                };
+                assert!(!reaches || list.contains(&(j as u32)), "{j} at {x}");
+            }
         }
     }
 
@@ -513,7 +551,8 @@ mod tests {
                     normal: Vec3A::Y,
                 },
             ],
-            &[0.1, 0.1],
+            0.1,
+            &[None, None],
         );
         for x in [
             Vec3A::new(0.1, 0.85, 0.0),

@@ -74,6 +74,9 @@ pub enum Doublet {
         centre: Vec3A,
         radius: f32,
         wind: Vec3A,
+        /// a³/2 (m³) and 1/((ρ₂ − ρ₁) a), the taper's ρ₁ and ρ₂ in radii ([`SPHERE_ZONE`]).
+        half_cube: f32,
+        inv_span: f32,
     },
     /// A cylinder (base b, unit axis â, radius R, height h) in the cross-flow U⊥ = U −
     /// (U·â)â: the stream function Ψ = −R² (m·ρ)/ρ² outside (m = â × U), a smooth polynomial
@@ -99,6 +102,8 @@ impl Doublet {
                 centre: center,
                 radius,
                 wind,
+                half_cube: 0.5 * radius * radius * radius,
+                inv_span: 1.0 / ((SPHERE_ZONE[1] - SPHERE_ZONE[0]) * radius),
             }),
             Body::Cylinder {
                 base,
@@ -119,11 +124,13 @@ impl Doublet {
         }
     }
 
-    /// How far from `body` (m) its doublet reaches (0 for none).
+    /// How far from `body`'s surface (m) its doublet reaches: to [`SPHERE_ZONE`]'s outer
+    /// radius from a sphere's centre, to [`CYLINDER_ZONE`]'s from a cylinder's axis and one
+    /// radius beyond its caps (0 for a plane, which has none).
     pub fn reach(body: &Body) -> f32 {
         match *body {
-            Body::Sphere { radius, .. } => SPHERE_ZONE[1] * radius,
-            Body::Cylinder { radius, .. } => CYLINDER_ZONE[1] * radius,
+            Body::Sphere { radius, .. } => (SPHERE_ZONE[1] - 1.0) * radius,
+            Body::Cylinder { radius, .. } => (CYLINDER_ZONE[1] - 1.0).hypot(1.0) * radius,
             Body::Plane { .. } => 0.0,
         }
     }
@@ -137,33 +144,9 @@ impl Doublet {
                 centre,
                 radius,
                 wind,
-            } => {
-                let r = x - centre;
-                let rho = r.length();
-                let (w, dw) = taper(
-                    (rho - SPHERE_ZONE[0] * radius) / ((SPHERE_ZONE[1] - SPHERE_ZONE[0]) * radius),
-                );
-                if w == 0.0 {
-                    return (Vec3A::ZERO, Vec3A::ZERO);
-                }
-                let (psi, u) = if rho >= radius {
-                    let n = r / rho;
-                    let q = radius / rho;
-                    let q3 = 0.5 * q * q * q;
-                    (
-                        wind.cross(r) * (-q3),
-                        (n * (3.0 * wind.dot(n)) - wind) * (-q3),
-                    )
-                } else {
-                    (wind.cross(r) * -0.5, -wind)
-                };
-                if dw == 0.0 {
-                    return (psi * w, u * w);
-                }
-                // ∇ × (w ψ) = w ∇ × ψ + ∇w × ψ, ∇w = w'(ρ) r̂ (w' per metre).
-                let grad = r * (dw / ((SPHERE_ZONE[1] - SPHERE_ZONE[0]) * radius * rho));
-                (psi * w, u * w + grad.cross(psi))
-            }
+                half_cube,
+                inv_span,
+            } => sphere_doublet(centre, radius, wind, half_cube, inv_span, x),
             Doublet::Cylinder {
                 base,
                 axis,
@@ -172,6 +155,13 @@ impl Doublet {
                 m,
             } => {
                 let r = x - base;
+                // Beyond the ball around the zone (its middle, to the rims of its ends): nothing.
+                let half = 0.5 * height;
+                let (along, across) = (half + radius, CYLINDER_ZONE[1] * radius);
+                let bound = (along * along + across * across) * (1.0 + 1e-4);
+                if (r - axis * half).length_squared() > bound {
+                    return (Vec3A::ZERO, Vec3A::ZERO);
+                }
                 let s = r.dot(axis);
                 let beyond = if s > height { s - height } else { -s };
                 let (w_axial, _) = taper(beyond / radius);
@@ -211,6 +201,46 @@ impl Doublet {
             }
         }
     }
+}
+
+/// [`Doublet::Sphere`] at `x`: its zones by a clamp and its two sides by selects, with no
+/// branch, so that the doublets of many spheres summed at a point overlap in the processor;
+/// one root and one division. Where the taper is 1 the extra terms are zeros; where it is 0,
+/// every term is.
+#[inline(always)]
+fn sphere_doublet(
+    centre: Vec3A,
+    radius: f32,
+    wind: Vec3A,
+    half_cube: f32,
+    inv_span: f32,
+    x: Vec3A,
+) -> (Vec3A, Vec3A) {
+    let r = x - centre;
+    let rho = r.length();
+    let inv = 1.0 / rho.max(radius);
+    // taper(s) on [0, 1], which is 1 and 0 at the ends.
+    let s = ((rho - SPHERE_ZONE[0] * radius) * inv_span).clamp(0.0, 1.0);
+    let s2 = s * s;
+    let w = 1.0 - s2 * s * (10.0 + s * (-15.0 + 6.0 * s));
+    let dw = -30.0 * s2 * (1.0 - s) * (1.0 - s);
+    // Outside (ρ ≥ a): ψ = −(a³/2ρ³) U × r, u = −(a³/2ρ³)(3(U·r̂)r̂ − U); inside: ψ = −½ U × r
+    // and u = −U.
+    let outside = rho >= radius;
+    let q3 = if outside {
+        half_cube * inv * inv * inv
+    } else {
+        0.5
+    };
+    let psi = wind.cross(r) * (-q3);
+    let u = Vec3A::select(
+        Vec3A::splat(rho).cmpge(Vec3A::splat(radius)),
+        (r * (3.0 * wind.dot(r) * inv * inv) - wind) * (-q3),
+        -wind,
+    );
+    // ∇ × (w ψ) = w ∇ × ψ + ∇w × ψ, ∇w = w'(ρ) r̂ (w' per metre; zero where ρ < ρ₁ a).
+    let grad = r * (dw * inv_span * inv);
+    (psi * w, u * w + grad.cross(psi))
 }
 
 /// The projection of a wind without a vector potential in the layer: u − (1 − α)(u·n) n, or

@@ -16,9 +16,10 @@
 
 use crate::field::TurbulentField;
 use crate::gas::carried::{Blend, Phases};
+use crate::gas::doublets::{Doublets, Part};
 use crate::gas::frozen::{freeze, Frozen, FrozenPrimitive, NOT_AN_IMAGE};
 use crate::gas::scene::{Primitive, Scene};
-use crate::gas::solids::{Body, Nearest, Solids};
+use crate::gas::solids::{Around, Body, Nearest, Solids};
 use crate::gas::spline::Path;
 use crate::gas::walls::{project, ramp, Doublet, Stencil};
 use crate::lanes::load4;
@@ -189,6 +190,24 @@ pub struct FieldSlice {
 }
 
 impl FieldSlice {
+    /// [`Self::sample`] at each of `xs`: where all lie in one lattice cell (a stencil of small
+    /// steps), the cell's corners are read once and each point interpolates them as
+    /// [`Self::sample`] does; else each point is sampled alone.
+    #[inline]
+    pub fn sample_each<const N: usize>(&self, xs: &[Vec3A; N]) -> [Vec3A; N] {
+        let q: [Vec3A; N] = std::array::from_fn(|k| (xs[k] - self.offset) * self.cells_per_metre);
+        let Some(fl) = q.first().map(|q| q.floor()) else {
+            return [Vec3A::ZERO; N];
+        };
+        if q.iter().any(|q| q.floor() != fl) {
+            return std::array::from_fn(|k| self.sample(xs[k]));
+        }
+        let Some((w, dy, dz)) = self.corners(fl) else {
+            return [Vec3A::ZERO; N];
+        };
+        std::array::from_fn(|k| Self::interpolate(w, dy, dz, q[k] - fl))
+    }
+
     /// Trilinear, periodic sample at world position `x` (m/s).
     ///
     /// Four-wide: a lattice row `[u0 v0 w0 u1 v1 w1]` is read as two overlapping vectors
@@ -198,7 +217,16 @@ impl FieldSlice {
     pub fn sample(&self, x: Vec3A) -> Vec3A {
         let q = (x - self.offset) * self.cells_per_metre;
         let fl = q.floor();
-        let t = q - fl;
+        match self.corners(fl) {
+            Some((w, dy, dz)) => Self::interpolate(w, dy, dz, q - fl),
+            None => Vec3A::ZERO,
+        }
+    }
+
+    /// The data from the lattice cell `fl` (integer coordinates, wrapped periodically) on, and
+    /// the strides to its corners along y and z; none if it would reach past the data.
+    #[inline(always)]
+    fn corners(&self, fl: Vec3A) -> Option<(&[f32], usize, usize)> {
         let [nx, ny] = [self.size[0], self.size[1]];
         // The periodic wrap of the integer cell fl into 0..n, exact in f32 while |q| < 2^24: the
         // quotient may round to a neighbouring integer, which the two selects put right.
@@ -212,9 +240,13 @@ impl FieldSlice {
         let base = 3 * ((z0 * sy + y0) * sx + x0);
         let (dy, dz) = (3 * sx, 3 * sx * sy);
         // The farthest of the eight corners' reads ends at base + dz + dy + 7.
-        let Some(w) = self.data.get(base..base + dz + dy + 7) else {
-            return Vec3A::ZERO;
-        };
+        let w = self.data.get(base..base + dz + dy + 7)?;
+        Some((w, dy, dz))
+    }
+
+    /// The trilinear interpolation at `t` (in [0, 1]³) of the cell whose data start `w`.
+    #[inline(always)]
+    fn interpolate(w: &[f32], dy: usize, dz: usize, t: Vec3A) -> Vec3A {
         let tx = Vec4::splat(t.x);
         // Every read below starts at most dz + dy + 3 and spans four floats: inside `w`.
         let along_x = |i: usize| -> Vec4 {
@@ -258,7 +290,7 @@ pub struct WallSet {
     pub width: f32,
     pub steps: Vec<f32>,
     pub uniform: Vec3A,
-    pub doublets: Vec<Option<Doublet>>,
+    pub doublets: Doublets,
 }
 
 /// Of a difference step for the ramped curl: this fraction of the smallest of the layer's
@@ -291,17 +323,17 @@ impl WallSet {
             .sum();
         let doublets: Vec<Option<Doublet>> =
             bodies.iter().map(|b| Doublet::of(b, uniform)).collect();
-        let reach: Vec<f32> = bodies
-            .iter()
-            .zip(&doublets)
-            .map(|(b, d)| {
-                let zone = if d.is_some() { Doublet::reach(b) } else { 0.0 };
-                zone.max(width) * 1.001
-            })
-            .collect();
         let steps: Vec<f32> = bodies
             .iter()
             .map(|b| CURL_STEP_FRACTION * width.min(spacing).min(b.size()))
+            .collect();
+        // A doublet reaches the stencils of the ramped curl about points it reaches, a step
+        // farther.
+        let step = steps.iter().copied().fold(0.0, f32::max);
+        let reach: Vec<Option<f32>> = bodies
+            .iter()
+            .zip(&doublets)
+            .map(|(b, d)| d.map(|_| Doublet::reach(b) + step))
             .collect();
         // A cylinder's rims rounded by three difference steps: no stencil about a point
         // outside (or less than a step inside) reaches across the jump of the normal inside.
@@ -314,11 +346,11 @@ impl WallSet {
             })
             .collect();
         Some(Self {
-            solids: Solids::with_edges(bodies, edges, &reach),
+            solids: Solids::with_edges(bodies, edges, width, &reach),
             width,
             steps,
             uniform,
-            doublets,
+            doublets: Doublets::new(doublets, uniform),
         })
     }
 
@@ -393,6 +425,21 @@ impl Wind {
     /// The solid objects the wind goes round, if any.
     pub fn walls(&self) -> Option<&WallSet> {
         self.walls.as_deref()
+    }
+
+    /// The same wind with every solid visited at every point (no grid): what the grid must
+    /// give, for checks of it.
+    pub fn every_solid_visited(&self) -> Self {
+        let walls = self.walls.as_ref().map(|w| {
+            Arc::new(WallSet {
+                solids: w.solids.every_solid_visited(),
+                ..WallSet::clone(w)
+            })
+        });
+        Self {
+            walls,
+            ..self.clone()
+        }
     }
 
     /// The carried phases, if the small-scale field is carried by the large scales.
@@ -600,7 +647,7 @@ impl WindFrame {
 
     /// The small-scale field's slice sampled at `x`, with the carried coordinates' offsets
     /// `o` (ignored unless carried).
-    #[inline]
+    #[inline(always)]
     fn blended(&self, slice: &FieldSlice, x: Vec3A, o: [Vec3A; 2]) -> Vec3A {
         match self.blend {
             None => slice.sample(x),
@@ -637,15 +684,11 @@ impl WindFrame {
             }
             return (u, small(self));
         };
-        if let Some(near) = w.solids.nearest(x, w.width) {
-            return self.near_solid(w, x, near, o);
+        let around = w.solids.around(x);
+        if let Some(near) = w.solids.nearest_among(around.layers, x) {
+            return self.near_solid(w, x, near, around, o);
         }
-        let mut u = self.constant;
-        for j in w.solids.candidates(x) {
-            if let Some(d) = &w.doublets[j] {
-                u += d.at(x).1;
-            }
-        }
+        let mut u = self.constant + w.doublets.sum(Part::Wind, x, &around, usize::MAX);
         for p in &self.primitives {
             u += p.velocity(x);
         }
@@ -653,7 +696,15 @@ impl WindFrame {
     }
 
     /// The wind within the layer of the solid `near` (docs/CONVENTIONS.md, solid objects).
-    fn near_solid(&self, w: &WallSet, x: Vec3A, near: Nearest, o: [Vec3A; 2]) -> (Vec3A, Vec3A) {
+    /// `around`: the lists of `x`'s grid cell.
+    fn near_solid(
+        &self,
+        w: &WallSet,
+        x: Vec3A,
+        near: Nearest,
+        around: Around,
+        o: [Vec3A; 2],
+    ) -> (Vec3A, Vec3A) {
         let n_index = near.index;
         let body = w.solids.bodies[n_index];
         let n = near.normal;
@@ -671,7 +722,7 @@ impl WindFrame {
             }
             Body::Plane { .. } => project(u0, n, alpha, true),
         };
-        if let Some(d) = &w.doublets[n_index] {
+        if let Some(d) = w.doublets.get(n_index) {
             large += d.at(x).1;
         }
         let gauge = |p: &FrozenPrimitive| match body {
@@ -681,11 +732,18 @@ impl WindFrame {
             }
             _ => body.centre(),
         };
-        // Other solids' doublets and vortices go round this one by the ramped curl.
-        let mut others = false;
-        for j in w.solids.candidates(x) {
-            others |= j != n_index && w.doublets[j].is_some();
-        }
+        // Deeper inside than a step (a midpoint of a step into the solid), the ramped curl is
+        // the one a step deep, about `xs`: the normal there is continuous.
+        let h = w.steps[n_index];
+        let (xs, around) = if near.distance < -h {
+            let xs = x + n * (-h - near.distance);
+            (xs, w.solids.around(xs))
+        } else {
+            (x, around)
+        };
+        // Other solids' doublets (those reaching the stencil about xs) and vortices go round
+        // this one by the ramped curl.
+        let others = around.any_but(n_index);
         let mut vortices = false;
         for (i, p) in self.primitives.iter().enumerate() {
             let exact = plane
@@ -708,26 +766,11 @@ impl WindFrame {
             };
             return (large, small);
         }
-        // Deeper inside than a step (a midpoint of a step into the solid), the wind is the one
-        // a step deep: the normal there is continuous.
-        let h = w.steps[n_index];
-        let x = if near.distance < -h {
-            x + n * (-h - near.distance)
-        } else {
-            x
-        };
-        let stencil = Stencil::new(&body, w.solids.edges[n_index], x, h, 1.0 / w.width);
+        let stencil = Stencil::new(&body, w.solids.edges[n_index], xs, h, 1.0 / w.width);
         if others || vortices {
             let psi: [Vec3A; 6] = std::array::from_fn(|k| {
                 let y = stencil.points[k];
-                let mut psi = Vec3A::ZERO;
-                for j in w.solids.candidates(x) {
-                    if j != n_index {
-                        if let Some(d) = &w.doublets[j] {
-                            psi += d.at(y).0;
-                        }
-                    }
-                }
+                let mut psi = w.doublets.sum(Part::Potential, y, &around, n_index);
                 for (i, p) in self.primitives.iter().enumerate() {
                     let exact = plane
                         && (p.image_of == n_index as u32
@@ -742,12 +785,14 @@ impl WindFrame {
             large += stencil.ramped_curl(&psi);
         }
         let small = if self.has_psi {
-            let psi: [Vec3A; 6] =
-                std::array::from_fn(|k| self.blended(&self.psi, stencil.points[k], o));
+            let psi = match self.blend {
+                None => self.psi.sample_each(&stencil.points),
+                Some(_) => std::array::from_fn(|k| self.blended(&self.psi, stencil.points[k], o)),
+            };
             stencil.ramped_curl(&psi)
         } else if self.has_slice {
             // The field's potential is still being synthesised: project meanwhile.
-            project(self.blended(&self.slice, x, o), n, alpha, false)
+            project(self.blended(&self.slice, xs, o), n, alpha, false)
         } else {
             Vec3A::ZERO
         };

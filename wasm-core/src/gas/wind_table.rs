@@ -122,9 +122,9 @@ impl WindFrame {
                         height,
                     } => (CYLINDER_SOLID_KIND, base, radius, axis, height),
                 };
-                let (doublet, d) = match w.doublets[j] {
-                    Some(Doublet::Sphere { wind, .. }) => (1.0, wind),
-                    Some(Doublet::Cylinder { m, .. }) => (2.0, m),
+                let (doublet, d) = match w.doublets.get(j) {
+                    Some(&Doublet::Sphere { wind, .. }) => (1.0, wind),
+                    Some(&Doublet::Cylinder { m, .. }) => (2.0, m),
                     None => (0.0, Vec3A::ZERO),
                 };
                 out.extend_from_slice(&[kind, w.steps[j], doublet, 0.0]);
