@@ -44,35 +44,26 @@ fn presets_dir() -> PathBuf {
 
 /// Renders `name.json` (a blob list, or a scene simulated for `seconds`) to 8-bit RGB.
 fn render(name: &str, seconds: f64) -> (u32, u32, Vec<u8>) {
-    render_file(
-        &golden_dir().join(format!("{name}.json")),
-        seconds,
-        None,
-        false,
-    )
+    let list = read_list(&golden_dir().join(format!("{name}.json")), seconds);
+    render_list(&list, None)
 }
 
-/// Renders a scene or blob list file; `without_gas` drops every blob first.
-fn render_file(
-    path: &std::path::Path,
-    seconds: f64,
-    size: Option<(u32, u32)>,
-    without_gas: bool,
-) -> (u32, u32, Vec<u8>) {
+/// The blob list of a file: a blob list as it is, a scene simulated for `seconds`.
+fn read_list(path: &std::path::Path, seconds: f64) -> BlobList {
     let text = std::fs::read_to_string(path).unwrap();
     let value: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let list = if value.get("version").is_some() {
+    if value.get("version").is_some() {
         let mut sim = Simulation::new(Scene::from_value(value).unwrap()).unwrap();
         sim.run(sim.steps_for(seconds));
         sim.blob_list()
     } else {
         BlobList::from_value(value).unwrap()
-    };
-    let mut list = list;
-    if without_gas {
-        list.blobs.clear();
     }
-    let image = Renderer::new(&list, size, RenderOptions::default())
+}
+
+/// The reference still of `list` in 8-bit RGB.
+fn render_list(list: &BlobList, size: Option<(u32, u32)>) -> (u32, u32, Vec<u8>) {
+    let image = Renderer::new(list, size, RenderOptions::default())
         .unwrap()
         .render();
     (
@@ -122,8 +113,10 @@ fn golden_colours() {
 fn golden_presets() {
     for (name, seconds) in PRESETS {
         let path = presets_dir().join(format!("{name}.json"));
-        let (w, h, rgb) = render_file(&path, seconds, Some(PRESET_SIZE), false);
-        let (_, _, bare) = render_file(&path, seconds, Some(PRESET_SIZE), true);
+        let mut list = read_list(&path, seconds);
+        let (w, h, rgb) = render_list(&list, Some(PRESET_SIZE));
+        list.blobs.clear();
+        let (_, _, bare) = render_list(&list, Some(PRESET_SIZE));
         let p = psnr(&rgb, &bare);
         assert!(
             p < 30.0,
