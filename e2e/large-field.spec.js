@@ -47,6 +47,9 @@ test('a newer scene cancels a field synthesis in flight', async ({ page }) => {
     const withField = (size, seed) => ({ ...structuredClone(base), seed, field: { ...base.field, size } });
     const first = window.windfield.setScene(withField([64, 64, 64, 32], 7))
       .then(() => 'loaded', (e) => e.message);
+    // Well into the first synthesis, its memory taken, before the newer scene arrives.
+    const percent = () => Number(/\((\d+) %\)/.exec(document.querySelector('#progress .label')?.textContent ?? '')?.[1] ?? 0);
+    while (percent() < 20) await new Promise((r) => setTimeout(r, 10));
     const second = window.windfield.setScene(withField([24, 24, 24, 24], 8))
       .then(() => 'loaded', (e) => e.message);
     return { first: await first, second: await second, scene: window.windfield.getScene() };

@@ -16,7 +16,11 @@ import { lightenScene, overCap } from './lighten.js';
 /** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
 const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
 
-const cancelled = () => new Error('cancelled: a newer scene was loaded before this one was ready');
+/**
+ * The error of a load or synthesis that a newer one superseded (`superseded`: no refusal of its
+ * input; what its synthesis took is freed, for the newer one to reuse).
+ */
+const cancelled = () => Object.assign(new Error('cancelled: a newer scene was loaded before this one was ready'), { superseded: true });
 
 /** `scene` if it is JSON text (the engine's protocol), else a clear Error. */
 function sceneText(scene) {

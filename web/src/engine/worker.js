@@ -50,7 +50,9 @@ self.onmessage = async (event) => {
     const { result, transfer = [] } = await handler(msg);
     self.postMessage({ id: msg.id, ok: true, result }, transfer);
   } catch (err) {
-    const grown = memoryBytes() - before;
+    // A load a newer one superseded refused nothing: the newer one reuses what it took, and a
+    // restart now would drop the newer one with it.
+    const grown = err?.superseded ? 0 : memoryBytes() - before;
     const recycle = grown > REFUSAL_GROWTH ? `a refused request took ${Math.round(grown / 2 ** 20)} MiB of the engine's memory` : undefined;
     self.postMessage({ id: msg.id, ok: false, error: err?.message ?? String(err), ...(recycle && { recycle }) });
     if (err instanceof WebAssembly.RuntimeError) {
