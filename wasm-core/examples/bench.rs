@@ -190,6 +190,21 @@ pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
         .collect()
 }
 
+/// `{scene}_100k_solids_{count}_native_ms` for each of `sims` (the scene among `counts` solid
+/// spheres, medians of 7 interleaved rounds), then the most solids' step over none's.
+fn emit_solid_steps(scene: &str, counts: [usize; 3], sims: &mut [Simulation; 3]) {
+    let ms = interleaved_medians(sims);
+    for (count, ms) in counts.iter().zip(ms) {
+        emit(&format!("{scene}_100k_solids_{count}_native_ms"), ms, "ms");
+    }
+    let most = counts[2];
+    emit(
+        &format!("{scene}_{most}_solids_over_none"),
+        ms[2] / ms[0],
+        "ratio",
+    );
+}
+
 /// The step among 0, 16 and 256 solid spheres, two ways, medians of 7 interleaved rounds:
 ///
 /// - the blob-step scene's 100,000 blobs spread through its 4 m box in no order, among spheres
@@ -212,15 +227,7 @@ fn solid_objects() {
         sim.step();
         sim
     });
-    let ms = interleaved_medians(&mut sims);
-    for (count, ms) in counts.iter().zip(ms) {
-        emit(
-            &format!("blob_step_100k_solids_{count}_native_ms"),
-            ms,
-            "ms",
-        );
-    }
-    emit("blob_step_256_solids_over_none", ms[2] / ms[0], "ratio");
+    emit_solid_steps("blob_step", counts, &mut sims);
     let mut sims = counts.map(|count| {
         let mut scene =
             Scene::from_json(include_str!("../../tests/fixtures/dense-plume.json")).expect("valid");
@@ -232,15 +239,7 @@ fn solid_objects() {
         sim.run(sim.steps_for(5.0));
         sim
     });
-    let ms = interleaved_medians(&mut sims);
-    for (count, ms) in counts.iter().zip(ms) {
-        emit(
-            &format!("worker_step_100k_solids_{count}_native_ms"),
-            ms,
-            "ms",
-        );
-    }
-    emit("worker_step_256_solids_over_none", ms[2] / ms[0], "ratio");
+    emit_solid_steps("worker_step", counts, &mut sims);
     let mut scene = Scene::from_json(BLOB_STEP_SCENE).expect("valid");
     let plain = Simulation::new(scene.clone()).expect("valid");
     scene.render.objects = solid_spheres(256);
