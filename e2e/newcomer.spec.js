@@ -240,6 +240,11 @@ test('an unknown preset\'s notice lists the scenes there are', async ({ page }) 
 test('the exported PNG of the view leaves the wind guides out', async ({ page }) => {
   await open(page);
   await page.evaluate(() => window.windfield.pause());
+  // At full resolution, whatever pace the view kept in software while it loaded: the guides then
+  // cover enough pixels to be seen.
+  const sim = await openFolder(page, 'Simulation');
+  await sim.locator('.lil-controller', { hasText: 'resolution' }).locator('select').selectOption({ label: '100 %' });
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().scale)).toBe(1);
   const shot = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => r(document.querySelector('#canvas').toDataURL('image/png'))))));
   const withGuides = await shot();
   const [download] = await Promise.all([

@@ -422,6 +422,20 @@ test('the real-time view shows its resolution and volume; a fixed resolution siz
   expect(errors).toEqual([]);
 });
 
+test('the points view follows the pace as the marched views do: drawn slowly, its resolution falls', async ({ page }) => {
+  const errors = collectErrors(page);
+  // The default scene playing in the points view: each frame sums every sprite's pixels, many
+  // times slower than 60 a second in software.
+  await open(page, './?view=points');
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().scale), { timeout: 30_000 }).toBeLessThan(1);
+  const sizes = await page.evaluate(() => {
+    const c = document.querySelector('#canvas');
+    return { buffer: [c.width, c.height], box: [c.clientWidth, c.clientHeight], scale: window.windfield.stats().scale };
+  });
+  expect(sizes.buffer).toEqual(sizes.box.map((n) => Math.max(Math.round(n * sizes.scale), 1)));
+  expect(errors).toEqual([]);
+});
+
 test('runs over the step budget are refused before they start, naming simulation.dt and the time', async ({ page }) => {
   const errors = collectErrors(page);
   await open(page);

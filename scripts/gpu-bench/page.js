@@ -1,7 +1,10 @@
 // The real-time view's frame on a real GPU, for scripts/gpu-bench/run.sh: loaded into a copy of
 // the playground, it drives window.windfield and reports through the console (one
 // `GPUBENCH {json}` line per figure), so it needs no driver program beside the browser. Query:
-// frames, counts, qualities; `profile` adds the volume passes' times (each waits for the GPU).
+// frames, counts, qualities; `profile` adds the volume passes' times (each waits for the GPU);
+// `steppers=cpu,gpu` emits and times the gas with each stepper in turn (the worker's step and
+// pack, or the GPU's step and sort) and draws what that stepper holds; `liveView=points` plays
+// in the points view instead of the real-time view.
 // Each real-time figure twice: volumes rebuilt every frame (as while the scene plays), and kept
 // (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
 // plume for S seconds in the playground's own view, filling the window, and reports the frame
@@ -11,6 +14,8 @@ const query = new URLSearchParams(location.search);
 const frames = Number(query.get('frames') || 10);
 const counts = (query.get('counts') || '10000,100000').split(',').map(Number);
 const qualities = (query.get('qualities') || 'standard,high').split(',');
+// Without `steppers` the page keeps its own choice ('auto': the GPU where it can).
+const steppers = (query.get('steppers') || 'auto').split(',');
 
 /** The WebGL2 renderer's name, unmasked where the browser allows. */
 function renderer() {
@@ -38,25 +43,58 @@ async function main() {
   await w.ready;
   const plume = await (await fetch('./dense-plume.json')).json();
   for (const n of counts) {
-    const blobs = await plumeOf(w, plume, n);
-    const frame = async (mode, width, height, quality, rebuild = true) => {
-      const ms = await w.timeFrames({ mode, width, height, frames, quality, rebuild });
-      // With `profile` in the query, the volumes' passes of the last frame (ms each).
-      const passes = mode === 'raymarch' && rebuild ? w.stats().passes : undefined;
-      log({ blobs, mode, quality, width, height, rebuild, ms, fps: 1000 / ms, passes });
-    };
-    for (const quality of qualities) {
-      await frame('raymarch', 1920, 1080, quality);
-      await frame('raymarch', 1920, 1080, quality, false);
+    for (const stepper of steppers) {
+      await w.setStepper(stepper);
+      const blobs = await plumeOf(w, plume, n);
+      const step = await stepTimes(w);
+      log({ blobs, ...step });
+      const frame = async (mode, width, height, quality, rebuild = true) => {
+        const ms = await w.timeFrames({ mode, width, height, frames, quality, rebuild });
+        // With `profile` in the query, the volumes' passes of the last frame (ms each).
+        const passes = mode === 'raymarch' && rebuild ? w.stats().passes : undefined;
+        log({ blobs, stepper: step.stepper, mode, quality, width, height, rebuild, ms, fps: 1000 / ms, passes });
+      };
+      for (const quality of qualities) {
+        await frame('raymarch', 1920, 1080, quality);
+        await frame('raymarch', 1920, 1080, quality, false);
+      }
+      await frame('raymarch', 640, 360, 'standard');
+      await frame('points', 1920, 1080);
     }
-    await frame('raymarch', 640, 360, 'standard');
-    await frame('points', 1920, 1080);
   }
   const seconds = Number(query.get('live') || 0);
   if (seconds > 0) {
     document.head.insertAdjacentHTML('beforeend', '<style>#view { position: fixed !important; inset: 0; z-index: 9; border-radius: 0; }</style>');
-    for (const n of counts) await live(w, plume, n, seconds);
+    for (const n of counts) {
+      for (const stepper of steppers) {
+        await w.setStepper(stepper);
+        await live(w, plume, n, seconds);
+      }
+    }
   }
+}
+
+/**
+ * One step of the gas as it stands, with the stepper now active: the worker's step and pack
+ * (median of five single steps, as the worker reports them), or the GPU's step and its sort by
+ * σ class for the views (`timeGpuStep`, `timeGpuSort`: each pass finished on the GPU).
+ */
+async function stepTimes(w) {
+  const stepper = w.stats().stepper;
+  if (stepper === 'gpu') {
+    const stepMs = await w.timeGpuStep({ repeats: 5 });
+    const sortMs = (await w.timeGpuSort({ repeats: 5 })).ms;
+    return { stepper, stepMs, sortMs, ms: stepMs + sortMs };
+  }
+  const step = [];
+  const pack = [];
+  for (let i = 0; i < 5; i++) {
+    await w.step(1);
+    step.push(w.stats().stepMs);
+    pack.push(w.stats().packMs);
+  }
+  const mid = (t) => t.sort((a, b) => a - b)[2];
+  return { stepper, stepMs: mid(step), packMs: mid(pack), ms: mid(step) + mid(pack), reason: w.stats().stepperReason };
 }
 
 /**
@@ -65,6 +103,8 @@ async function main() {
  */
 async function live(w, plume, n, seconds) {
   const blobs = await plumeOf(w, { ...plume, simulation: { ...plume.simulation, dt: 1 / 60 } }, n);
+  const view = query.get('liveView') || 'raymarch';
+  w.setView(view);
   w.play();
   const samples = [];
   for (let t = 0; t < seconds; t++) {
@@ -72,12 +112,15 @@ async function live(w, plume, n, seconds) {
     samples.push(w.stats());
   }
   w.pause();
+  w.setView('raymarch');
   const last = samples.slice(-5);
   const canvas = document.querySelector('#canvas');
   log({
     live: true,
+    view,
     blobs,
     quality: query.get('quality') || 'standard',
+    stepper: w.stats().stepper,
     box: [canvas.clientWidth, canvas.clientHeight],
     canvas: [canvas.width, canvas.height],
     fps: last.reduce((a, s) => a + s.fps, 0) / last.length,

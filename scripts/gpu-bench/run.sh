@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The real-time view's frame rate on this machine's GPU: headless Chromium with WebGL2 on the
-# GPU (ANGLE's Vulkan back end), the built site (dist/, `npm run build`) served by Python, and
-# scripts/gpu-bench/page.js reporting through the console. Needs no Node on the GPU machine.
+# GPU (ANGLE's Vulkan back end, or what FLAGS names), the built site (dist/, `npm run build`)
+# served by Python, and scripts/gpu-bench/page.js reporting through the console. Needs no Node
+# on the GPU machine.
 #   CHROMIUM=/path/to/chromium scripts/gpu-bench/run.sh [query]   e.g. "frames=10&counts=10000"
-# (query: frames, counts, qualities; TIMEOUT seconds, 600 by default).
+# (query: frames, counts, qualities, steppers, profile, live; TIMEOUT seconds, 600 by default).
 # Prints one JSON object per line (the renderer's name first). docs/BENCHMARKS.md records a run.
+# On a machine with no browser: pack-browser.sh here, on-device.sh there.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 chromium="${CHROMIUM:-/usr/bin/chromium}"
@@ -12,7 +14,8 @@ port="${PORT:-8719}"
 site="$(mktemp -d)"
 profile="$(mktemp -d)"
 log="$(mktemp)"
-trap 'kill $server $browser 2>/dev/null || true; rm -rf "$site" "$profile" "$log"' EXIT
+# LOG_TO=path keeps the browser's whole log (for a run that fails on a machine given back after).
+trap 'kill $server $browser 2>/dev/null || true; [ -z "${LOG_TO:-}" ] || cp "$log" "$LOG_TO"; rm -rf "$site" "$profile" "$log"' EXIT
 cp -r "$root/dist/." "$site/"
 cp "$root/scripts/gpu-bench/page.js" "$site/gpu-bench.js"
 cp "$root/tests/fixtures/dense-plume.json" "$site/"

@@ -571,8 +571,9 @@ export class Player {
   resize() {
     if (!this.running) return;
     const c = this.#view.canvas;
-    // The points view is cheap: it keeps full resolution unless the resolution is fixed.
-    const scale = this.#state.mode === 'points' && this.resolution.mode === 'auto' ? 1 : this.resolution.scale;
+    // Every view follows the pace, the points view too: its float sums cost a fragment per
+    // sprite pixel, and a million wide sprites at 1920×1080 took 1.2 s a frame on an H200.
+    const scale = this.resolution.scale;
     this.stats.scale = scale;
     this.#view.volumeScale = scale;
     const width = Math.max(Math.round(c.clientWidth * scale), 1);
@@ -588,13 +589,12 @@ export class Player {
   }
 
   /**
-   * Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace (not in
-   * the points view). A machine whose view keeps up fewer than `SLOW_FPS` frames a second at the
+   * Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace. A machine whose view keeps up fewer than `SLOW_FPS` frames a second at the
    * lowest resolution gets the lighter version (unless the page turned adapting off).
    */
   #drawn(start, end) {
     const playing = this.#state.playing;
-    if (this.pace.drawn(start, end, { playing, scaled: this.#state.mode !== 'points' })) this.resize();
+    if (this.pace.drawn(start, end, { playing })) this.resize();
     const r = this.resolution;
     const slow = this.pace.pace > 0 && this.pace.pace < SLOW_FPS && r.mode === 'auto' && r.scale <= r.min;
     if (slow && playing && this.stats.frames >= 15 && this.hooks.adapt !== false && !this.#lighter && !this.#choices.full) this.#lighten('slow');

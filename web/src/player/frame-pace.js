@@ -63,9 +63,9 @@ export class FramePace {
    * `view` (drawing takes the time), `display` (the frames keep up with the display) or `paused`.
    * The view's own pace is a frame's time less its wait for the worker, so the resolution
    * follows the view's cost whether the scene plays or the camera moves. Returns whether the
-   * governor changed the resolution (when `scaled`, the view's resolution follows it).
+   * governor changed the resolution (the view's resolution follows it).
    */
-  drawn(start, end, { playing, scaled }) {
+  drawn(start, end, { playing }) {
     this.#times.push(end);
     this.#since ??= start;
     this.stats.frames += 1;
@@ -88,7 +88,7 @@ export class FramePace {
     // ask for it, not for the GPU to draw it).
     if (!busy) return false;
     this.#pace = this.#pace > 0 ? 0.7 * this.#pace + 0.3 * (1000 / own) : 1000 / own;
-    return scaled && this.resolution.observe(end, this.#pace);
+    return this.resolution.observe(end, this.#pace);
   }
 
   /** Forgets the frames counted so far (a new scene, or play after a pause). */
