@@ -3,7 +3,7 @@
 # 1,000,000 inputs (or the first argument), and 100,000 mutated links through the URL codec.
 # The scene corpus includes the hostile inputs of wasm-core/tests/hostile/ (floods of emitters,
 # shapes and kept steps, long lists, deep nesting, σ → 0), which must stay refused.
-# `npm test` runs the same fuzzers with 120,000 and 20,000 inputs.
+# `npm test` runs the same fuzzers with 120,000 and 5,000 inputs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"

@@ -10,8 +10,10 @@ step() { printf '\n== %s (%d s in)\n' "$*" "$((SECONDS - started))"; }
 
 step "setup"
 bash scripts/setup.sh --browser --readers
-step "lint"
-bash scripts/lint.sh
+step "lint (rustfmt, ESLint; clippy lints the two builds below)"
+bash scripts/lint.sh --no-clippy
+# shellcheck source=scripts/clippy-env.sh
+source scripts/clippy-env.sh
 step "rust tests"
 # One profile: the CLI the JavaScript tests call is the binary this run builds.
 (cd wasm-core && cargo test --release)
