@@ -23,7 +23,11 @@ step "site build"
 npx vite build --config web/vite.config.js --logLevel warn
 npx vite build --config web/vite.embed.config.js --logLevel warn
 step "js unit tests"
-node --test tests/
+# Two files at a time: the runner's default, one fewer than the cores, is one here, while most
+# files wait on a child process (the CLI, the formats' readers) or keep one core busy.
+concurrency=()
+node --help | grep -q -- --test-concurrency && concurrency=(--test-concurrency=2)
+node --test "${concurrency[@]}" tests/
 step "end-to-end tests (chromium)"
 npx playwright test --config e2e/playwright.config.js
 step "done"
