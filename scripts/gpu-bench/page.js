@@ -4,7 +4,8 @@
 // frames, counts, qualities; `profile` adds the volume passes' times (each waits for the GPU);
 // `steppers=cpu,gpu` emits and times the gas with each stepper in turn (the worker's step and
 // pack, or the GPU's step and sort) and draws what that stepper holds; `liveView=points` plays
-// in the points view instead of the real-time view.
+// in the points view instead of the real-time view. `twin` checks the GPU stepper against the
+// core on this GPU as e2e/gpu-stepper.spec.js does in software, and only that.
 // Each real-time figure twice: volumes rebuilt every frame (as while the scene plays), and kept
 // (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
 // plume for S seconds in the playground's own view, filling the window, and reports the frame
@@ -41,6 +42,10 @@ async function main() {
   while (!window.windfield) await new Promise((r) => setTimeout(r, 100));
   const w = window.windfield;
   await w.ready;
+  if (query.has('twin')) {
+    await twin(w);
+    return;
+  }
   const plume = await (await fetch('./dense-plume.json')).json();
   for (const n of counts) {
     for (const stepper of steppers) {
@@ -72,6 +77,57 @@ async function main() {
       }
     }
   }
+}
+
+const fixture = async (name) => (await fetch(`./${name}.json`)).json();
+const blobsOf = async (w) => (await w.exportBlobs({ width: 32, height: 24 })).blobs;
+
+/**
+ * The GPU stepper against the core on this GPU (e2e/gpu-stepper.spec.js asks the same in
+ * software): one step from the same state, blob by blob, in the scene of every kind and in it
+ * with solids and carried eddies (the farthest blob from the core's, m; the test asks < 1e-5 m
+ * without solids), and a turbulent plume stepped 240 times on each (count, mass, centroid and
+ * spread; the test asks mass within 1e-4, centroid within 2 % of the spread, spread within 2 %).
+ */
+async function twin(w) {
+  w.pause();
+  for (const name of ['every-kind', 'every-kind-solids']) {
+    const scene = await fixture(name);
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(30);
+    const stepper = await w.setStepper('gpu');
+    await w.step(1);
+    const gpu = await blobsOf(w);
+    await w.setStepper('cpu');
+    await w.setScene(scene);
+    await w.step(31);
+    const cpu = await blobsOf(w);
+    const apart = gpu.map((b, i) => (cpu[i] ? Math.hypot(...b.center.map((v, a) => v - cpu[i].center[a])) : Infinity));
+    log({ twin: name, stepper, blobs: [gpu.length, cpu.length], farthestM: Math.max(...apart), beyond1e5: apart.filter((d) => d >= 1e-5).length });
+  }
+  const plume = await fixture('small-plume');
+  const run = async (kind) => {
+    await w.setStepper(kind);
+    await w.setScene(plume);
+    await w.step(240);
+    return { stepper: w.stats().stepper, blobs: await blobsOf(w) };
+  };
+  const [g, c] = [await run('gpu'), await run('cpu')];
+  const total = (list) => list.reduce((m, b) => m + b.mass, 0);
+  const stats = (list) => [0, 1, 2].map((a) => {
+    const mean = list.reduce((s, b) => s + b.center[a], 0) / list.length;
+    return { mean, spread: Math.sqrt(list.reduce((s, b) => s + (b.center[a] - mean) ** 2, 0) / list.length) };
+  });
+  const [sg, sc] = [stats(g.blobs), stats(c.blobs)];
+  log({
+    twin: 'small-plume, 240 steps',
+    steppers: [g.stepper, c.stepper],
+    blobs: [g.blobs.length, c.blobs.length],
+    massApart: Math.abs(total(g.blobs) - total(c.blobs)) / total(c.blobs),
+    centroidApartOfSpread: sg.map((s, a) => Math.abs(s.mean - sc[a].mean) / sc[a].spread),
+    spreadApart: sg.map((s, a) => Math.abs(s.spread - sc[a].spread) / sc[a].spread),
+  });
 }
 
 /**
