@@ -14,6 +14,7 @@ import { encodeScene } from '../web/src/state/url-codec.js';
 import { WORDS_PER_BLOB } from '../web/src/generated/contract.js';
 import { frameDescription } from '../web/src/views/scene-view.js';
 import { classOf } from '../web/src/views/volume/grid.js';
+import { centreStatistics, distances, everyKind, totalMass, withSolids } from '../tests/support/gas-twin.js';
 
 const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
 
@@ -23,9 +24,6 @@ async function open(page, scene) {
   await page.evaluate(() => window.windfield.ready);
   await page.evaluate(() => window.windfield.pause());
 }
-
-/** A scene about 2 m across with every primitive kind and every emitter shape. */
-const everyKind = fixture('every-kind');
 
 test('one step from the same state: the GPU moves every blob where the core does', async ({ page }) => {
   await open(page, everyKind);
@@ -49,10 +47,7 @@ test('one step from the same state: the GPU moves every blob where the core does
   expect(out.stepper).toBe('gpu');
   expect(out.gpu.length).toBe(out.cpu.length);
   expect(out.gpu.length).toBeGreaterThan(200);
-  let worst = 0;
-  out.gpu.forEach((b, i) => {
-    worst = Math.max(worst, Math.hypot(...b.center.map((v, a) => v - out.cpu[i].center[a])));
-  });
+  const worst = Math.max(...distances(out.gpu, out.cpu));
   expect(worst).toBeLessThan(1e-5);
   // The GPU's own σ and mass (it steps them itself) against the core's, as sets.
   const sorted = (a) => Float64Array.from(a).sort();
@@ -61,12 +56,6 @@ test('one step from the same state: the GPU moves every blob where the core does
   expect(relative(sorted(out.sigma), sorted(out.cpu.map((b) => b.sigma)))).toBeLessThan(1e-6);
   expect(relative(sorted(out.mass), sorted(out.cpu.map((b) => b.mass)))).toBeLessThan(1e-6);
 });
-
-/**
- * The scene of every kind with solid objects (a plane, a sphere, a cylinder) and carried eddies,
- * and one more emitter, whose gas is born in the sphere's layer and carried up into it.
- */
-const withSolids = fixture('every-kind-solids');
 
 /** The signed distance (m) of `x` from a solid object of the scene format (negative inside). */
 function distanceTo(o, x) {
@@ -110,10 +99,7 @@ test('with solid objects and carried eddies: one step from the same state moves 
   expect(out.now).toBe('gpu');
   expect(out.gpu.length).toBe(out.cpu.length);
   expect(out.gpu.length).toBeGreaterThan(200);
-  let worst = 0;
-  out.gpu.forEach((b, i) => {
-    worst = Math.max(worst, Math.hypot(...b.center.map((v, a) => v - out.cpu[i].center[a])));
-  });
+  const worst = Math.max(...distances(out.gpu, out.cpu));
   const layer = withSolids.field.boundary_width;
   const near = out.cpu.filter((b) => withSolids.render.objects.some((o) => distanceTo(o, b.center) < layer)).length;
   console.log(`with solids and carried eddies, one step: the farthest blob ${worst.toExponential(2)} m from the core's (${near} of ${out.cpu.length} within a layer)`);
@@ -161,14 +147,8 @@ test('a turbulent plume stepped 240 times on each: the same count, mass and stat
   const { gpu, cpu } = { gpu: runs.gpu.blobs, cpu: runs.cpu.blobs };
   expect(gpu.length).toBe(cpu.length);
   expect(gpu.length).toBeGreaterThan(400);
-  const total = (list) => list.reduce((m, b) => m + b.mass, 0);
-  expect(Math.abs(total(gpu) - total(cpu)) / total(cpu)).toBeLessThan(1e-4);
-  const stats = (list) => [0, 1, 2].map((a) => {
-    const mean = list.reduce((s, b) => s + b.center[a], 0) / list.length;
-    const spread = Math.sqrt(list.reduce((s, b) => s + (b.center[a] - mean) ** 2, 0) / list.length);
-    return { mean, spread };
-  });
-  const [g, c] = [stats(gpu), stats(cpu)];
+  expect(Math.abs(totalMass(gpu) - totalMass(cpu)) / totalMass(cpu)).toBeLessThan(1e-4);
+  const [g, c] = [centreStatistics(gpu), centreStatistics(cpu)];
   for (let a = 0; a < 3; a++) {
     expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
     expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);

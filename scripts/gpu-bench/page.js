@@ -10,6 +10,8 @@
 // (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
 // plume for S seconds in the playground's own view, filling the window, and reports the frame
 // rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
+import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
+
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
 const frames = Number(query.get('frames') || 10);
@@ -79,20 +81,19 @@ async function main() {
   }
 }
 
-const fixture = async (name) => (await fetch(`./${name}.json`)).json();
 const blobsOf = async (w) => (await w.exportBlobs({ width: 32, height: 24 })).blobs;
 
 /**
  * The GPU stepper against the core on this GPU (e2e/gpu-stepper.spec.js asks the same in
- * software): one step from the same state, blob by blob, in the scene of every kind and in it
- * with solids and carried eddies (the farthest blob from the core's, m; the test asks < 1e-5 m
- * without solids), and a turbulent plume stepped 240 times on each (count, mass, centroid and
- * spread; the test asks mass within 1e-4, centroid within 2 % of the spread, spread within 2 %).
+ * software, from the same scenes and measures, tests/support/gas-twin.js): one step from the
+ * same state, blob by blob, in the scene of every kind and in it with solids and carried eddies
+ * (the farthest blob from the core's, m; the test asks < 1e-5 m), and a turbulent plume stepped
+ * 240 times on each (count, mass, centroid and spread; the test asks mass within 1e-4, centroid
+ * within 2 % of the spread, spread within 2 %).
  */
 async function twin(w) {
   w.pause();
-  for (const name of ['every-kind', 'every-kind-solids']) {
-    const scene = await fixture(name);
+  for (const [name, scene] of [['every kind', everyKind], ['every kind with solids', withSolids]]) {
     await w.setStepper('cpu');
     await w.setScene(scene);
     await w.step(30);
@@ -103,10 +104,10 @@ async function twin(w) {
     await w.setScene(scene);
     await w.step(31);
     const cpu = await blobsOf(w);
-    const apart = gpu.map((b, i) => (cpu[i] ? Math.hypot(...b.center.map((v, a) => v - cpu[i].center[a])) : Infinity));
+    const apart = distances(gpu, cpu);
     log({ twin: name, stepper, blobs: [gpu.length, cpu.length], farthestM: Math.max(...apart), beyond1e5: apart.filter((d) => d >= 1e-5).length });
   }
-  const plume = await fixture('small-plume');
+  const plume = await (await fetch('./small-plume.json')).json();
   const run = async (kind) => {
     await w.setStepper(kind);
     await w.setScene(plume);
@@ -114,17 +115,12 @@ async function twin(w) {
     return { stepper: w.stats().stepper, blobs: await blobsOf(w) };
   };
   const [g, c] = [await run('gpu'), await run('cpu')];
-  const total = (list) => list.reduce((m, b) => m + b.mass, 0);
-  const stats = (list) => [0, 1, 2].map((a) => {
-    const mean = list.reduce((s, b) => s + b.center[a], 0) / list.length;
-    return { mean, spread: Math.sqrt(list.reduce((s, b) => s + (b.center[a] - mean) ** 2, 0) / list.length) };
-  });
-  const [sg, sc] = [stats(g.blobs), stats(c.blobs)];
+  const [sg, sc] = [centreStatistics(g.blobs), centreStatistics(c.blobs)];
   log({
     twin: 'small-plume, 240 steps',
     steppers: [g.stepper, c.stepper],
     blobs: [g.blobs.length, c.blobs.length],
-    massApart: Math.abs(total(g.blobs) - total(c.blobs)) / total(c.blobs),
+    massApart: Math.abs(totalMass(g.blobs) - totalMass(c.blobs)) / totalMass(c.blobs),
     centroidApartOfSpread: sg.map((s, a) => Math.abs(s.mean - sc[a].mean) / sc[a].spread),
     spreadApart: sg.map((s, a) => Math.abs(s.spread - sc[a].spread) / sc[a].spread),
   });

@@ -19,7 +19,8 @@ log="$(mktemp)"
 trap 'kill $server $browser 2>/dev/null || true; [ -z "${LOG_TO:-}" ] || cp "$log" "$LOG_TO"; rm -rf "$site" "$profile" "$log"' EXIT
 cp -r "$root/dist/." "$site/"
 cp "$root/scripts/gpu-bench/page.js" "$site/gpu-bench.js"
-for f in dense-plume every-kind every-kind-solids small-plume; do cp "$root/tests/fixtures/$f.json" "$site/"; done
+cp "$root/tests/support/gas-twin.js" "$site/"
+for f in dense-plume small-plume; do cp "$root/tests/fixtures/$f.json" "$site/"; done
 sed 's#</body>#<script type="module" src="./gpu-bench.js"></script></body>#' "$root/dist/index.html" > "$site/gpu-bench.html"
 python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site" >/dev/null 2>&1 & server=$!
 sleep 1

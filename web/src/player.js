@@ -589,8 +589,9 @@ export class Player {
   }
 
   /**
-   * Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace. A machine whose view keeps up fewer than `SLOW_FPS` frames a second at the
-   * lowest resolution gets the lighter version (unless the page turned adapting off).
+   * Counts a frame drawn from `start` to `end` (ms); the resolution may follow the pace. A
+   * machine whose view keeps up fewer than `SLOW_FPS` frames a second at the lowest resolution
+   * gets the lighter version (unless the page turned adapting off).
    */
   #drawn(start, end) {
     const playing = this.#state.playing;
