@@ -4,6 +4,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { TRUNCATION } from '../web/src/generated/contract.js';
 import { binBlobs } from '../web/src/engine/tiles.js';
+import { tileFor } from '../web/src/views/exact/exact-frame.js';
 
 const view = {
   position: [0.2, 1, 4],
@@ -31,12 +32,11 @@ function blobs(n) {
   return { positions, sigma, floats, count: n };
 }
 
-test('every blob a pixel ray meets is in that pixel tile, front to back', () => {
-  const b = blobs(300);
-  const [w, h, tile] = [96, 64, 16];
+/** Every blob a ray of the `w × h` image meets is in its pixel's tile, listed front to back. */
+function checkTiles(b, w, h, tile) {
   const t = binBlobs(b, view, w, h, tile);
-  assert.equal(t.tilesX, 6);
-  assert.equal(t.tilesY, 4);
+  assert.equal(t.tilesX, Math.ceil(w / tile));
+  assert.equal(t.tilesY, Math.ceil(h / tile));
   for (let py = 0; py < h; py += 3) {
     for (let px = 0; px < w; px += 3) {
       const x = ((px + 0.5) / w * 2 - 1) * view.tanHalf * (w / h);
@@ -62,6 +62,28 @@ test('every blob a pixel ray meets is in that pixel tile, front to back', () => 
     }
   }
   assert.ok(!Array.from(t.list).includes(0), 'the blob behind the camera is dropped');
+}
+
+test('every blob a pixel ray meets is in that pixel tile, front to back, at each tile side the march picks', () => {
+  const b = blobs(300);
+  checkTiles(b, 96, 64, 16);
+  for (const [w, h] of [[40, 30], [96, 64], [160, 120], [320, 240]]) checkTiles(b, w, h, tileFor(w, h));
+});
+
+test('a smaller image gets smaller tiles, whose pixels visit fewer blobs', () => {
+  const b = blobs(2000);
+  const visits = (w, h, tile) => {
+    const t = binBlobs(b, view, w, h, tile);
+    let sum = 0;
+    for (let py = 0; py < h; py++) {
+      for (let px = 0; px < w; px++) sum += t.heads[4 * (Math.floor(py / tile) * t.tilesX + Math.floor(px / tile)) + 1];
+    }
+    return sum / (w * h);
+  };
+  assert.equal(tileFor(1920, 1080), 16);
+  assert.ok(tileFor(40, 30) < tileFor(160, 120) && tileFor(160, 120) < tileFor(320, 240));
+  const [small, fixed] = [visits(40, 30, tileFor(40, 30)), visits(40, 30, 16)];
+  assert.ok(small < fixed / 3, `a pixel of 40 × 30 visits ${small.toFixed(0)} blobs with its tiles, ${fixed.toFixed(0)} with 16-pixel ones`);
 });
 
 test('tiles hold far fewer blobs than the scene as blobs spread out', () => {

@@ -74,6 +74,7 @@ function exactFrame(sim, { view, width, height, fraction, res, tile }) {
     heads: padRows(tiles.heads, 4 * BLOBS_PER_ROW),
     list: padRows(tiles.list, BLOBS_PER_ROW),
     tilesX: tiles.tilesX,
+    tile,
   };
   const transfer = ['blobs', 'info', 'grid', 'columns', 'heads', 'list'].map((k) => result[k].buffer);
   return { result, transfer };

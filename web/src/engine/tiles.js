@@ -19,7 +19,7 @@ export function padRows(data, row) {
  * @param {{position: number[], forward: number[], right: number[], up: number[], tanHalf: number}} view
  *   camera basis (unit vectors) and tan(fov_y / 2)
  * @param {number} width @param {number} height pixels; tile rows count from the bottom (GL)
- * @param {number} tile tile side in pixels (the exact march's `TILE`)
+ * @param {number} tile tile side in pixels (the exact march's `tileFor`)
  * @returns {{tilesX: number, tilesY: number, heads: Float32Array, list: Float32Array}}
  *   heads: per tile [start, count, 0, 0]; list: blob indices, front to back within each tile
  */
@@ -45,19 +45,23 @@ export function binBlobs(blobs, view, width, height, tile) {
     if (z > r * 1.01) {
       const x = cx * view.right[0] + cy * view.right[1] + cz * view.right[2];
       const y = cx * view.up[0] + cy * view.up[1] + cz * view.up[2];
-      // A sphere's projection lies within r / sqrt(z² − r²) of its centre's (in tan units).
-      const spread = r / Math.sqrt(z * z - r * r);
-      const u = x / z;
-      const v = y / z;
       const px = (t) => ((t / (view.tanHalf * aspect)) * 0.5 + 0.5) * width;
       const py = (t) => ((t / view.tanHalf) * 0.5 + 0.5) * height;
-      // Off axis the projected circle stretches by up to sqrt(1 + u²) (resp. v): cover it.
-      const gu = spread * Math.hypot(1, u);
-      const gv = spread * Math.hypot(1, v);
-      x0 = Math.floor(px(u - gu) / tile);
-      x1 = Math.floor(px(u + gu) / tile);
-      y0 = Math.floor(py(v - gv) / tile);
-      y1 = Math.floor(py(v + gv) / tile);
+      // The two planes through the eye that hold its up axis and touch the sphere meet the
+      // image plane at X = (x z ± r √(x² + z² − r²)) / (z² − r²) (tan units), and the sphere's
+      // projection lies between them, exactly, however far off axis and however near; the
+      // same along the right axis for Y.
+      const d = z * z - r * r;
+      const extent = (a) => {
+        const h = r * Math.sqrt(a * a + d);
+        return [(a * z - h) / d, (a * z + h) / d];
+      };
+      const [u0, u1] = extent(x);
+      const [v0, v1] = extent(y);
+      x0 = Math.floor(px(u0) / tile);
+      x1 = Math.floor(px(u1) / tile);
+      y0 = Math.floor(py(v0) / tile);
+      y1 = Math.floor(py(v1) / tile);
       if (x1 < 0 || y1 < 0 || x0 >= tilesX || y0 >= tilesY) continue;
       x0 = Math.max(x0, 0);
       y0 = Math.max(y0, 0);

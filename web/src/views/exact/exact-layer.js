@@ -20,7 +20,6 @@ import { GRID_SHADOW_GLSL } from '../shaders/grid-shadow.js';
 import { LIGHTS_GLSL } from '../shaders/lights.js';
 import { MARCH_PREAMBLE } from '../shaders/march-preamble.js';
 import { OCCLUDERS_GLSL } from '../shaders/occluders.js';
-import { TILE } from './exact-frame.js';
 
 /**
  * Where the shadow grid's header (`frame::shadow_grid`: SHADOW_GRID_HEADER floats, lo xyz, hi
@@ -35,6 +34,7 @@ ${MARCH_PREAMBLE}
 uniform sampler2D headTex;    // a texel a tile: start, count
 uniform sampler2D listTex;    // blob indices (in .x)
 uniform int tilesX;
+uniform int tileSide;          // pixels (tileFor in exact-frame.js)
 
 const int W = ${BLOBS_PER_ROW};
 const float TRUNC = ${TRUNCATION.toFixed(2)};
@@ -89,7 +89,7 @@ void main() {
   vec3 rd, behind;
   float sMax;
   viewRay(vUv, rd, sMax, behind);
-  ivec2 tile = ivec2(gl_FragCoord.xy) / ${TILE};
+  ivec2 tile = ivec2(gl_FragCoord.xy) / tileSide;
   vec4 head = fetch(headTex, tile.y * tilesX + tile.x);
   int start = int(head.x);
   int count = int(head.y);
@@ -215,7 +215,7 @@ export class ExactMarchLayer extends MarchQuad {
       gridMax: gas.gridMax ?? { value: new THREE.Vector3(1, 1, 1) },
       gridRes: gas.gridRes ?? { value: 2 },
     });
-    super(fragmentShader, { ...gas, blobTex: { value: null }, headTex: { value: null }, listTex: { value: null }, tilesX: { value: 1 } });
+    super(fragmentShader, { ...gas, blobTex: { value: null }, headTex: { value: null }, listTex: { value: null }, tilesX: { value: 1 }, tileSide: { value: 16 } });
     this.gas = gas;
     this.blobs = new BlobTexture();
     this.textures = [];
@@ -242,6 +242,7 @@ export class ExactMarchLayer extends MarchQuad {
     u.listTex.value = floatTexture(frame.list, THREE.RedFormat);
     this.textures = [g.shadowTex.value, u.headTex.value, u.listTex.value];
     u.tilesX.value = frame.tilesX;
+    u.tileSide.value = frame.tile;
     return res > 1;
   }
 
