@@ -14,25 +14,11 @@ step "lint (rustfmt, ESLint; clippy lints the two builds below)"
 bash scripts/lint.sh --no-clippy
 # shellcheck source=scripts/clippy-env.sh
 source scripts/clippy-env.sh
-step "rust tests, and the wasm build beside them"
-# The browser's module builds for another target, in directories cargo locks apart from the
-# tests', at a lower priority: it takes the core the tests leave idle (a build's single-crate
-# stretches, a test binary's last long test) and finishes after them. Its output follows theirs.
-wasm_log="$(mktemp)"
-nice -n 10 bash scripts/build-wasm.sh >"$wasm_log" 2>&1 &
-wasm_build=$!
+step "rust tests"
 # One profile: the CLI the JavaScript tests call is the binary this run builds.
-rust_status=0
-(cd wasm-core && cargo test --release) || rust_status=$?
-step "wasm build (waiting for it)"
-wasm_status=0
-wait "$wasm_build" || wasm_status=$?
-cat "$wasm_log"
-rm -f "$wasm_log"
-if ((rust_status != 0 || wasm_status != 0)); then
-  echo "rust tests: exit $rust_status; wasm build: exit $wasm_status" >&2
-  exit 1
-fi
+(cd wasm-core && cargo test --release)
+step "wasm build"
+bash scripts/build-wasm.sh
 step "site build"
 npx vite build --config web/vite.config.js --logLevel warn
 npx vite build --config web/vite.embed.config.js --logLevel warn
