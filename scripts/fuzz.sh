@@ -9,5 +9,5 @@ cd "$(dirname "$0")/.."
 export PATH="$HOME/.cargo/bin:$PATH"
 inputs="${1:-1000000}"
 bash scripts/build-wasm.sh
-(cd wasm-core && WINDFIELD_FUZZ_INPUTS="$inputs" cargo test --release --test fuzz_inputs -- --nocapture 2>&1 | grep -E '^(scenes|blob lists|npy):|inputs in|panicked|test result')
+(cd wasm-core && WINDFIELD_FUZZ_INPUTS="$inputs" cargo test --release --test integration fuzz_inputs:: -- --nocapture 2>&1 | grep -E '^(scenes|blob lists|npy):|inputs in|panicked|test result')
 WINDFIELD_FUZZ_LINKS="${FUZZ_LINKS:-100000}" node --test tests/url-codec-fuzz.test.js 2>&1 | grep -E 'links:|^# (pass|fail)'
