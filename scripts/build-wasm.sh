@@ -17,7 +17,7 @@ out="$root/web/pkg/windfield_bg.wasm"
 # cargo runs quietly (warnings and errors still show); one line says when it has work to do.
 if [[ ! -f "$raw" ]]; then
   log "compiling the core for wasm32 from scratch (about 1.5 minutes on 2 cores)"
-elif [[ -n "$(find src Cargo.toml Cargo.lock .cargo -newer "$raw" -print -quit 2>/dev/null)" ]]; then
+elif [[ -n "$(find src fft-plans Cargo.toml Cargo.lock .cargo -newer "$raw" -print -quit 2>/dev/null)" ]]; then
   log "recompiling the core for wasm32 (about a minute on 2 cores)"
 fi
 cargo build --quiet --lib --profile wasm --target wasm32-unknown-unknown --no-default-features

@@ -17,16 +17,29 @@ use std::sync::Arc;
 /// Columns gathered per batch on the strided axes.
 pub const BATCH: usize = 16;
 
-/// rustfft's planner. In WASM (always built with SIMD) the SIMD planner alone, so the scalar
-/// planner's algorithms stay out of the module.
-#[cfg(not(target_arch = "wasm32"))]
-pub fn planner<T: FftNum>() -> rustfft::FftPlanner<T> {
-    rustfft::FftPlanner::new()
+/// rustfft's planners for `f32` and `f64` (natively AVX, SSE or scalar, chosen at run time; in
+/// WASM the SIMD planner alone), compiled once in `fft-plans/`.
+pub use fft_plans::{Planner32, Planner64};
+
+/// The float types of the compiled planners.
+pub trait Planned: FftNum {
+    /// The plans of the lengths `lens` in `direction`, from one planner (equal lengths share
+    /// a plan).
+    fn plans<const N: usize>(lens: [usize; N], direction: FftDirection) -> [Arc<dyn Fft<Self>>; N];
 }
 
-#[cfg(target_arch = "wasm32")]
-pub fn planner<T: FftNum>() -> rustfft::FftPlannerWasmSimd<T> {
-    rustfft::FftPlannerWasmSimd::new().expect("the WASM build enables simd128")
+impl Planned for f32 {
+    fn plans<const N: usize>(lens: [usize; N], direction: FftDirection) -> [Arc<dyn Fft<f32>>; N] {
+        let mut planner = Planner32::new();
+        lens.map(|n| planner.plan_fft(n, direction))
+    }
+}
+
+impl Planned for f64 {
+    fn plans<const N: usize>(lens: [usize; N], direction: FftDirection) -> [Arc<dyn Fft<f64>>; N] {
+        let mut planner = Planner64::new();
+        lens.map(|n| planner.plan_fft(n, direction))
+    }
 }
 
 /// Transforms every column of `data` with `fft` (of length n): `data` is a sequence of blocks of
@@ -221,17 +234,16 @@ pub(crate) mod pairs8 {
 
 /// A planned 4-D transform in one direction of arrays of extents `[nx, ny, nz, nt]`
 /// (any lengths rustfft takes).
-pub struct Fft4<T: FftNum> {
+pub struct Fft4<T: Planned> {
     shape: [usize; 4],
     axes: [Arc<dyn Fft<T>>; 4],
     scratch: Vec<Complex<T>>,
     columns: Vec<Complex<T>>,
 }
 
-impl<T: FftNum> Fft4<T> {
+impl<T: Planned> Fft4<T> {
     pub fn new(shape: [usize; 4], direction: FftDirection) -> Self {
-        let mut planner = planner::<T>();
-        let axes = shape.map(|n| planner.plan_fft(n, direction));
+        let axes = T::plans(shape, direction);
         let scratch_len = axes
             .iter()
             .map(|f| f.get_inplace_scratch_len())

@@ -140,7 +140,8 @@ mod simd {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rustfft::{FftDirection, FftPlanner};
+    use crate::field::fft4::Planner64;
+    use rustfft::FftDirection;
 
     fn naive(x: &[Complex<f64>], sign: f64) -> Vec<Complex<f64>> {
         let n = x.len();
@@ -171,7 +172,7 @@ mod tests {
             let x = signal(n);
             let xc: Vec<Complex<f64>> = x.iter().map(|&v| Complex::new(v, 0.0)).collect();
             let want = naive(&xc, -1.0);
-            let mut planner = FftPlanner::new();
+            let mut planner = Planner64::new();
             // Forward.
             let mut z: Vec<Complex<f64>> = (0..m)
                 .map(|j| Complex::new(x[2 * j], x[2 * j + 1]))

@@ -3,7 +3,7 @@
 //! of the field in docs/FORMATS.md), the spectral divergence (Eq. 2), the energy per component (isotropy, Eq. 7),
 //! the mean (zero), and the temporal spread per shell (Eq. 11).
 
-use crate::field::fft4::{planner, transform_columns};
+use crate::field::fft4::{transform_columns, Planner64};
 use crate::field::lattice::wave_number;
 use crate::field::real_fft::RealTwiddles;
 use crate::field::spectrum::SpectrumParams;
@@ -334,7 +334,7 @@ impl HalfSpectrum {
     const ROWS: usize = 64;
 
     fn new(size: [usize; 4]) -> Self {
-        let mut planner = planner::<f64>();
+        let mut planner = Planner64::new();
         let x_half = planner.plan_fft_forward(size[0] / 2);
         let axes = [1, 2, 3].map(|a| planner.plan_fft_forward(size[a]));
         let scratch_len = axes

@@ -18,7 +18,7 @@
 //! Transforms are single precision; û is computed in double precision and rounded once.
 
 use crate::error::ParamError;
-use crate::field::fft4::{planner, transform_column_range};
+use crate::field::fft4::{transform_column_range, Planner32};
 use crate::field::lattice::{wave_number, Lattice};
 use crate::field::real_fft::RealTwiddles;
 use crate::field::turbulent_field::{FieldParams, TurbulentField};
@@ -96,7 +96,7 @@ struct Transforms {
 impl Transforms {
     fn new(lattice: &Lattice) -> Self {
         let [nx, ny, nz, nt] = lattice.size;
-        let mut planner = planner::<f32>();
+        let mut planner = Planner32::new();
         let mut plan = |n| planner.plan_fft_inverse(n);
         let (t, z, y, x_half) = (plan(nt), plan(nz), plan(ny), plan(nx / 2));
         let scratch_len = [&t, &z, &y, &x_half]
