@@ -26,7 +26,8 @@ step "js unit tests"
 # Two files at a time: the runner's default, one fewer than the cores, is one here, while most
 # files wait on a child process (the CLI, the formats' readers) or keep one core busy.
 concurrency=()
-node --help | grep -q -- --test-concurrency && concurrency=(--test-concurrency=2)
+# (grep reads the whole help, not -q: node never writes into a closed pipe under pipefail.)
+node --help | grep -- --test-concurrency >/dev/null && concurrency=(--test-concurrency=2)
 node --test "${concurrency[@]}" tests/
 step "end-to-end tests (chromium)"
 npx playwright test --config e2e/playwright.config.js
