@@ -622,11 +622,14 @@ export class Player {
     // interval would otherwise take the turn each time (it waits on a timer, the loop on the
     // next animation frame, which is already due).
     const shown = this.#state.visible && this.#state.pageVisible;
+    const live = this.#state.scene && shown && !this.halted && !this.contextLost;
+    // Real time passes for the scene while a frame is in flight or not yet due (a frame cap):
+    // the next frame's steps catch up with it, as far as a frame may take.
+    if (live && this.#state.playing) this.accumulated += dt * this.#state.speed;
     const due = now - this.lastStart >= 1000 / this.maxFps;
-    if (this.#state.scene && !this.busy && !this.#waiting && shown && due && !this.halted && !this.contextLost) {
+    if (live && !this.busy && !this.#waiting && due) {
       let steps = 0;
       if (this.#state.playing) {
-        this.accumulated += dt * this.#state.speed;
         const h = this.#state.scene.simulation.dt;
         const most = this.#stepsPerFrame();
         steps = Math.min(Math.floor(this.accumulated / h), most);

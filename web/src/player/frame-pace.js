@@ -3,11 +3,21 @@
 // frame may take), and the pace the view itself keeps up, which the resolution governor follows
 // (`resolution.js`) while playing as well as while the camera moves.
 
-/** `stats().fps` counts the frames drawn in this window (ms): 0.2 frames a second shows as 0.2. */
+/** `stats().fps` counts the frames begun in this window (ms): 0.2 frames a second shows as 0.2. */
 const RATE_WINDOW_MS = 5000;
+/**
+ * A frame is late once the time since the last one exceeds this many of the window's mean
+ * intervals: only then does the open interval lower the rate (a frame whose step or drawing
+ * takes long does not), and with no frame begun in the window the rate is zero.
+ */
+const LATE = 1.5;
 
 export class FramePace {
-  /** When the last frames were drawn (ms), the newest last, within `RATE_WINDOW_MS`. */
+  /**
+   * When the last frames began (ms), the newest last: those within `RATE_WINDOW_MS` and the one
+   * before them (where their first interval began). Begun, not ended: a frame cap spaces the
+   * beginnings, while a frame's end comes as late as its step and its drawing take.
+   */
   #times = [];
   /** When the count began (ms): a window shorter than `RATE_WINDOW_MS` until it has run that long. */
   #since = null;
@@ -57,8 +67,9 @@ export class FramePace {
 
   /**
    * Counts a frame drawn from `start` to `end` (ms), while `playing`. `stats().fps` is the
-   * number of frames drawn in the last five seconds divided by five (by the time since the
-   * count began, before that), so it says what the screen shows, however slow; `stats().limitedBy`
+   * frames begun in the last five seconds per second of the intervals that bring them (from the
+   * frame before them), an interval still open counted once the next frame is late; so it says
+   * what the screen shows, however slow, and a steady rate shows as itself; `stats().limitedBy`
    * what holds the rate down: `worker` (frames spend most of their time waiting for the step),
    * `view` (drawing takes the time), `display` (the frames keep up with the display) or `paused`.
    * The view's own pace is a frame's time less its wait for the worker, so the resolution
@@ -66,7 +77,7 @@ export class FramePace {
    * governor changed the resolution (the view's resolution follows it).
    */
   drawn(start, end, { playing }) {
-    this.#times.push(end);
+    this.#times.push(start);
     this.#since ??= start;
     this.stats.frames += 1;
     this.#countRate(end);
@@ -97,15 +108,34 @@ export class FramePace {
     this.#since = null;
   }
 
-  /** `stats().fps` at `now` (ms): the frames of the last five seconds, per second. */
+  /**
+   * `stats().fps` at `now` (ms): the frames begun in the last five seconds over the time their
+   * intervals span, and the open one since the last frame beyond `LATE` intervals. With a
+   * single frame, over the time since the count began (at least a second); with none in the
+   * window, zero unless the last one is only a little late for a slow, steady rate.
+   */
   #countRate(now) {
     const times = this.#times;
-    while (times.length && times[0] <= now - RATE_WINDOW_MS) times.shift();
-    if (this.#since === null) {
+    const start = now - RATE_WINDOW_MS;
+    while (times.length > 2 && times[1] <= start) times.shift();
+    const last = times.at(-1);
+    if (this.#since === null || last === undefined) {
       this.stats.fps = 0;
       return;
     }
-    const seconds = Math.min(RATE_WINDOW_MS, Math.max(now - this.#since, 1000)) / 1000;
-    this.stats.fps = times.length / seconds;
+    if (times.length === 1) {
+      const seconds = Math.min(RATE_WINDOW_MS, Math.max(now - this.#since, 1000)) / 1000;
+      this.stats.fps = last > start ? 1 / seconds : 0;
+      return;
+    }
+    const intervals = times.length - 1;
+    const span = last - times[0];
+    const mean = span / intervals;
+    const open = now - last;
+    if (last <= start && open > LATE * mean) {
+      this.stats.fps = 0;
+      return;
+    }
+    this.stats.fps = (1000 * intervals) / Math.max(span + Math.max(open - LATE * mean, 0), 1);
   }
 }
