@@ -12,7 +12,7 @@
 
 use std::sync::Arc;
 
-pub use rustfft::{num_complex, Fft, FftDirection, FftNum};
+use rustfft::{Fft, FftDirection, FftNum};
 
 #[cfg(not(target_arch = "wasm32"))]
 type Inner<T> = rustfft::FftPlanner<T>;

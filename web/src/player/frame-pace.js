@@ -8,7 +8,8 @@ const RATE_WINDOW_MS = 5000;
 /**
  * A frame is late once the time since the last one exceeds this many of the window's mean
  * intervals: only then does the open interval lower the rate (a frame whose step or drawing
- * takes long does not), and with no frame begun in the window the rate is zero.
+ * takes long does not), and once the next frame is late with none begun in the window, the
+ * rate is zero.
  */
 const LATE = 1.5;
 
