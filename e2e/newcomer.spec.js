@@ -213,12 +213,15 @@ test('the status line\'s frames per second agree with frames counted over its fi
 });
 
 test('a damaged link\'s notice names the scene shown and stays until dismissed', async ({ page }) => {
+  // The page's clock is Playwright's: it runs as real time does, and jumps ahead past every
+  // timer that would hide a notice (a transient one goes after 4 s) without waiting for them.
+  await page.clock.install();
   await open(page, './?preset=steam-mug#scene=1.garbage!!');
   const notice = page.locator('#message');
   await expect(notice).toContainText('could not be read');
   await expect(notice).not.toContainText('atob');
   await expect(notice).toContainText('the link is damaged or cut short');
-  await page.waitForTimeout(10_500);
+  await page.clock.fastForward(10_500);
   await expect(notice).toBeVisible();
   const shown = await page.evaluate(() => window.windfield.getScene().seed);
   const named = (await notice.textContent()).match(/Showing (.*) instead/)[1];

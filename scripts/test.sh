@@ -14,11 +14,22 @@ step "lint (rustfmt, ESLint; clippy lints the two builds below)"
 bash scripts/lint.sh --no-clippy
 # shellcheck source=scripts/clippy-env.sh
 source scripts/clippy-env.sh
+step "wasm build"
+bash scripts/build-wasm.sh --compile
+# wasm-bindgen and wasm-opt (one thread, about a minute) run beside the Rust tests, at a low
+# priority: they take what the Rust build and tests leave of the two cores.
+finish_log="wasm-core/target/build-wasm-finish.log"
+nice -n 15 bash scripts/build-wasm.sh --finish >"$finish_log" 2>&1 &
+finish_pid=$!
+trap 'kill "$finish_pid" 2>/dev/null || true' EXIT
 step "rust tests"
 # One profile: the CLI the JavaScript tests call is the binary this run builds.
 (cd wasm-core && cargo test --release)
-step "wasm build"
-bash scripts/build-wasm.sh
+step "wasm build: wasm-bindgen and wasm-opt"
+finish_status=0
+wait "$finish_pid" || finish_status=$?
+cat "$finish_log"
+((finish_status == 0)) || { echo "the WASM build's last stage failed (status $finish_status)" >&2; exit "$finish_status"; }
 step "site build"
 npx vite build --config web/vite.config.js --logLevel warn
 npx vite build --config web/vite.embed.config.js --logLevel warn
