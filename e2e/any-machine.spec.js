@@ -4,12 +4,14 @@
 // that keeps up, input handled at once, scenes that show gas within seconds, stirring at any
 // frame rate, an honest status line, a phone's layout, a clean console, reduced motion and
 // hidden tabs. Most use Playwright's own `test` (no full-version fixture: see helpers.js).
-import { test, expect } from '@playwright/test';
+import { test } from '@playwright/test';
 import { readFileSync } from 'node:fs';
-import { test as fullTest, collectErrors, toSegment, worldAt } from './helpers.js';
+import { expect, test as fullTest, collectErrors, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
 const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
+/** A preset's seed (each differs from the one before it in the picker). */
+const presetSeed = (name) => JSON.parse(readFileSync(new URL(`public/scenes/${name}.json`, root), 'utf8')).seed;
 
 async function open(page, url = './') {
   await page.goto(url);
@@ -85,12 +87,13 @@ test('a picker click shows gas within 5 s for every preset', { tag: '@timing' },
     const before = await page.evaluate(() => window.windfield.stats().frames);
     const t0 = Date.now();
     await card.click();
-    // The first frame drawn after the click with gas in it (the scene's own, not the poster).
-    await page.waitForFunction(({ frames, preset }) => {
+    // The first frame drawn after the click with gas in it (the scene's own, not the poster and
+    // not the scene before, whose frames go on until the new one is ready).
+    await page.waitForFunction(({ frames, preset, seed }) => {
       const s = window.windfield.stats();
       return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset)
-        && s.frames > frames && s.blobs > 0;
-    }, { frames: before, preset: name }, { timeout: 30_000, polling: 50 });
+        && window.windfield.getScene()?.seed === seed && s.frames > frames && s.blobs > 0;
+    }, { frames: before, preset: name, seed: presetSeed(name) }, { timeout: 30_000, polling: 50 });
     times[name] = Date.now() - t0;
   }
   console.log(`click to first frame with gas (ms): ${JSON.stringify(times)}`);

@@ -128,17 +128,21 @@ test('a recording neither mixes scenes nor takes steps asked for meanwhile', asy
     const load = w.setScene(plume);
     await new Promise((res) => setTimeout(res, 20));
     const video = w.recordWebM({ frames: 8, width: 64, height: 48, fps: 8 });
-    await new Promise((res) => setTimeout(res, 20));
+    // Asked for once the recording has been: refused, however soon the engine answers.
     const step = w.step(50).then(() => 'stepped', (e) => e.message);
-    const [loaded, recorded, stepped] = await Promise.all([
+    const late = w.setScene({ ...plume, seed: plume.seed + 1 }).then(() => 'loaded', (e) => e.message);
+    const [loaded, recorded, stepped, lateLoad] = await Promise.all([
       load.then(() => 'loaded', (e) => e.message),
       video.then((v) => v.size, (e) => e.message),
       step,
+      late,
     ]);
-    return { t0, loaded, recorded, stepped, t1: w.stats().time, dt: w.getScene().simulation.dt };
+    return { t0, loaded, recorded, stepped, lateLoad, t1: w.stats().time, dt: w.getScene().simulation.dt, seed: w.getScene().seed };
   }, smallPlume);
   expect(typeof r.recorded === 'number' || /VP8|encode/.test(r.recorded)).toBe(true);
   expect(r.stepped).toMatch(/a recording is under way: take steps once it has ended/);
+  expect(r.lateLoad).toMatch(/a recording is under way: load the scene once it has ended/);
+  expect(r.seed).not.toBe(smallPlume.seed + 1);
   // Loaded before the recording (which then recorded seven steps of it) or after it (the scene
   // at t = 0), or refused during it: never in the middle.
   if (r.loaded === 'loaded') expect([0, 7 * r.dt].some((t) => Math.abs(r.t1 - t) < 1e-9)).toBe(true);

@@ -66,6 +66,12 @@ test('the picker loads each preset by click or keyboard and puts it in the URL',
     const url = new URL(page.url());
     expect(url.searchParams.get('preset')).toBe(name === 'default' ? null : name);
   }
+  // A card chosen before the last one's scene was ready: the later scene loads, and nothing
+  // says a load failed.
+  await cards.nth(1).click();
+  await cards.nth(2).click();
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(catalog[2].name).seed);
+  await expect(page.locator('#message')).toBeHidden();
   // Arrow keys move between the cards.
   await cards.nth(0).focus();
   await page.keyboard.press('ArrowRight');

@@ -126,6 +126,8 @@ export class Player {
   #loads = 0;
   /** Resolves once the latest load's request has gone to the engine (or it ended without one). */
   #loadSent = Promise.resolve();
+  /** Whether a recording has been asked for and not yet ended (steps are refused meanwhile). */
+  #recordingAsked = false;
 
   /**
    * @param {HTMLCanvasElement} canvas
@@ -273,7 +275,7 @@ export class Player {
 
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
-    if (this.recording) throw recordingRefuses('load the scene');
+    if (this.recording || this.#recordingAsked) throw recordingRefuses('load the scene');
     const text = sceneText(scene);
     return this.#loadTurn(text);
   }
@@ -396,7 +398,7 @@ export class Player {
    * clear Error and keeps the scene as it was. Resolves with the scene as the core normalised it.
    */
   async edit(scene) {
-    if (this.recording) throw recordingRefuses('change the scene');
+    if (this.recording || this.#recordingAsked) throw recordingRefuses('change the scene');
     const text = sceneText(scene);
     return this.exclusive(() => this.#edit(text));
   }
@@ -859,21 +861,28 @@ export class Player {
     wholeNumber('recordWebM: height', height, 2, 4096);
     number('recordWebM: fps', fps, 0, 240);
     oneOf('recordWebM: mode', mode, VIEWS);
-    // One step a frame: the run budget (docs/FORMATS.md, the command line) holds before anything is recorded.
-    await this.#engine.request('checkSteps', { steps: frames });
-    if (this.recording) throw new Error('a recording is under way already');
-    // One scene, one size: the scene may not change while the video is made.
-    this.recording = true;
+    if (this.recording || this.#recordingAsked) throw new Error('a recording is under way already');
+    // Steps asked for from now on are refused, however long the budget's check below takes; a
+    // load asked for before it still lands first (the engine answers in order).
+    this.#recordingAsked = true;
     try {
-      return await this.offscreen({ mode, width, height }, () => recordWebM({
-        canvas: this.#view.canvas,
-        frames,
-        fps,
-        renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
-        onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
-      }));
+      // One step a frame: the run budget (docs/FORMATS.md, the command line) holds before anything is recorded.
+      await this.#engine.request('checkSteps', { steps: frames });
+      // One scene, one size: the scene may not change while the video is made.
+      this.recording = true;
+      try {
+        return await this.offscreen({ mode, width, height }, () => recordWebM({
+          canvas: this.#view.canvas,
+          frames,
+          fps,
+          renderFrame: (k) => this.advance(k === 0 ? 0 : 1),
+          onProgress: (p) => this.hooks.onProgress?.(p < 1 ? p : 1, 'Recording video'),
+        }));
+      } finally {
+        this.recording = false;
+      }
     } finally {
-      this.recording = false;
+      this.#recordingAsked = false;
     }
   }
 
@@ -1051,7 +1060,7 @@ export class Player {
   async step(n = 1) {
     // More steps than the run budget allows are refused by the engine, in the budget's words.
     atLeast('steps:', n, 0);
-    if (this.recording) throw recordingRefuses('take steps');
+    if (this.recording || this.#recordingAsked) throw recordingRefuses('take steps');
     return this.exclusive(() => this.advance(n));
   }
 
