@@ -6,12 +6,10 @@
 // hidden tabs. Most use Playwright's own `test` (no full-version fixture: see helpers.js).
 import { test } from '@playwright/test';
 import { readFileSync } from 'node:fs';
-import { expect, test as fullTest, collectErrors, toSegment, worldAt } from './helpers.js';
+import { expect, test as fullTest, collectErrors, presetFile, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
 const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
-/** A preset's seed (each differs from the one before it in the picker). */
-const presetSeed = (name) => JSON.parse(readFileSync(new URL(`public/scenes/${name}.json`, root), 'utf8')).seed;
 
 async function open(page, url = './') {
   await page.goto(url);
@@ -88,12 +86,13 @@ test('a picker click shows gas within 5 s for every preset', { tag: '@timing' },
     const t0 = Date.now();
     await card.click();
     // The first frame drawn after the click with gas in it (the scene's own, not the poster and
-    // not the scene before, whose frames go on until the new one is ready).
+    // not the scene before, whose frames go on until the new one is ready; each preset's seed
+    // differs from the one before it in the picker).
     await page.waitForFunction(({ frames, preset, seed }) => {
       const s = window.windfield.stats();
       return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset)
         && window.windfield.getScene()?.seed === seed && s.frames > frames && s.blobs > 0;
-    }, { frames: before, preset: name, seed: presetSeed(name) }, { timeout: 30_000, polling: 50 });
+    }, { frames: before, preset: name, seed: presetFile(name).seed }, { timeout: 30_000, polling: 50 });
     times[name] = Date.now() - t0;
   }
   console.log(`click to first frame with gas (ms): ${JSON.stringify(times)}`);

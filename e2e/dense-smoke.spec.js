@@ -6,7 +6,7 @@
 // stills (wasm-core/tests/golden/, the native core's reference of the same scene at the same time
 // and size), which the page's gas matches step for step.
 import { readFileSync, writeFileSync } from 'node:fs';
-import { expect, test, collectErrors } from './helpers.js';
+import { expect, test, collectErrors, fullVersion } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 
@@ -62,14 +62,8 @@ test.beforeAll(async ({ browser }, testInfo) => {
   for (const { name, query, scene, golden } of CASES) {
     if (!golden) continue;
     const context = await browser.newContext({ baseURL, viewport });
-    // The full version, as the tests' own pages get it (e2e/helpers.js).
-    await context.addInitScript(() => {
-      try {
-        sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true }));
-      } catch {
-        // about:blank has no storage.
-      }
-    });
+    // The full version, as the tests' own pages get it.
+    await context.addInitScript(fullVersion);
     const page = await context.newPage();
     const errors = collectErrors(page);
     const stepped = stepToStill(page, query, scene);

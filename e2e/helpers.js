@@ -1,7 +1,25 @@
 // Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics and the
 // panel's folders.
 
+import { readFileSync } from 'node:fs';
 import { test as base, expect as baseExpect } from '@playwright/test';
+
+/**
+ * An init script that opens the page in the full version (`page.addInitScript(fullVersion)`, or
+ * a context's): the choice a visitor makes in the panel, kept for the visit.
+ */
+export function fullVersion() {
+  try {
+    sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true }));
+  } catch {
+    // A page without storage (about:blank): nothing to choose there.
+  }
+}
+
+/** The preset `name` as shipped (`public/scenes/NAME.json`), parsed. */
+export function presetFile(name) {
+  return JSON.parse(readFileSync(new URL(`../public/scenes/${name}.json`, import.meta.url), 'utf8'));
+}
 
 /**
  * The tests' `test`: every page opens in the full version, as on a machine with a GPU (these
@@ -10,13 +28,7 @@ import { test as base, expect as baseExpect } from '@playwright/test';
  */
 export const test = base.extend({
   page: async ({ page }, use) => {
-    await page.addInitScript(() => {
-      try {
-        sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true }));
-      } catch {
-        // A page without storage (about:blank): nothing to choose there.
-      }
-    });
+    await page.addInitScript(fullVersion);
     await use(page);
   },
 });

@@ -2,10 +2,9 @@
 // the gas, the pointer stirs it, the camera stays above the floor, the status line tells the
 // truth, notices stay, and no page overflows on a phone.
 import { readFileSync } from 'node:fs';
-import { expect, test, canvasLuminance, collectErrors, openFolder, setNumber, toSegment, worldAt } from './helpers.js';
+import { expect, test, canvasLuminance, collectErrors, openFolder, presetFile, setNumber, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
-const presetFile = (name) => JSON.parse(readFileSync(new URL(`public/scenes/${name}.json`, root), 'utf8'));
 const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
 
 async function open(page, url = './?view=points') {

@@ -5,7 +5,7 @@
 // still draws within 3 dB of its full-precision image's PSNR against the reference still, and
 // `stats()` says what was given up; the chimney's million blobs on such a phone run under the
 // memory budget's blob cap, with a notice, and the tab goes on.
-import { expect, test, collectErrors } from './helpers.js';
+import { expect, test, collectErrors, fullVersion } from './helpers.js';
 import { writeFileSync } from 'node:fs';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
@@ -67,7 +67,7 @@ const CASES = [
 /** A page of the full version on the GPU `gpu`, its console errors collected. */
 async function pageOn(browser, gpu) {
   const page = await browser.newPage({ viewport: { width: 900, height: 580 } });
-  await page.addInitScript(() => sessionStorage.setItem('windfield.choices', JSON.stringify({ full: true })));
+  await page.addInitScript(fullVersion);
   await page.addInitScript(phoneGpu, gpu);
   return { page, errors: collectErrors(page) };
 }

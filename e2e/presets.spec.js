@@ -1,8 +1,8 @@
 // The paper's scenes (§6) as presets: each loads from `?preset=NAME` without errors, reaches its
 // blob count, and its real-time view and exact march match the WASM reference still of the same
 // blob list (≥ 30 dB). Meshes (mug, teapot) are drawn as the stand-ins the still uses.
-import { readFileSync, writeFileSync } from 'node:fs';
-import { expect, test, collectErrors } from './helpers.js';
+import { writeFileSync } from 'node:fs';
+import { expect, test, collectErrors, presetFile } from './helpers.js';
 import { decodePng } from '../tests/support/png.js';
 import { psnr } from '../web/src/image-metrics.js';
 
@@ -28,7 +28,7 @@ for (const [name, seconds, least] of PRESETS) {
     await page.goto(`./?preset=${name}&view=points`);
     await page.waitForFunction(() => window.windfield !== undefined);
     await page.evaluate(() => window.windfield.ready);
-    const file = JSON.parse(readFileSync(new URL(`../public/scenes/${name}.json`, import.meta.url), 'utf8'));
+    const file = presetFile(name);
     const steps = Math.round(seconds / file.simulation.dt);
     const { scene, gpu, ref, exact, small, blobs } = await page.evaluate(async (n) => {
       const w = window.windfield;
