@@ -126,7 +126,10 @@ export class Player {
   #loads = 0;
   /** Resolves once the latest load's request has gone to the engine (or it ended without one). */
   #loadSent = Promise.resolve();
-  /** Whether a recording has been asked for and not yet ended (steps are refused meanwhile). */
+  /**
+   * Whether a recording has been asked for and not yet ended: steps, loads and edits asked for
+   * meanwhile are refused. (`recording`, set once its budget is checked, spans part of it.)
+   */
   #recordingAsked = false;
 
   /**
@@ -275,7 +278,7 @@ export class Player {
 
   /** Loads `scene` (validated by the core); rejects with a clear Error and keeps the old one. */
   async load(scene) {
-    if (this.recording || this.#recordingAsked) throw recordingRefuses('load the scene');
+    if (this.#recordingAsked) throw recordingRefuses('load the scene');
     const text = sceneText(scene);
     return this.#loadTurn(text);
   }
@@ -398,7 +401,7 @@ export class Player {
    * clear Error and keeps the scene as it was. Resolves with the scene as the core normalised it.
    */
   async edit(scene) {
-    if (this.recording || this.#recordingAsked) throw recordingRefuses('change the scene');
+    if (this.#recordingAsked) throw recordingRefuses('change the scene');
     const text = sceneText(scene);
     return this.exclusive(() => this.#edit(text));
   }
@@ -861,7 +864,7 @@ export class Player {
     wholeNumber('recordWebM: height', height, 2, 4096);
     number('recordWebM: fps', fps, 0, 240);
     oneOf('recordWebM: mode', mode, VIEWS);
-    if (this.recording || this.#recordingAsked) throw new Error('a recording is under way already');
+    if (this.#recordingAsked) throw new Error('a recording is under way already');
     // Steps asked for from now on are refused, however long the budget's check below takes; a
     // load asked for before it still lands first (the engine answers in order).
     this.#recordingAsked = true;
@@ -1060,7 +1063,7 @@ export class Player {
   async step(n = 1) {
     // More steps than the run budget allows are refused by the engine, in the budget's words.
     atLeast('steps:', n, 0);
-    if (this.recording || this.#recordingAsked) throw recordingRefuses('take steps');
+    if (this.#recordingAsked) throw recordingRefuses('take steps');
     return this.exclusive(() => this.advance(n));
   }
 

@@ -519,7 +519,7 @@ async function choosePreset(name) {
     picker.select(name);
   } catch (e) {
     // Another card chosen before this scene was ready: that one loads instead, nothing failed.
-    if (e.superseded || e.message.startsWith('cancelled')) return;
+    if (e.message.startsWith('cancelled')) return;
     showMessage(`The ${titleOf(name).toLowerCase()} scene could not be loaded (${e instanceof NoSuchPreset ? 'it is missing' : e.message}). Still showing ${sceneName}.`);
   }
 }
