@@ -6,6 +6,7 @@
 // times. Prints {name, value, unit} objects.
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
+import { plumeSpheres } from './plume-spheres.js';
 import { root, withSite } from './site.mjs';
 
 /** Gzipped size (KiB) of the files under `dir` whose names match `pattern`. */
@@ -18,18 +19,6 @@ export function gzipKiB(dir, pattern) {
   }
   return total / 1024;
 }
-
-/**
- * `count` solid spheres of radius 1.2 cm through the dense plume's region (as examples/bench.rs
- * and scripts/bench.mjs).
- */
-export const plumeSpheres = (count) => Array.from({ length: count }, (_, i) => {
-  const f = (k) => ((i + 0.5) * k) % 1;
-  return {
-    type: 'sphere', center: [0.6 * f(0.618034) - 0.3, 1.05 * f(0.4142136) + 0.15, 0.6 * f(0.7320508) - 0.3],
-    radius: 0.012, color: [0.5, 0.5, 0.5], solid: true,
-  };
-});
 
 /** Runs the benchmarks against the built site; returns the results. */
 export async function benchBrowser() {

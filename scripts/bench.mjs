@@ -7,7 +7,8 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
-import { benchBrowser, gzipKiB, plumeSpheres } from './bench-browser.mjs';
+import { benchBrowser, gzipKiB } from './bench-browser.mjs';
+import { plumeSpheres } from './plume-spheres.js';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const json = process.argv.includes('--json');

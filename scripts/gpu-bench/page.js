@@ -10,7 +10,11 @@
 // (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
 // plume for S seconds in the playground's own view, filling the window, and reports the frame
 // rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
+// `solids=16,64,256` then steps the plume of each count among that many solid spheres (as `npm run
+// bench`), with each stepper (the GPU stepper takes at most 64 solids; beyond, its figure says
+// which stepper stepped).
 import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
+import { plumeSpheres } from './plume-spheres.js';
 
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
@@ -67,6 +71,18 @@ async function main() {
       }
       await frame('raymarch', 640, 360, 'standard');
       await frame('points', 1920, 1080);
+    }
+  }
+  for (const count of (query.get('solids') || '').split(',').filter(Boolean).map(Number)) {
+    const among = structuredClone(plume);
+    among.field.boundary_width = 0.02;
+    among.render.objects = plumeSpheres(count);
+    for (const n of counts) {
+      for (const stepper of steppers) {
+        await w.setStepper(stepper);
+        const blobs = await plumeOf(w, among, n);
+        log({ blobs, solids: count, ...(await stepTimes(w)) });
+      }
     }
   }
   const seconds = Number(query.get('live') || 0);

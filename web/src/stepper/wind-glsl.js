@@ -440,26 +440,23 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
   }
 }
 
-/** The order the core visits solids in: the finite ones, then the planes. */
-int solidInOrder(int row, int k, int solids) {
-  int seen = 0;
-  for (int pass = 0; pass < 2; pass++) {
-    for (int j = 0; j < solids; j++) {
-      bool isPlane = tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)};
-      if (isPlane == (pass == 1)) {
-        if (seen == k) return j;
-        seen++;
-      }
-    }
-  }
-  return 0;
+/**
+ * Whether solid j is visited in the given pass of the core's order: the finite solids (pass 0),
+ * then the planes (pass 1), each in the scene's order. Two passes over the table visit them in
+ * that order at a cost of two texel reads a solid.
+ */
+bool inPass(int row, int j, int pass) {
+  return (tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)}) == (pass == 1);
 }
 
 /** Whether x lies inside a solid; its signed distance and normal in \`dn\` when it does. */
 bool insideSolid(int row, int solids, vec3 x, out vec4 dn) {
-  for (int k = 0; k < solids; k++) {
-    dn = solidDistance(row, solidInOrder(row, k, solids), x, 0.0);
-    if (dn.w < 0.0) return true;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int j = 0; j < solids; j++) {
+      if (!inPass(row, j, pass)) continue;
+      dn = solidDistance(row, j, x, 0.0);
+      if (dn.w < 0.0) return true;
+    }
   }
   return false;
 }
@@ -497,12 +494,14 @@ void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small
   float width = tableTexel(row, 5).y;
   int nearest = -1;
   vec4 best = vec4(0.0);
-  for (int k = 0; k < solids; k++) {
-    int j = solidInOrder(row, k, solids);
-    vec4 dn = solidDistance(row, j, x, solidEdge(row, j));
-    if (dn.w < width && (nearest < 0 || dn.w < best.w)) {
-      nearest = j;
-      best = dn;
+  for (int pass = 0; pass < 2; pass++) {
+    for (int j = 0; j < solids; j++) {
+      if (!inPass(row, j, pass)) continue;
+      vec4 dn = solidDistance(row, j, x, solidEdge(row, j));
+      if (dn.w < width && (nearest < 0 || dn.w < best.w)) {
+        nearest = j;
+        best = dn;
+      }
     }
   }
   if (nearest >= 0) {
