@@ -13,6 +13,30 @@ async function open(page, url = './?view=points') {
   await page.evaluate(() => window.windfield.ready);
 }
 
+/**
+ * Holds back the page's requests for `pattern` until `release()`: `asked` resolves when the page
+ * asks for the file; `release` lets the request through and resolves once the page has the
+ * whole answer and two frames have passed (time for its handlers to run).
+ */
+async function holdFile(page, pattern) {
+  let asked;
+  let go;
+  const askedP = new Promise((r) => { asked = r; });
+  const released = new Promise((r) => { go = r; });
+  await page.route(pattern, async (route) => {
+    asked();
+    await released;
+    await route.continue();
+  });
+  const release = async () => {
+    const answered = page.waitForResponse((r) => r.url().includes(pattern.replace('**/', '')));
+    go();
+    await (await answered).finished();
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  };
+  return { asked: askedP, release };
+}
+
 /** Whether every value `want` gives is in `have` (a scene normalised by the core adds defaults). */
 function holds(have, want, path = 'scene') {
   if (Array.isArray(want) || (want && typeof want === 'object')) {
@@ -71,10 +95,43 @@ test('the picker loads each preset by click or keyboard and puts it in the URL',
   await cards.nth(2).click();
   await expect.poll(() => page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(catalog[2].name).seed);
   await expect(page.locator('#message')).toBeHidden();
+  // A card whose file arrives after the next card's scene is shown: the later choice stays.
+  const slow = catalog[3].name;
+  const held = await holdFile(page, `**/scenes/${slow}.json`);
+  await cards.nth(3).click();
+  await held.asked;
+  await cards.nth(4).click();
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(catalog[4].name).seed);
+  await held.release();
+  // Had the late file been loaded, its scene's poster would show at once, before the load.
+  expect(await page.locator('#poster').getAttribute('src')).not.toContain(`thumbs/${slow}.png`);
+  expect(await page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(catalog[4].name).seed);
+  await expect(cards.nth(4)).toHaveAttribute('aria-checked', 'true');
+  await expect(page.locator('#message')).toBeHidden();
+  expect(new URL(page.url()).searchParams.get('preset')).toBe(catalog[4].name);
   // Arrow keys move between the cards.
   await cards.nth(0).focus();
   await page.keyboard.press('ArrowRight');
   await expect(cards.nth(1)).toBeFocused();
+  expect(errors).toEqual([]);
+});
+
+test('a card chosen while the link\'s preset is still on its way: the card\'s scene is shown, and nothing says a load failed', async ({ page }) => {
+  const errors = collectErrors(page);
+  const [linked, chosen] = [catalog[2].name, catalog[5].name];
+  const held = await holdFile(page, `**/scenes/${linked}.json`);
+  await page.goto(`./?view=points&preset=${linked}`);
+  await held.asked;
+  const card = page.locator('#picker [role="radio"]').nth(5);
+  await card.click();
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene()?.seed)).toBe(presetFile(chosen).seed);
+  await held.release();
+  // The page's first scene settled (its controls are built then): the card's scene stays.
+  await page.evaluate(() => window.windfield.ready);
+  expect(await page.evaluate(() => window.windfield.getScene()?.seed)).toBe(presetFile(chosen).seed);
+  await expect(card).toHaveAttribute('aria-checked', 'true');
+  await expect(page.locator('#message')).toBeHidden();
+  expect(new URL(page.url()).searchParams.get('preset')).toBe(chosen);
   expect(errors).toEqual([]);
 });
 

@@ -182,7 +182,7 @@ async function tryEdit(next) {
     await player.edit(next);
     if (!sceneName.endsWith(', edited')) sceneName += ', edited';
   } catch (e) {
-    if (e.message.startsWith('cancelled')) return; // a newer scene is loading
+    if (isCancelled(e)) return; // a newer scene is loading
     showMessage(`That change was not applied: ${e.message}`);
     controls?.refresh();
   }
@@ -470,11 +470,14 @@ function wireImport() {
   $('#import').addEventListener('change', async (event) => {
     const file = event.target.files?.[0];
     if (!file) return;
+    const current = asked();
     try {
-      await loadScene(JSON.parse(await file.text()), `the imported scene ${file.name}`);
+      const text = await file.text();
+      current();
+      await loadScene(JSON.parse(text), `the imported scene ${file.name}`);
       picker?.select(null);
     } catch (e) {
-      showMessage(`Could not import ${file.name}: ${e.message}. Still showing ${sceneName}.`);
+      if (!isCancelled(e)) showMessage(`Could not import ${file.name}: ${e.message}. Still showing ${sceneName}.`);
     }
     event.target.value = '';
   });
@@ -519,10 +522,28 @@ async function choosePreset(name) {
     picker.select(name);
   } catch (e) {
     // Another card chosen before this scene was ready: that one loads instead, nothing failed.
-    if (e.message.startsWith('cancelled')) return;
+    if (isCancelled(e)) return;
     showMessage(`The ${titleOf(name).toLowerCase()} scene could not be loaded (${e instanceof NoSuchPreset ? 'it is missing' : e.message}). Still showing ${sceneName}.`);
   }
 }
+
+/** Scenes asked for so far (a preset chosen, a file imported, the browser's back and forward). */
+let asks = 0;
+
+/**
+ * Counts a scene asked for, whose file is still to be read; the function it returns throws
+ * 'cancelled' once another scene has been asked for since. So a file that arrives late (a
+ * first card's preset after a second card's) never replaces the scene asked for after it.
+ */
+function asked() {
+  const ask = ++asks;
+  return () => {
+    if (ask !== asks) throw new Error('cancelled: another scene was asked for while this one was read');
+  };
+}
+
+/** Whether a load failed only because another scene was asked for meanwhile. */
+const isCancelled = (e) => String(e?.message).startsWith('cancelled');
 
 /** A preset that is not there: no file of that name, or a file that is not a scene. */
 class NoSuchPreset extends Error {}
@@ -532,10 +553,12 @@ class NoSuchPreset extends Error {}
  * lower-case letters, digits and hyphens), with the core's message when it is not a valid scene.
  */
 async function loadPreset(name) {
+  const current = asked();
   if (!PRESET_NAME.test(name)) throw new NoSuchPreset(name);
   const response = await fetch(new URL(`./scenes/${name}.json`, document.baseURI)).catch(() => null);
   const isJson = /json/.test(response?.headers.get('content-type') ?? '');
   const scene = response?.ok && isJson ? await response.json().catch(() => null) : null;
+  current();
   if (!scene || typeof scene !== 'object' || !('version' in scene)) throw new NoSuchPreset(name);
   const label = name === DEFAULT ? nameOfDefault() : `the ${titleOf(name).toLowerCase()} scene`;
   return loadScene(scene, label, new URL(`./scenes/thumbs/${name}.png`, document.baseURI).href);
@@ -544,7 +567,8 @@ async function loadPreset(name) {
 /**
  * The scene the page opens on: the link's, else `?preset=`, else the default scene. What could
  * not be opened is said in one notice naming the scene shown instead. Resolves with the preset
- * shown (null for the link's scene).
+ * shown (null for the link's scene), or undefined when a card was chosen before it was ready
+ * (that card's scene is the one shown then, and nothing failed).
  */
 async function initialScene() {
   const problems = [];
@@ -557,6 +581,7 @@ async function initialScene() {
       await loadScene(fromHash, 'the scene from the link');
       return null;
     } catch (e) {
+      if (isCancelled(e)) return undefined;
       problems.push(`This link's scene is not valid (${e.message}).`);
     }
   }
@@ -567,6 +592,7 @@ async function initialScene() {
       await loadPreset(preset);
       shown = preset;
     } catch (e) {
+      if (isCancelled(e)) return undefined;
       const names = presets.map((p) => p.name).join(', ');
       problems.push(e instanceof NoSuchPreset
         ? `There is no scene named "${preset}". The scenes are: ${names}.`
@@ -574,7 +600,12 @@ async function initialScene() {
     }
   }
   if (shown === null) {
-    await loadPreset(DEFAULT);
+    try {
+      await loadPreset(DEFAULT);
+    } catch (e) {
+      if (isCancelled(e)) return undefined;
+      throw e;
+    }
     shown = DEFAULT;
   }
   if (problems.length) showMessage(`${problems.join(' ')} Showing ${sceneName} instead.`);
@@ -587,13 +618,15 @@ const ready = (async () => {
   presets = await presetCatalog().catch(() => []);
   picker = scenePicker($('#picker'), presets, choosePreset);
   const shown = await initialScene();
-  picker.select(shown);
+  if (shown !== undefined) picker.select(shown);
   controls = buildControls();
   wireImport();
   wireKeys();
   window.addEventListener('popstate', () => {
     const name = new URLSearchParams(location.search).get('preset') ?? DEFAULT;
-    if (!location.hash) loadPreset(name).then(() => picker.select(name), (e) => showMessage(e.message));
+    if (!location.hash) {
+      loadPreset(name).then(() => picker.select(name), (e) => isCancelled(e) || showMessage(e.message));
+    }
   });
 })();
 
