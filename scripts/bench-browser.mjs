@@ -9,13 +9,18 @@ import { gzipSync } from 'node:zlib';
 import { plumeSpheres } from './plume-spheres.js';
 import { root, withSite } from './site.mjs';
 
-/** Gzipped size (KiB) of the files under `dir` whose names match `pattern`. */
-export function gzipKiB(dir, pattern) {
+/**
+ * Gzipped size (KiB) of the files under `dir` whose names match `pattern`, less the folders
+ * named in `skip` (the standalone element's, `wind-field/`, which an earlier embed build leaves
+ * in dist/ beside the site's own copy of the core).
+ */
+export function gzipKiB(dir, pattern, skip = []) {
   let total = 0;
   for (const name of readdirSync(dir)) {
     const path = `${dir}/${name}`;
-    if (statSync(path).isDirectory()) total += gzipKiB(path, pattern) * 1024;
-    else if (pattern.test(name)) total += gzipSync(readFileSync(path), { level: 9 }).length;
+    if (statSync(path).isDirectory()) {
+      if (!skip.includes(name)) total += gzipKiB(path, pattern, skip) * 1024;
+    } else if (pattern.test(name)) total += gzipSync(readFileSync(path), { level: 9 }).length;
   }
   return total / 1024;
 }
