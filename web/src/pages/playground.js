@@ -527,7 +527,10 @@ async function choosePreset(name) {
   }
 }
 
-/** Scenes asked for so far (a preset chosen, a file imported, the browser's back and forward). */
+/**
+ * Scenes asked for so far (the link's, a preset chosen, a file imported, the browser's back and
+ * forward).
+ */
 let asks = 0;
 
 /**
@@ -572,12 +575,14 @@ async function loadPreset(name) {
  */
 async function initialScene() {
   const problems = [];
+  const current = asked();
   const fromHash = await decodeScene(location.hash).catch((e) => {
     problems.push(`This link's scene could not be read: ${e.message}.`);
     return null;
   });
   if (fromHash) {
     try {
+      current();
       await loadScene(fromHash, 'the scene from the link');
       return null;
     } catch (e) {

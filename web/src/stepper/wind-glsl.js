@@ -148,6 +148,11 @@ int solidAt(int row, int j) {
   return ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * int(tableTexel(row, 4).w) + ${SOLID_TEXELS} * j;
 }
 
+/** Whether solid j is a plane. */
+bool isPlane(int row, int j) {
+  return tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)};
+}
+
 float rampOf(float s) {
   s = clamp(s, -1.0, 1.0);
   float s2 = s * s;
@@ -336,7 +341,7 @@ vec3 gaugeOf(int row, int n, int j) {
 
 /** Whether primitive j passes exactly near solid n (it and its mirror image in that plane). */
 bool exactNear(int row, int n, int j) {
-  if (tableTexel(row, solidAt(row, n)).x != ${f(PLANE_SOLID_KIND)}) return false;
+  if (!isPlane(row, n)) return false;
   int image = imageOf(row, j);
   return image == n || (image < 0 && hasImageIn(row, j, n));
 }
@@ -443,10 +448,10 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
 /**
  * Whether solid j is visited in the given pass of the core's order: the finite solids (pass 0),
  * then the planes (pass 1), each in the scene's order. Two passes over the table visit them in
- * that order at a cost of two texel reads a solid.
+ * that order, each solid's kind read once a pass.
  */
 bool inPass(int row, int j, int pass) {
-  return (tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)}) == (pass == 1);
+  return isPlane(row, j) == (pass == 1);
 }
 
 /** Whether x lies inside a solid; its signed distance and normal in \`dn\` when it does. */
