@@ -298,6 +298,24 @@ fn solid_objects() {
         emit("solid_grid_256_cells", cells as f64, "cells");
         emit("solid_grid_256_entries", entries as f64, "entries");
     }
+    preset_step(
+        "bridge_smoke",
+        include_str!("../../public/scenes/bridge-smoke.json"),
+    );
+    preset_step(
+        "dust_swirl",
+        include_str!("../../public/scenes/dust-swirl.json"),
+    );
+}
+
+/// `{name}_step_{k}k_native_ms`: one step of a preset whose wind goes round its solids, 5 s
+/// in (k thousand blobs then), the median of 7.
+fn preset_step(name: &str, json: &str) {
+    let mut sim = Simulation::new(Scene::from_json(json).expect("valid")).expect("valid");
+    sim.run(sim.steps_for(5.0));
+    let ms = median_ms(7, || sim.step());
+    let k = (sim.blobs().len() + 500) / 1000;
+    emit(&format!("{name}_step_{k}k_native_ms"), ms, "ms");
 }
 
 /// The field with its vector potential (a scene with solid objects), against the field alone.

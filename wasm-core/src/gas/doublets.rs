@@ -76,8 +76,10 @@ impl Doublets {
         }
         for &j in around.others {
             if let (true, Some(d)) = (j as usize != skip, &self.doublets[j as usize]) {
-                let (psi, u) = d.at(x);
-                sum += if part == Part::Wind { u } else { psi };
+                sum += match part {
+                    Part::Wind => d.at(x).1,
+                    Part::Potential => d.potential(x),
+                };
             }
         }
         sum

@@ -139,6 +139,18 @@ impl Doublet {
     /// (m/s), at `x`.
     #[inline]
     pub fn at(&self, x: Vec3A) -> (Vec3A, Vec3A) {
+        self.evaluate::<true>(x)
+    }
+
+    /// The vector potential ψ (m²/s) alone at `x`, as [`Self::at`] gives it.
+    #[inline]
+    pub fn potential(&self, x: Vec3A) -> Vec3A {
+        self.evaluate::<false>(x).0
+    }
+
+    /// ψ and, when `CURL`, its curl (zero otherwise) at `x`: [`Self::at`].
+    #[inline(always)]
+    fn evaluate<const CURL: bool>(&self, x: Vec3A) -> (Vec3A, Vec3A) {
         match *self {
             Doublet::Sphere {
                 centre,
@@ -190,14 +202,15 @@ impl Doublet {
                     (-md * p, -(m * p + rv * (md * dp * 2.0 / r2)))
                 };
                 // ψ = w_a w_r Ψ â; ∇ × ψ = w_a (w_r ∇Ψ + Ψ w_r' ρ̂) × â (∇w_a is along â).
+                let psi = axis * (stream * w_radial * w_axial);
+                if !CURL {
+                    return (psi, Vec3A::ZERO);
+                }
                 let mut g = grad * w_radial;
                 if dw != 0.0 {
                     g += rv * (stream * dw / (span * rho));
                 }
-                (
-                    axis * (stream * w_radial * w_axial),
-                    g.cross(axis) * w_axial,
-                )
+                (psi, g.cross(axis) * w_axial)
             }
         }
     }

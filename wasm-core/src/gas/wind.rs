@@ -665,6 +665,33 @@ impl WindFrame {
         }
     }
 
+    /// [`Self::blended`] at each of `xs` (a stencil), each phase's points sampled together
+    /// ([`FieldSlice::sample_each`]): the same values, a lattice cell's lookup shared.
+    #[inline(always)]
+    fn blended_each<const N: usize>(
+        &self,
+        slice: &FieldSlice,
+        xs: &[Vec3A; N],
+        o: [Vec3A; 2],
+    ) -> [Vec3A; N] {
+        let Some(b) = self.blend else {
+            return slice.sample_each(xs);
+        };
+        let [wa, wb] = b.weights;
+        let mut u = [Vec3A::ZERO; N];
+        for (k, weight) in [wa, wb].into_iter().enumerate() {
+            if weight != 0.0 {
+                // The second phase's points as [`Self::blended`] forms them: (x + o) + shift.
+                let at = |x: Vec3A| if k == 0 { x + o[0] } else { x + o[1] + b.shift };
+                let phase = slice.sample_each(&xs.map(at));
+                for (u, p) in u.iter_mut().zip(phase) {
+                    *u += p * weight;
+                }
+            }
+        }
+        u
+    }
+
     /// The wind at `x` in its two parts, the large-scale wind u_l (the primitives and what the
     /// solids make of them) and the small-scale u_s, with the carried offsets `o` (m) of the
     /// two phases (ignored unless the field is carried).
@@ -785,10 +812,7 @@ impl WindFrame {
             large += stencil.ramped_curl(&psi);
         }
         let small = if self.has_psi {
-            let psi = match self.blend {
-                None => self.psi.sample_each(&stencil.points),
-                Some(_) => std::array::from_fn(|k| self.blended(&self.psi, stencil.points[k], o)),
-            };
+            let psi = self.blended_each(&self.psi, &stencil.points, o);
             stencil.ramped_curl(&psi)
         } else if self.has_slice {
             // The field's potential is still being synthesised: project meanwhile.
@@ -818,5 +842,54 @@ impl WindFrame {
     /// The difference step (m) of the ramped curl near solid `index`, for checks of it.
     pub fn curl_step(&self, index: usize) -> Option<f32> {
         self.walls.as_ref().map(|w| w.steps[index])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A carried field over a solid floor, both phases weighing in at `t`.
+    fn carried_frame(t: f64) -> WindFrame {
+        let scene = Scene::from_json(
+            r#"{"version": 1, "seed": 5,
+                "field": {"size": [8, 8, 8, 8], "period": [1, 1, 1], "time_period": 4,
+                          "spectrum": {"k_inertial": 2}, "carried": true, "carry_time": 0.5},
+                "wind": [{"type": "uniform", "velocity": [0.3, 0.5, 0]}],
+                "render": {"objects": [{"type": "plane", "point": [0, 0, 0],
+                                        "normal": [0, 1, 0], "color": [0.5, 0.5, 0.5],
+                                        "solid": true}]}}"#,
+        )
+        .expect("valid");
+        let field = TurbulentField::generate_with_potential(&scene.field_params()).expect("valid");
+        Wind::new(&scene, Some(Arc::new(field))).frame(t)
+    }
+
+    /// The stencil's carried ψ, each phase's six points sampled together, is bit for bit each
+    /// point's own blend: in one lattice cell (the shared lookup) and across cells.
+    #[test]
+    fn a_stencils_blend_is_each_points_blend() {
+        let frame = carried_frame(0.6);
+        let b = frame.blend.expect("carried");
+        assert!(b.weights.iter().all(|&w| w > 0.05), "{:?}", b.weights);
+        assert!(frame.has_psi);
+        let o = [
+            Vec3A::new(0.031, -0.017, 0.052),
+            Vec3A::new(-0.21, 0.08, 0.33),
+        ];
+        for (x, h) in [
+            (Vec3A::new(0.31, 0.02, -0.27), 1e-3),
+            (Vec3A::new(0.5, 0.05, 0.5), 0.1),
+        ] {
+            let axes = [Vec3A::X, Vec3A::Y, Vec3A::Z];
+            let points: [Vec3A; 6] =
+                std::array::from_fn(|k| x + axes[k / 2] * if k % 2 == 0 { h } else { -h });
+            let together = frame.blended_each(&frame.psi, &points, o);
+            for (p, u) in points.iter().zip(together) {
+                let alone = frame.blended(&frame.psi, *p, o);
+                assert_eq!(u.to_array(), alone.to_array(), "at {p}");
+                assert!(alone.length() > 0.0);
+            }
+        }
     }
 }
