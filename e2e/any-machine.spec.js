@@ -116,51 +116,64 @@ test('stirring at 2 frames a second pushes the gas aside, and a drag while pause
     const along = near.reduce((sum, blob) => sum + blob.center.reduce((d, v, i) => d + (v - a[i]) * dir[i], 0) / len, 0);
     return { along: along / Math.max(near.length, 1), n: near.length };
   };
-  const drag = async () => {
-    await page.mouse.move(box.x + x0, box.y + y);
+  /** A drag from `from` to `to` (canvas pixels) along the line at height y. */
+  const drag = async (from = x0, to = x1) => {
+    await page.mouse.move(box.x + from, box.y + y);
     await page.mouse.down();
     for (let k = 1; k <= 20; k++) {
-      await page.mouse.move(box.x + x0 + ((x1 - x0) * k) / 20, box.y + y);
+      await page.mouse.move(box.x + from + ((to - from) * k) / 20, box.y + y);
       await page.waitForTimeout(25);
     }
     await page.mouse.up();
   };
-  const now = () => page.evaluate(() => window.windfield.stats().time);
   /**
-   * Until the scene's time has reached `from` + 0.5 s: as long as it takes in real time on a
+   * Until the scene's time has reached `from` + `seconds`: as long as it takes in real time on a
    * fast machine, longer where the steps do not keep up (the gas moves with the simulated time).
    */
-  const halfSecondFrom = (from) => page.waitForFunction((t) => window.windfield.stats().time >= t, from + 0.5, { timeout: 30_000, polling: 50 });
+  const until = (from, seconds) => page.waitForFunction((t) => window.windfield.stats().time >= t, from + seconds, { timeout: 30_000, polling: 50 });
+  /**
+   * The band and the scene's time, read paused so the two agree: at two frames a second a
+   * window's end may fall half a second either way, so the windows are measured, not assumed.
+   * step(0) waits for a frame still in flight when the pause came, so the time read is final.
+   */
+  const pausedBand = async () => {
+    const time = await page.evaluate(async () => {
+      await window.windfield.pause();
+      await window.windfield.step(0);
+      return window.windfield.stats().time;
+    });
+    return { ...(await band()), time };
+  };
+  const play = () => page.evaluate(() => window.windfield.play());
   // A plume to stir, then frames at two a second.
-  await page.evaluate(async () => { await window.windfield.pause(); await window.windfield.step(200); window.windfield.play(); });
-  const calm0 = await band();
-  await halfSecondFrom(await now());
-  const calm1 = await band();
-  const dragged = await now();
+  await page.evaluate(async () => { await window.windfield.pause(); await window.windfield.step(200); });
+  const calm0 = await pausedBand();
+  await play();
+  await until(calm0.time, 1);
+  const calm1 = await pausedBand();
+  await play();
   await drag();
-  await halfSecondFrom(dragged);
-  const stirred = await band();
-  const calmShift = Math.abs(calm1.along - calm0.along);
+  await until(calm1.time, 0.5);
+  const stirred = await pausedBand();
+  /** The band's drift without the drag, m/s of simulated time, and what it makes in the stirred window. */
+  const calmRate = Math.abs(calm1.along - calm0.along) / (calm1.time - calm0.time);
+  const calmShift = calmRate * (stirred.time - calm1.time);
   const stirShift = stirred.along - calm1.along;
-  console.log(`2 fps: the gas by the drag moved ${stirShift.toFixed(3)} m along it, ${calmShift.toFixed(3)} m in as long without it (${calm1.n} blobs)`);
+  console.log(`2 fps: the gas by the drag moved ${stirShift.toFixed(3)} m along it in ${(stirred.time - calm1.time).toFixed(2)} s, ${calmShift.toFixed(3)} m in as long without it (${calm1.n} blobs; calm window ${(calm1.time - calm0.time).toFixed(2)} s)`);
   expect(calm1.n).toBeGreaterThan(200);
   expect(stirShift).toBeGreaterThan(0.05);
   // Twice the drift the plume makes in as long.
   expect(stirShift).toBeGreaterThan(2 * calmShift);
-  // Paused: the drag's motion waits for the steps, which give it to the gas.
-  // step(0) waits for a frame still in flight when the pause came, so the time read is final.
-  const still = await page.evaluate(async () => {
-    await window.windfield.pause();
-    await window.windfield.step(0);
-    return window.windfield.stats().time;
-  });
-  const before = await band();
-  await drag();
+  // Paused: the drag's motion waits for the steps, which give it to the gas. Back the other
+  // way, so the gas the first drag piled at the far end is in the band to be moved.
+  const { time: still, ...before } = stirred;
+  await drag(x1, x0);
   await page.waitForTimeout(500);
   expect(await page.evaluate(() => window.windfield.stats().time)).toBe(still);
   await page.evaluate(() => window.windfield.step(10));
   const after = await band();
-  expect(after.along - before.along).toBeGreaterThan(0.05);
+  console.log(`paused: the drag back moved the gas ${(before.along - after.along).toFixed(3)} m back along it in the next 10 steps (${before.n} blobs)`);
+  expect(before.along - after.along).toBeGreaterThan(0.05);
 });
 
 test('the status line counts the frames drawn: 0.2 a second shows as 0.2', { tag: '@timing' }, async ({ page }) => {
