@@ -164,9 +164,12 @@ test('stirring at 2 frames a second pushes the gas aside, and a drag while pause
   expect(stirShift).toBeGreaterThan(0.05);
   // Twice the drift the plume makes in as long.
   expect(stirShift).toBeGreaterThan(2 * calmShift);
-  // Paused: the drag's motion waits for the steps, which give it to the gas. Back the other
-  // way, so the gas the first drag piled at the far end is in the band to be moved.
-  const { time: still, ...before } = stirred;
+  // Paused: the drag's motion waits for the steps, which give it to the gas. First the steps
+  // give the gas all of the first drag's motion (what was left over would move it here too);
+  // then a drag back the other way, over the gas the first piled at the far end.
+  await play();
+  await until(calm1.time, 1.25);
+  const { time: still, ...before } = await pausedBand();
   await drag(x1, x0);
   await page.waitForTimeout(500);
   expect(await page.evaluate(() => window.windfield.stats().time)).toBe(still);
