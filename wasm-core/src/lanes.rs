@@ -1,5 +1,6 @@
-//! Four-wide loads from flat `f32` arrays: one unaligned 128-bit load in WASM with SIMD, plain
-//! element reads elsewhere. The hot loops (field sampling, advection) read xyz triples this way.
+//! Four-wide loads from flat `f32` arrays: one unaligned 128-bit load (WASM's SIMD, SSE2),
+//! plain element reads elsewhere. The hot loops (field sampling, advection) read xyz triples
+//! this way.
 
 use glam::{Vec3A, Vec4};
 
@@ -13,9 +14,37 @@ pub fn load4(w: &[f32], i: usize) -> Vec4 {
         // SAFETY: the caller guarantees four floats from i; wasm loads may be unaligned.
         Vec4::from(unsafe { core::arch::wasm32::v128_load(w.as_ptr().add(i).cast()) })
     }
-    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let four: &[f32; 4] = w[i..i + 4].try_into().expect("four floats");
+        // SAFETY: `four` holds four floats; SSE2 is enabled (the cfg) and the load is unaligned.
+        Vec4::from(unsafe { core::arch::x86_64::_mm_loadu_ps(four.as_ptr()) })
+    }
+    #[cfg(not(any(
+        all(target_arch = "wasm32", target_feature = "simd128"),
+        all(target_arch = "x86_64", target_feature = "sse2")
+    )))]
     {
         Vec4::from_slice(&w[i..i + 4])
+    }
+}
+
+/// The lanes of `v` (each less than 2^31 in size) truncated toward zero to integers: one
+/// conversion of the three lanes (SSE2), else lane by lane (one instruction each in WASM).
+/// Where the lanes are known to be in range this spares the checks of `as usize`.
+#[inline(always)]
+pub fn ints3(v: Vec3A) -> [i32; 3] {
+    debug_assert!(v.abs().cmplt(Vec3A::splat(2_147_483_648.0)).all());
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        use core::arch::x86_64::*;
+        // SAFETY: SSE2 is enabled (the cfg); a __m128i is four i32 lanes.
+        let i: [i32; 4] = unsafe { core::mem::transmute(_mm_cvttps_epi32(v.into())) };
+        [i[0], i[1], i[2]]
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    {
+        [v.x as i32, v.y as i32, v.z as i32]
     }
 }
 

@@ -15,6 +15,7 @@
 //! that are exactly zero.
 
 use crate::gas::solids::Body;
+use crate::lanes::ints3;
 use glam::Vec3A;
 
 /// A cell's edge, in the median solid's layer box (the solid grown by the layer, across its
@@ -214,7 +215,7 @@ impl SolidGrid {
         if self.cells.is_empty() || !(q.cmpge(Vec3A::ZERO).all() && q.cmplt(self.upper).all()) {
             return None;
         }
-        let (cx, cy, cz) = (q.x as usize, q.y as usize, q.z as usize);
+        let [cx, cy, cz] = ints3(q).map(|i| i as usize);
         Some((cz * self.dims[1] + cy) * self.dims[0] + cx)
     }
 

@@ -22,7 +22,7 @@ use crate::gas::scene::{Primitive, Scene};
 use crate::gas::solids::{Around, Body, Nearest, Solids};
 use crate::gas::spline::Path;
 use crate::gas::walls::{project, ramp, Doublet, Stencil};
-use crate::lanes::load4;
+use crate::lanes::{ints3, load4};
 use glam::{Vec3, Vec3A, Vec4};
 use std::f32::consts::TAU;
 use std::sync::Arc;
@@ -162,6 +162,10 @@ impl SmallScale {
             }
         }
         slice.size = [nx, ny, nz];
+        slice.wrap_mask = [nx, ny, nz]
+            .iter()
+            .all(|n| n.is_power_of_two())
+            .then(|| [nx, ny, nz].map(|n| n as i32 - 1));
         slice.extent = Vec3A::new(nx as f32, ny as f32, nz as f32);
         slice.inv_extent = slice.extent.recip();
         slice.cells_per_metre = self.cells_per_metre.into();
@@ -177,6 +181,9 @@ impl SmallScale {
 #[derive(Debug, Clone, Default)]
 pub struct FieldSlice {
     size: [usize; 3],
+    /// `size − 1` along each axis where all three are powers of two (a periodic wrap is then
+    /// a mask), else none.
+    wrap_mask: Option<[i32; 3]>,
     /// The extents as floats, and their reciprocals (for the periodic wrap).
     extent: Vec3A,
     inv_extent: Vec3A,
@@ -228,14 +235,24 @@ impl FieldSlice {
     #[inline(always)]
     fn corners(&self, fl: Vec3A) -> Option<(&[f32], usize, usize)> {
         let [nx, ny] = [self.size[0], self.size[1]];
-        // The periodic wrap of the integer cell fl into 0..n, exact in f32 while |q| < 2^24: the
-        // quotient may round to a neighbouring integer, which the two selects put right.
-        let n = self.extent;
-        let mut cell = fl - n * (fl * self.inv_extent).floor();
-        cell = Vec3A::select(cell.cmpge(n), cell - n, cell);
-        cell = Vec3A::select(cell.cmplt(Vec3A::ZERO), cell + n, cell);
-        let cell = cell.max(Vec3A::ZERO).min(n - 1.0);
-        let (x0, y0, z0) = (cell.x as usize, cell.y as usize, cell.z as usize);
+        let [x0, y0, z0] = match self.wrap_mask {
+            // Two's complement: i & (n − 1) is i mod n, negative i too.
+            Some(mask) => {
+                let i = ints3(fl.clamp(Vec3A::splat(-2.0e9), Vec3A::splat(2.0e9)));
+                [0, 1, 2].map(|k| (i[k] & mask[k]) as usize)
+            }
+            None => {
+                // The periodic wrap of the integer cell fl into 0..n, exact in f32 while
+                // |q| < 2^24: the quotient may round to a neighbouring integer, which the two
+                // selects put right.
+                let n = self.extent;
+                let mut cell = fl - n * (fl * self.inv_extent).floor();
+                cell = Vec3A::select(cell.cmpge(n), cell - n, cell);
+                cell = Vec3A::select(cell.cmplt(Vec3A::ZERO), cell + n, cell);
+                let cell = cell.max(Vec3A::ZERO).min(n - 1.0);
+                ints3(cell).map(|i| i as usize)
+            }
+        };
         let (sx, sy) = (nx + 1, ny + 1);
         let base = 3 * ((z0 * sy + y0) * sx + x0);
         let (dy, dz) = (3 * sx, 3 * sx * sy);
@@ -250,8 +267,10 @@ impl FieldSlice {
         let tx = Vec4::splat(t.x);
         // Every read below starts at most dz + dy + 3 and spans four floats: inside `w`.
         let along_x = |i: usize| -> Vec4 {
-            let a = load4(w, i);
-            a + (load4(w, i + 3) - a) * tx
+            // One bounds check for the row's two overlapping reads.
+            let row = &w[i..i + 7];
+            let a = load4(row, 0);
+            a + (load4(row, 3) - a) * tx
         };
         let e00 = along_x(0);
         let e10 = along_x(dy);
@@ -891,5 +910,39 @@ mod tests {
                 assert!(alone.length() > 0.0);
             }
         }
+    }
+
+    /// A lattice of powers of two wraps its cells by a mask: the same cells, so the same
+    /// samples bit for bit, as the general wrap, at points far either side of the period.
+    #[test]
+    fn the_masked_wrap_is_the_general_wrap() {
+        let frame = carried_frame(0.6);
+        let masked = &frame.slice;
+        assert!(masked.wrap_mask.is_some());
+        let general = FieldSlice {
+            wrap_mask: None,
+            ..masked.clone()
+        };
+        let mut seen = std::collections::HashSet::new();
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 1.0
+        };
+        for i in 0..6000 {
+            let scale = [0.3, 4.0, 1000.0][i % 3];
+            let x = Vec3A::new(next(), next(), next()) * scale;
+            let q = ((x - masked.offset) * masked.cells_per_metre).floor();
+            seen.insert(ints3(q).map(|i| i.rem_euclid(8)));
+            assert_eq!(
+                masked.sample(x).to_array(),
+                general.sample(x).to_array(),
+                "at {x}"
+            );
+        }
+        // Every cell of the 8³ lattice was visited, from negative and positive coordinates.
+        assert_eq!(seen.len(), 512);
     }
 }
