@@ -118,6 +118,9 @@ pub fn sqrt4(v: Vec4) -> Vec4 {
     }
 }
 
+/// Whether [`exp4`] takes its four exponentials together (else one by one, as four calls).
+pub const EXP4_IS_VECTOR: bool = cfg!(all(target_arch = "wasm32", target_feature = "simd128"));
+
 /// e^x in four lanes, each exactly what `f32::exp` gives on this target. In WASM with SIMD,
 /// a four-wide form of the `expf` that `f32::exp` calls there (FreeBSD's, through Rust's libm):
 /// the same reduction x = k ln 2 + r, the same rational approximation of e^r and the same

@@ -4,6 +4,7 @@
 //! `cargo test --release --test integration render_golden::`.
 
 mod architecture;
+mod at_scale;
 mod carried;
 mod cli;
 mod contract;

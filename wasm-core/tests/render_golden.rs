@@ -1,6 +1,7 @@
 //! Golden stills: fixed inputs rendered and compared with committed PNGs at PSNR ≥ 45 dB (the
 //! tolerance allows float differences between machines, not changes of behaviour).
 //! Regenerate after an intended change with `npm run goldens` (sets WINDFIELD_REGENERATE=1).
+//! The presets at scale have theirs in `at_scale`.
 
 use std::path::PathBuf;
 use windfield::gas::blob_list::BlobList;
@@ -24,21 +25,10 @@ pub const PRESETS: [(&str, f64); 6] = [
     ("morph", 1.5),
     ("bridge-smoke", 3.0),
 ];
-/// The phenomena the paper names (§1), at scale: each preset and the time of its still (the
-/// scene's `render.time`), where it holds at least [`AT_SCALE_BLOBS`] blobs.
-pub const PRESETS_AT_SCALE: [(&str, f64); 4] = [
-    ("mist", 6.0),
-    ("dust-swirl", 6.0),
-    ("car-exhaust", 6.0),
-    ("chimney", 8.0),
-];
-/// Fewest blobs a preset at scale holds at its still's time.
-const AT_SCALE_BLOBS: usize = 250_000;
-
 /// Preset stills are compared at this size (the scenes' own size, 640×480, is for people).
-const PRESET_SIZE: (u32, u32) = (160, 120);
+pub const PRESET_SIZE: (u32, u32) = (160, 120);
 
-fn presets_dir() -> PathBuf {
+pub fn presets_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../public/scenes")
 }
 
@@ -79,7 +69,7 @@ fn check(name: &str, seconds: f64) {
 }
 
 /// Compares with (or, when regenerating, writes) `tests/golden/NAME.png`.
-fn compare(name: &str, w: u32, h: u32, rgb: &[u8]) {
+pub fn compare(name: &str, w: u32, h: u32, rgb: &[u8]) {
     let path = golden_dir().join(format!("{name}.png"));
     if std::env::var_os("WINDFIELD_REGENERATE").is_some() {
         std::fs::write(&path, encode_png(w, h, rgb).unwrap()).unwrap();
@@ -131,63 +121,6 @@ fn golden_presets() {
             var.sqrt()
         );
         compare(&format!("preset-{name}"), w, h, &rgb);
-    }
-}
-
-/// The presets at scale hold at least 250,000 blobs at their still's time (the showcase a
-/// million), and their stills match their golden images. One test each, so that they run side
-/// by side.
-fn golden_at_scale(name: &str) {
-    let seconds = PRESETS_AT_SCALE
-        .iter()
-        .find(|(n, _)| *n == name)
-        .expect("a preset at scale")
-        .1;
-    let path = presets_dir().join(format!("{name}.json"));
-    let scene = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    assert_eq!(scene.render.time, Some(seconds), "{name}: render.time");
-    let mut sim = Simulation::new(scene).unwrap();
-    sim.run(sim.steps_for(seconds));
-    let n = sim.blobs().len();
-    assert!(n >= AT_SCALE_BLOBS, "{name}: {n} blobs at t = {seconds} s");
-    if name == "chimney" {
-        assert_eq!(n, 1_000_000);
-    }
-    let list = sim.blob_list();
-    let image = Renderer::new(&list, Some(PRESET_SIZE), RenderOptions::default())
-        .unwrap()
-        .render();
-    let rgb = image.to_rgb8(list.image.encoding);
-    compare(&format!("preset-{name}"), image.width, image.height, &rgb);
-}
-
-#[test]
-fn golden_mist_at_scale() {
-    golden_at_scale("mist");
-}
-
-#[test]
-fn golden_dust_swirl_at_scale() {
-    golden_at_scale("dust-swirl");
-}
-
-#[test]
-fn golden_car_exhaust_at_scale() {
-    golden_at_scale("car-exhaust");
-}
-
-#[test]
-fn golden_chimney_at_scale() {
-    golden_at_scale("chimney");
-}
-
-/// Every preset at scale has its test above.
-#[test]
-fn every_preset_at_scale_is_tested() {
-    let source = include_str!("render_golden.rs");
-    for (name, _) in PRESETS_AT_SCALE {
-        let call = format!("golden_at_scale(\"{name}\")");
-        assert!(source.contains(&call), "{name} has no test");
     }
 }
 

@@ -658,10 +658,7 @@ impl WindFrame {
         if self.has_slice {
             u += self.slice.sample(x);
         }
-        for p in &self.primitives {
-            u += p.velocity(x);
-        }
-        u
+        FrozenPrimitive::add_winds(&self.primitives, u, x)
     }
 
     /// The small-scale field's slice sampled at `x`, with the carried coordinates' offsets
@@ -724,21 +721,18 @@ impl WindFrame {
             }
         };
         let Some(w) = &self.walls else {
-            let mut u = self.constant;
-            for p in &self.primitives {
-                u += p.velocity(x);
-            }
+            let u = FrozenPrimitive::add_winds(&self.primitives, self.constant, x);
             return (u, small(self));
         };
         let around = w.solids.around(x);
         if let Some(near) = w.solids.nearest_among(around.layers, x) {
             return self.near_solid(w, x, near, around, o);
         }
-        let mut u = self.constant + w.doublets.sum(Part::Wind, x, &around, usize::MAX);
-        for p in &self.primitives {
-            u += p.velocity(x);
-        }
-        (u, small(self))
+        let u = self.constant + w.doublets.sum(Part::Wind, x, &around, usize::MAX);
+        (
+            FrozenPrimitive::add_winds(&self.primitives, u, x),
+            small(self),
+        )
     }
 
     /// The wind within the layer of the solid `near` (docs/CONVENTIONS.md, solid objects).
