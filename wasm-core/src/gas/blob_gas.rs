@@ -334,13 +334,11 @@ impl Gas {
             }
             // The carried coordinates X = x + o move with the blob less the large-scale wind,
             // so the offsets move against the large-scale wind: o ← o − u_l dt.
+            // `clear`: how far x surely lies from every solid.
+            let (l, s, clear) = f0.parts_and_clearance(x, o);
             let (x1, moved) = match integrator {
-                Integrator::Euler => {
-                    let (l, s) = f0.parts(x, o);
-                    (x + (l + s + v) * dtf, l * -dtf)
-                }
+                Integrator::Euler => (x + (l + s + v) * dtf, l * -dtf),
                 Integrator::Rk2 => {
-                    let (l, s) = f0.parts(x, o);
                     let half = l * (-0.5 * dtf);
                     let xm = x + (l + s + v) * (0.5 * dtf);
                     let (lm, sm) = fh.parts(xm, [o[0] + half, o[1] + half]);
@@ -349,7 +347,7 @@ impl Gas {
                 }
             };
             let x1 = match walls {
-                Some(w) => w.solids.push_out(x1, w.gap()),
+                Some(w) => w.solids.push_out_after(x, clear, x1, w.gap()),
                 None => x1,
             };
             x1.write_to_slice(&mut position[3 * i..3 * i + 3]);

@@ -269,6 +269,9 @@ pub struct Solids {
     pub edges: Vec<f32>,
     /// The layer's width (m): how far from a solid [`Self::nearest`] looks.
     layer: f32,
+    /// The most by which a rounded distance exceeds the true one (m): the largest rounding of
+    /// an edge ([`Body::rounded_distance`]).
+    slack: f32,
     /// Indices of the planes, tested at every point.
     planes: Vec<u32>,
     /// Without the grid (none): the finite solids, and the spheres and other solids whose wind
@@ -310,6 +313,7 @@ impl Solids {
             others: indices(&|i| !sphere(&bodies[i]) && !plane(&bodies[i]) && reach[i].is_some()),
             grid: Some(SolidGrid::new(&bodies, layer, reach)),
             layer,
+            slack: edges.iter().copied().fold(0.0, f32::max),
             bodies,
             edges,
         }
@@ -385,6 +389,30 @@ impl Solids {
         best
     }
 
+    /// A lower bound (m) on the true distance from `x` to every solid, from the rounded
+    /// distance `nearest` of the nearest solid within the layer there ([`Self::nearest_among`]
+    /// over the lists of `x`'s cell; none: every solid lies a layer's width away or more, as
+    /// the grid lists each solid wherever its layer may reach). A rounded edge lies within its
+    /// rounding of the true one; a margin covers the distances' rounding. Zero or less: no
+    /// bound.
+    #[inline(always)]
+    pub fn clearance(&self, nearest: Option<f32>, x: Vec3A) -> f32 {
+        let d = nearest.map_or(self.layer, |d| d.min(self.layer));
+        (d - self.slack) * 0.999 - 1e-6 * (1.0 + x.abs().max_element())
+    }
+
+    /// [`Self::push_out`] for the end `x1` of a move from `x0`, which lay at least `clear` (m,
+    /// [`Self::clearance`]) from every solid: a move shorter than that cannot end inside one
+    /// (the distance changes by no more than the point moves), so `x1` is kept as it is.
+    #[inline(always)]
+    pub fn push_out_after(&self, x0: Vec3A, clear: f32, x1: Vec3A, gap: f32) -> Vec3A {
+        if clear > 0.0 && (x1 - x0).length_squared() < clear * clear {
+            x1
+        } else {
+            self.push_out(x1, gap)
+        }
+    }
+
     /// Whether `x` lies inside a solid (d < 0).
     #[inline(always)]
     pub fn inside(&self, x: Vec3A) -> Option<usize> {
@@ -445,6 +473,9 @@ impl Solids {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gas::random::uniform;
+    use rand_xoshiro::rand_core::SeedableRng;
+    use rand_xoshiro::Xoshiro256PlusPlus;
 
     #[test]
     fn distances_and_normals_of_each_body() {
@@ -564,5 +595,64 @@ mod tests {
             assert!(solids.inside(y).is_none(), "{x} → {y}");
             assert!((y - x).length() < 0.2 + 1e-3, "{x} → {y}");
         }
+    }
+
+    /// A move shorter than the clearance never ends inside a solid: [`Solids::push_out_after`]
+    /// gives what [`Solids::push_out`] gives, for moves up to twice the clearance from points
+    /// in and beyond the layers, by spheres, a plane and a cylinder whose rims the wind sees
+    /// rounded (there the rounded distance exceeds the true one).
+    #[test]
+    fn a_move_within_the_clearance_never_ends_inside() {
+        let cylinder = Body::Cylinder {
+            base: Vec3A::new(0.5, 0.0, 0.0),
+            axis: Vec3A::Y,
+            radius: 0.3,
+            height: 0.6,
+        };
+        let mut bodies = vec![cylinder];
+        for i in 0..12 {
+            let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 2.0 - 1.0;
+            bodies.push(Body::Sphere {
+                center: Vec3A::new(f(0.7548777) - 0.5, 0.5 + 0.5 * f(0.5698403), f(0.4301597)),
+                radius: 0.05 + 0.01 * i as f32,
+            });
+        }
+        bodies.push(Body::Plane {
+            point: Vec3A::ZERO,
+            normal: Vec3A::Y,
+        });
+        let (layer, edge, gap) = (0.1, 0.04, 1e-5);
+        let mut edges = vec![0.0; bodies.len()];
+        edges[0] = edge;
+        let solids = Solids::with_edges(bodies, edges, layer, &[None; 14]);
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
+        let mut u = || uniform(&mut rng);
+        let mut kept = 0;
+        for _ in 0..50_000 {
+            let x0 = Vec3A::new(3.0 * u() - 1.5, 1.6 * u() - 0.1, 3.0 * u() - 1.5);
+            let nearest = solids.nearest(x0).map(|n| n.distance);
+            let clear = solids.clearance(nearest, x0);
+            let dir = Vec3A::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize_or(Vec3A::Y);
+            let x1 = x0 + dir * (2.0 * clear.max(0.02) * u());
+            assert_eq!(
+                solids.push_out_after(x0, clear, x1, gap),
+                solids.push_out(x1, gap),
+                "{x0} → {x1}, clearance {clear}"
+            );
+            kept += (clear > 0.0 && (x1 - x0).length() < clear) as usize;
+        }
+        assert!(kept > 10_000, "{kept} moves within the clearance");
+        // Just outside the cylinder's top rim, on the diagonal: the rounded distance exceeds
+        // the true one by (√2 − 1) times the rounding, and a move straight at the rim by less
+        // than the rounded distance ends inside.
+        let out = Vec3A::new(1.0, 1.0, 0.0).normalize();
+        let rim = Vec3A::new(0.8, 0.6, 0.0);
+        let x0 = rim + out * 0.05;
+        let rounded = solids.nearest(x0).expect("in the layer").distance;
+        assert!(rounded > 0.05 + 0.4 * edge, "{rounded}");
+        let x1 = rim - out * 0.005;
+        assert!(solids.inside(x1).is_some());
+        let clear = solids.clearance(Some(rounded), x0);
+        assert_ne!(solids.push_out_after(x0, clear, x1, gap), x1);
     }
 }

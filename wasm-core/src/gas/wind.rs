@@ -713,6 +713,14 @@ impl WindFrame {
     /// two phases (ignored unless the field is carried).
     #[inline]
     pub fn parts(&self, x: Vec3A, o: [Vec3A; 2]) -> (Vec3A, Vec3A) {
+        let (large, small, _) = self.parts_and_clearance(x, o);
+        (large, small)
+    }
+
+    /// [`Self::parts`], and how far `x` surely lies from every solid (m,
+    /// [`Solids::clearance`]; infinite without solids).
+    #[inline]
+    pub fn parts_and_clearance(&self, x: Vec3A, o: [Vec3A; 2]) -> (Vec3A, Vec3A, f32) {
         let small = |f: &Self| {
             if f.has_slice {
                 f.blended(&f.slice, x, o)
@@ -722,16 +730,19 @@ impl WindFrame {
         };
         let Some(w) = &self.walls else {
             let u = FrozenPrimitive::add_winds(&self.primitives, self.constant, x);
-            return (u, small(self));
+            return (u, small(self), f32::INFINITY);
         };
         let around = w.solids.around(x);
         if let Some(near) = w.solids.nearest_among(around.layers, x) {
-            return self.near_solid(w, x, near, around, o);
+            let clear = w.solids.clearance(Some(near.distance), x);
+            let (large, small) = self.near_solid(w, x, near, around, o);
+            return (large, small, clear);
         }
         let u = self.constant + w.doublets.sum(Part::Wind, x, &around, usize::MAX);
         (
             FrozenPrimitive::add_winds(&self.primitives, u, x),
             small(self),
+            w.solids.clearance(None, x),
         )
     }
 
