@@ -249,7 +249,7 @@ function simulationFolder(gui) {
     },
   };
   sim.add(stepping, 'stepper', { 'auto (GPU where it can)': 'auto', GPU: 'gpu', 'worker (CPU)': 'cpu' }).name('gas stepped by').listen();
-  sim.add(settings, 'resolution', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '25 %': 0.25 }).name('resolution').listen();
+  sim.add(settings, 'resolution', { auto: 'auto', '100 %': 1, '75 %': 0.75, '50 %': 0.5, '35 %': 0.35, '25 %': 0.25 }).name('resolution').listen();
   sim.add(settings, 'blobCap', { 'the scene’s own': 'none', '300,000': 300000, '100,000': 100000, '30,000': 30000, '15,000': 15000 }).name('most blobs').listen();
   const view = {
     get guides() { return player.guides; },

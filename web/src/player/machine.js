@@ -2,7 +2,7 @@
 // draws WebGL in software (SwiftShader, llvmpipe, Microsoft's Basic Render Driver: GPU-blocked
 // laptops, virtual machines, remote desktops) runs every shader on the CPU, so the full view is
 // a slideshow there; a weak GPU may be as slow. Such a machine gets the lighter version: the
-// points view, `draft` quality, half resolution, the gas stepped by the worker (a GPU stepper
+// points view, `draft` quality, 35 % resolution, the gas stepped by the worker (a GPU stepper
 // in software is many times slower than the worker) and at most `LIGHT.blobCap` blobs. Each
 // choice the user makes stands over it for the rest of the session (sessionStorage), and the
 // full version is one choice away.
@@ -11,7 +11,7 @@
 const SOFTWARE = /swiftshader|llvmpipe|softpipe|microsoft basic render|software rasterizer|mesa offscreen/i;
 
 /** The lighter version's settings. */
-export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.5, stepper: 'cpu', blobCap: 15_000 });
+export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.35, stepper: 'cpu', blobCap: 15_000 });
 
 /** Frames a second below which a machine counts as slow once measured (the view at its lightest full settings). */
 export const SLOW_FPS = 10;
