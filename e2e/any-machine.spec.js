@@ -9,7 +9,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test as fullTest, collectErrors, presetFile, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
-const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
+const catalog = JSON.parse(readFileSync(new URL('public/presets.json', root), 'utf8')).presets;
 
 async function open(page, url = './') {
   await page.goto(url);

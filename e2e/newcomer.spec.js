@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test, canvasLuminance, collectErrors, openFolder, presetFile, setNumber, toSegment, worldAt } from './helpers.js';
 
 const root = new URL('../', import.meta.url);
-const catalog = JSON.parse(readFileSync(new URL('public/scenes/index.json', root), 'utf8')).presets;
+const catalog = JSON.parse(readFileSync(new URL('public/presets.json', root), 'utf8')).presets;
 
 async function open(page, url = './?view=points') {
   await page.goto(url);

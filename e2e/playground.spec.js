@@ -215,6 +215,15 @@ test('a shared URL reproduces the scene exactly', async ({ page, context }) => {
   expect(await other.evaluate(() => window.windfield.getScene())).toEqual(scene);
 });
 
+test('a link written by hand, the scene as percent-encoded JSON, plays that scene', async ({ page }) => {
+  const errors = collectErrors(page);
+  const scene = { version: 1, seed: 77, wind: [{ type: 'uniform', velocity: [0.2, 0.4, 0] }], gas: { dissipation: 0.25 } };
+  await open(page, `./#scene=${encodeURIComponent(JSON.stringify(scene))}`);
+  const got = await page.evaluate(() => window.windfield.getScene());
+  expect([got.seed, got.wind, got.gas.dissipation]).toEqual([77, [{ ...scene.wind[0], position: [0, 0, 0], decay: null, enabled: true }], 0.25]);
+  expect(errors).toEqual([]);
+});
+
 test('garbage in the hash: a message and the default scene runs', async ({ page }) => {
   const errors = collectErrors(page);
   await open(page, './#scene=1.garbage!!');

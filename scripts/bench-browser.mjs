@@ -161,7 +161,7 @@ export async function benchBrowser() {
 export async function benchLighter() {
   const results = [];
   const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
-  const { presets } = JSON.parse(readFileSync(`${root}public/scenes/index.json`, 'utf8'));
+  const { presets } = JSON.parse(readFileSync(`${root}public/presets.json`, 'utf8'));
   await withSite('', async (page, open) => {
     await page.evaluate(() => window.windfield.ready);
     await page.evaluate(() => {

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Regenerates the gallery in docs/images/gallery/: for each preset of the catalog
-// (public/scenes/index.json) at its still's time, the CPU reference still (`windfield render`)
+// (public/presets.json) at its still's time, the CPU reference still (`windfield render`)
 // and the browser's real-time view and points view (the built site in chromium; SwiftShader
 // draws them on the CPU, as a GPU would), and the scene picker's thumbnail. The few-wide-blob stills come from the scenes'
 // earlier versions and are not regenerated. Needs `npm run build` and `cargo build --release`
@@ -11,7 +11,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { root, withSite } from './site.mjs';
 
 /** The presets of the playground's catalog, each at its still's time (`render.time`); `--only A,B` some of them. */
-const catalog = JSON.parse(readFileSync(`${root}public/scenes/index.json`, 'utf8')).presets;
+const catalog = JSON.parse(readFileSync(`${root}public/presets.json`, 'utf8')).presets;
 const only = process.argv.includes('--only') ? process.argv[process.argv.indexOf('--only') + 1].split(',') : null;
 const PRESETS = catalog
   .filter(({ name }) => !only || only.includes(name))

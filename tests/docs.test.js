@@ -7,12 +7,12 @@ import { readFileSync } from 'node:fs';
 const root = new URL('../', import.meta.url);
 const read = (path) => readFileSync(new URL(path, root), 'utf8');
 
-test('the embedding guide lists exactly the presets in public/scenes/index.json', () => {
+test('the embedding guide lists exactly the presets in public/presets.json', () => {
   const guide = read('web/embed.html');
   const row = guide.match(/<tr><td><code>preset<\/code><\/td><td>([^]*?)<\/td><\/tr>/);
   assert.ok(row, 'the guide has a row for the preset attribute');
   const listed = [...row[1].split('(')[0].matchAll(/<code>([a-z0-9-]+)<\/code>/g)].map((m) => m[1]).filter((n) => n !== 'scenes/');
-  const presets = JSON.parse(read('public/scenes/index.json')).presets.map((p) => p.name);
+  const presets = JSON.parse(read('public/presets.json')).presets.map((p) => p.name);
   assert.deepEqual([...listed].sort(), [...presets].sort());
 });
 
@@ -29,7 +29,7 @@ test('the embedding guide names every attribute the element observes and every m
 
 test('the guide states the poster time every preset has', () => {
   const guide = read('web/embed.html');
-  const presets = JSON.parse(read('public/scenes/index.json')).presets.map((p) => p.name);
+  const presets = JSON.parse(read('public/presets.json')).presets.map((p) => p.name);
   const times = presets.map((name) => JSON.parse(read(`public/scenes/${name}.json`)).render?.time ?? 3);
   const [lo, hi] = [Math.min(...times), Math.max(...times)];
   assert.match(guide, new RegExp(`from ${lo} s to ${hi} s among the presets`));

@@ -17,7 +17,7 @@ test('each bad parameter is named', () => {
     [withSize(DEFAULT_FIELD, 128), 'field.size: nx*ny*nz*nt'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, law: 'x' } }, 'field.spectrum.law'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, epsilon: 0 } }, 'field.spectrum.epsilon'],
-    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: 16 } }, 'field.spectrum.k_inertial'],
+    [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: 0 } }, 'field.spectrum.k_inertial'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, sigma: -1 } }, 'field.spectrum.sigma'],
     [{ ...DEFAULT_FIELD, seed: 1.5 }, 'seed'],
   ];
@@ -36,6 +36,12 @@ test('any even extent from 4 to 256 is a lattice, with the core\'s message other
     ['field.size[1]: must be an even number between 4 and 256 (got 33 for ny)']);
 });
 
-test('k_inertial is bounded by the smallest spatial extent', () => {
-  assert.equal(maxInertial([64, 16, 32, 4]), 7);
+test('the explorer\'s k_inertial goes up to the largest |k| among the lattice\'s modes; any lattice takes the paper\'s 4', () => {
+  // Components up to n/2 − 1 on each axis (the Nyquist planes are zero): (31, 7, 15).
+  assert.equal(maxInertial([64, 16, 32, 4]), Math.hypot(31, 7, 15));
+  for (const n of [4, 6, 8, 16]) assert.deepEqual(validateField(withSize(DEFAULT_FIELD, n)), [], `${n}`);
+  for (const k of [0, -1, 257, NaN]) {
+    assert.deepEqual(validateField({ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: k } }),
+      ['field.spectrum.k_inertial: must be a finite number greater than 0 and at most 256']);
+  }
 });

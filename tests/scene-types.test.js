@@ -47,7 +47,7 @@ test('the core\'s normalised scenes hold every key the generated `Scene` type re
   const ajv = new Ajv2020({ allErrors: true, strict: true });
   for (const format of ['float', 'double', 'uint', 'uint32', 'uint64']) ajv.addFormat(format, true);
   const normalised = ajv.compile(normalisedSchema(schema));
-  const shipped = readdirSync(`${root}public/scenes`).filter((f) => f.endsWith('.json') && f !== 'index.json')
+  const shipped = readdirSync(`${root}public/scenes`).filter((f) => f.endsWith('.json'))
     .map((f) => [f, JSON.parse(readFileSync(`${root}public/scenes/${f}`, 'utf8'))]);
   const scenes = [...shipped, ...MINIMAL.map((s, i) => [`minimal ${i}`, s])];
   for (const [name, scene] of scenes) {

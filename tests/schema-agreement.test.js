@@ -38,7 +38,6 @@ const CROSS_FIELD = [
   /camera\.target: must differ from camera\.position/,
   /camera\.up: must not be parallel to the view direction/,
   /key times must increase strictly/, // a repulsor's path
-  /k_inertial: .*half the smallest spatial extent/, // depends on field.size
   /field\.size: .*points/, // the lattice's product, at most 2^24
   /reversed sets keep every step/, // blobs × (reverse_from / dt + 1), and the steps
   /simulation\.dt: .* steps, over the limit/, // reverse_from / dt and render.time / dt, the step budget
@@ -141,7 +140,7 @@ test('the ranges a schema-driven editor once let through are in the schema', () 
     [['simulation', 'dt'], -1], [['gas', 'dissipation'], 900000], [['emitters', 0, 'rate'], 1e7],
     [['field', 'amplitude'], -3], [['field', 'period', 1], 0], [['render', 'camera', 'fov_y_deg'], 180],
     [['render', 'medium', 'phase', 'g'], 1], [['wind', 3, 'path', 0, 1], 2e6], [['shapes', 0, 'count'], 0],
-    [['render', 'time'], -1], [['render', 'time'], 2e5], [['gas', 'max_blobs'], 1_000_001],
+    [['render', 'time'], -1], [['render', 'time'], 2e6], [['gas', 'max_blobs'], 1_000_001],
   ]) {
     const scene = withValue(EVERY_VARIANT, path, v);
     assert.equal(schemaAccepts(scene), false, `schema on ${path.join('.')} = ${v}`);

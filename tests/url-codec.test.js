@@ -18,6 +18,15 @@ test('round trip is exact, including awkward numbers and text', async () => {
   }
 });
 
+test('a link may carry the scene as plain JSON, percent-encoded or not', async () => {
+  const odd = { ...scene, note: 'a + b & c = "d" #1 100%' };
+  assert.deepEqual(await decodeScene(`#scene=${encodeURIComponent(JSON.stringify(odd))}`), odd);
+  assert.deepEqual(await decodeScene('#scene={"version":1,"seed":7}'), { version: 1, seed: 7 });
+  assert.deepEqual(await decodeScene('scene=%20%7B%22version%22%3A1%7D'), { version: 1 });
+  await assert.rejects(decodeScene('#scene={"version":1,'), /not valid JSON/);
+  await assert.rejects(decodeScene(`#scene=${encodeURIComponent('{"a":"' + 'x'.repeat(2 << 20) + '"}')}`), /longer than 1 MiB/);
+});
+
 test('links are compact', async () => {
   const hash = await encodeScene(scene);
   assert.ok(hash.length < JSON.stringify(scene).length, `${hash.length} chars`);

@@ -254,7 +254,7 @@ export type WindPrimitive =
     };
 
 /**
- * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
+ * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
  */
 export interface Scene {
   /**
@@ -422,8 +422,9 @@ export interface SpectrumParams {
    */
   epsilon: number;
   /**
-   * Inertial wave number: E(k) = 0 below it (lattice units, > 0), at most half the
-   * smallest spatial extent minus one (127 on the largest lattice).
+   * Inertial wave number: E(k) = 0 below it (lattice units, > 0, at most 256). Above a
+   * lattice's largest |k|, √(Σ (n/2 − 1)²) over nx, ny and nz, no mode carries energy and
+   * the field is calm.
    */
   k_inertial: number;
   law: SpectrumLaw;
@@ -692,7 +693,7 @@ export type WindPrimitiveInput =
     };
 
 /**
- * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.spectrum.k_inertial is at most half the smallest spatial extent minus one; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
+ * Every per-value range the parser enforces is stated here. Rules over several values are not: a direction (axis, normal, up) must have non-zero length; the camera's target must differ from its position and its up must not be parallel to the view; a repulsor's key times must increase; field.size holds at most 2^24 points; the enabled emitters make at most 100,000 births a step (the sum of rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a reversed shape's run (reverse_from / simulation.dt) and render.time / simulation.dt are at most 1,000,000 steps each; all reversed shapes keep at most 100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits counting max(count, gas.max_blobs) a step); field.boundary_width is at most half the shortest field.period; no emitter's center (or path key) lies inside a solid object.
  */
 export interface SceneInput {
   /**
@@ -860,8 +861,9 @@ export interface SpectrumParamsInput {
    */
   epsilon?: number;
   /**
-   * Inertial wave number: E(k) = 0 below it (lattice units, > 0), at most half the
-   * smallest spatial extent minus one (127 on the largest lattice).
+   * Inertial wave number: E(k) = 0 below it (lattice units, > 0, at most 256). Above a
+   * lattice's largest |k|, √(Σ (n/2 − 1)²) over nx, ny and nz, no mode carries energy and
+   * the field is calm.
    */
   k_inertial?: number;
   law?: SpectrumLaw;

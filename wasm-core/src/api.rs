@@ -237,8 +237,7 @@ impl WindField {
         } else {
             let asked: SpectrumParams = parse(spectrum_json, "spectrum")?;
             // The ranges a scene's field.spectrum has, on this field's lattice.
-            let max_k = (self.inner.lattice.min_spatial_extent() / 2 - 1) as f64;
-            asked.validate("spectrum", max_k).map_err(js_error)?;
+            asked.validate("spectrum").map_err(js_error)?;
             asked
         };
         let report = statistics::analyse(&self.inner, &spectrum);

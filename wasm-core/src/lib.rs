@@ -20,7 +20,8 @@
 //! ```
 //!
 //! Shared helpers: [`error`] (the error that names a parameter by its path), [`check`] (the
-//! per-value checks), [`lanes`] (four-wide SIMD helpers).
+//! per-value checks), [`lanes`] (four-wide SIMD helpers), [`whole`] (whole numbers as JSON
+//! writes them, `32` or `32.0`).
 //!
 //! The core is plain Rust. The native command line (`src/bin/windfield`) and the WASM build
 //! use the same core; only the WASM build compiles `api` and links wasm-bindgen.
@@ -36,6 +37,7 @@ pub mod frame;
 pub mod gas;
 pub mod lanes;
 pub mod render;
+pub mod whole;
 
 pub use error::ParamError;
 pub use field::lattice::Lattice;

@@ -9,7 +9,7 @@ use std::path::Path;
 
 /// The layers, lowest first: a module of layer i may use layers 0..=i.
 const LAYERS: [&[&str]; 7] = [
-    &["check", "error", "lanes"],
+    &["check", "error", "lanes", "whole"],
     &["field"],
     &["gas"],
     &["render"],

@@ -215,11 +215,11 @@ fn negative_numbers_get_the_projects_message_naming_flag_and_range() {
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (
             vec!["simulate", &default, "--seconds", "-1"],
-            "--seconds: must be a number between 0 and 100000 (got -1)",
+            "--seconds: must be a number, 0 or more (got -1)",
         ),
         (
             vec!["render", &default, "--seconds", "-1"],
-            "--seconds: must be a number between 0 and 100000 (got -1)",
+            "--seconds: must be a number, 0 or more (got -1)",
         ),
         (
             vec!["render", &default, "--width", "-5"],
@@ -1069,7 +1069,7 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
         (vec!["paint"], "unrecognized subcommand 'paint'"),
         (
             vec!["simulate", &default, "--seconds", "1e308", "--out", &out],
-            "--seconds: must be a number between 0 and 100000 (got 1e308)",
+            "simulation.dt: 1e308 s of simulated time at dt = ",
         ),
     ] {
         let e = refused(&args);

@@ -29,7 +29,6 @@ fn presets() -> Vec<(String, Scene)> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "json"))
-        .filter(|p| p.file_stem().is_some_and(|s| s != "index"))
         .map(|p| {
             let name = p.file_stem().unwrap().to_string_lossy().to_string();
             (

@@ -428,6 +428,43 @@ fn every_even_extent_from_4_to_256_is_accepted() {
     }
 }
 
+/// The paper's k_inertial = 4 on lattices too small for a whole shell of it: an 8-lattice keeps
+/// the modes near its corners (|k| up to √27), and only those; a 4-lattice has none that reach
+/// 4, so its field is calm.
+#[test]
+fn the_papers_k_inertial_on_the_smallest_lattices() {
+    let p = params([8, 8, 8, 8], SpectrumParams::default(), 3);
+    assert!((p.validate().unwrap().max_wave_number() - 27f64.sqrt()).abs() < 1e-12);
+    let spectrum = hermitian_spectrum(&p).unwrap();
+    let [nx, ny, nz, nt] = p.size;
+    let mut carrying = 0;
+    for (i, _) in spectrum[0].iter().enumerate() {
+        let k = [i % nx, i / nx % ny, i / (nx * ny) % nz];
+        let k2: i64 = (0..3).map(|a| wave_number(k[a], p.size[a]).pow(2)).sum();
+        let energy: f64 = spectrum.iter().map(|c| c[i].norm_sqr()).sum();
+        if energy > 0.0 {
+            assert!(k2 >= 16, "mode {k:?} below k_inertial carries {energy}");
+            carrying += 1;
+        }
+    }
+    assert!(
+        carrying > 0 && carrying < nx * ny * nz * nt / 4,
+        "{carrying} modes carry energy"
+    );
+    let f = TurbulentField::generate(&p).unwrap();
+    assert!(
+        f.data.iter().any(|&v| v != 0.0),
+        "the 8-lattice's field has energy"
+    );
+    let calm = params([4, 4, 4, 4], SpectrumParams::default(), 3);
+    assert!(!calm.spectrum.has_energy_on(&calm.validate().unwrap()));
+    let f = TurbulentField::generate(&calm).unwrap();
+    assert!(
+        f.data.iter().all(|&v| v == 0.0),
+        "no mode of a 4-lattice reaches k = 4"
+    );
+}
+
 #[test]
 fn every_bad_parameter_is_rejected_with_its_name() {
     let good = FieldParams::default();
@@ -524,13 +561,13 @@ fn every_bad_parameter_is_rejected_with_its_name() {
         (
             FieldParams {
                 spectrum: SpectrumParams {
-                    k_inertial: 16.0,
+                    k_inertial: 300.0,
                     ..good.spectrum
                 },
                 ..good
             },
             "field.spectrum.k_inertial",
-            "at most 15",
+            "at most 256",
         ),
         (
             FieldParams {

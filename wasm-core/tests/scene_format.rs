@@ -122,6 +122,28 @@ fn remove(key: &'static str) -> Edit {
     })
 }
 
+/// JSON has one number type: a program that writes every number as a float (`32.0`) writes the
+/// same scene as one that writes integers, and a fraction is still refused.
+#[test]
+fn whole_numbers_written_as_floats_read_as_integers() {
+    let ints = r#"{"version": 1, "seed": 7, "field": {"size": [16, 32, 16, 8]},
+        "gas": {"max_blobs": 500}, "shapes": [{"shape": "torus", "count": 40}],
+        "render": {"image": {"width": 64, "height": 48}}}"#;
+    let floats = r#"{"version": 1.0, "seed": 7.0, "field": {"size": [16.0, 3.2e1, 16, 8.0]},
+        "gas": {"max_blobs": 500.0}, "shapes": [{"shape": "torus", "count": 40.0}],
+        "render": {"image": {"width": 64.0, "height": 4.8e1}}}"#;
+    let a = Scene::from_json(ints).unwrap();
+    assert_eq!(a, Scene::from_json(floats).unwrap());
+    assert_eq!(
+        a,
+        Scene::from_value(serde_json::from_str(floats).unwrap()).unwrap()
+    );
+    let e = Scene::from_json(&floats.replace("3.2e1", "32.5"))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "field.size[1]: must be a whole number ≥ 0 (got 32.5)");
+}
+
 #[test]
 fn malformed_scenes_are_rejected_with_their_path() {
     use serde_json::json;
@@ -185,9 +207,9 @@ fn malformed_scenes_are_rejected_with_their_path() {
             "greater than 0",
         ),
         (
-            set("/field/spectrum/k_inertial", json!(40)),
+            set("/field/spectrum/k_inertial", json!(300)),
             "field.spectrum.k_inertial",
-            "at most 15",
+            "at most 256",
         ),
         (
             set("/field/spectrum/sigma", json!(-0.5)),
@@ -221,13 +243,38 @@ fn malformed_scenes_are_rejected_with_their_path() {
         ),
         (
             insert("/wind/0", "speed", json!(1)),
-            "wind[0]",
+            "wind[0].speed",
             "unknown field `speed`",
         ),
         (
             set("/wind/0/velocity", json!([0, 1])),
-            "wind[0]",
+            "wind[0].velocity",
             "must be a list of 3 numbers (got 2 items)",
+        ),
+        (
+            set("/wind/1/strength", json!("strong")),
+            "wind[1].strength",
+            "must be a number (got the string \"strong\")",
+        ),
+        (
+            insert("/render/objects/0", "solid", json!("yes")),
+            "render.objects[0].solid",
+            "must be true or false (got the string \"yes\")",
+        ),
+        (
+            insert("/render/objects/2", "solid", json!(1)),
+            "render.objects[2].solid",
+            "must be true or false (got 1)",
+        ),
+        (
+            set("/render/lights/0/position", json!("up")),
+            "render.lights[0].position",
+            "(got the string \"up\")",
+        ),
+        (
+            set("/render/medium/phase/g", json!(null)),
+            "render.medium.phase.g",
+            "must be a number (got null)",
         ),
         (
             insert("/wind/1", "radius", json!(0)),
@@ -362,7 +409,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             insert("/render", "time", json!(-1)),
             "render.time",
-            "between 0 and 100000",
+            "between 0 and 1000000",
         ),
         (
             insert("/render", "time", json!("soon")),

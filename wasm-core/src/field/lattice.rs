@@ -62,6 +62,16 @@ impl Lattice {
         ((t * nz + z) * ny + y) * nx + x
     }
 
+    /// Largest |k| among the modes that may carry energy: √(Σ (n/2 − 1)²) over x, y and z (the
+    /// Nyquist planes are zero). A `k_inertial` above it would leave the field without energy.
+    pub fn max_wave_number(&self) -> f64 {
+        self.size[..3]
+            .iter()
+            .map(|&n| (n as f64 / 2.0 - 1.0).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
     /// Smallest spatial extent, which bounds the complete wave-number shells.
     pub fn min_spatial_extent(&self) -> usize {
         self.size[0].min(self.size[1]).min(self.size[2])

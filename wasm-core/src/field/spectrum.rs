@@ -60,9 +60,10 @@ pub struct SpectrumParams {
     /// Energy-cascade rate ε (> 0).
     #[schemars(range(max = MAX_EPSILON), extend("exclusiveMinimum" = 0))]
     pub epsilon: f64,
-    /// Inertial wave number: E(k) = 0 below it (lattice units, > 0), at most half the
-    /// smallest spatial extent minus one (127 on the largest lattice).
-    #[schemars(range(max = 127), extend("exclusiveMinimum" = 0))]
+    /// Inertial wave number: E(k) = 0 below it (lattice units, > 0, at most 256). Above a
+    /// lattice's largest |k|, √(Σ (n/2 − 1)²) over nx, ny and nz, no mode carries energy and
+    /// the field is calm.
+    #[schemars(range(max = MAX_K_INERTIAL), extend("exclusiveMinimum" = 0))]
     pub k_inertial: f64,
     /// Temporal spread: G_k is a Gaussian in ω with standard deviation kσ (σ ≥ 0; 0 freezes time).
     #[schemars(range(min = 0, max = MAX_SIGMA))]
@@ -83,27 +84,28 @@ impl Default for SpectrumParams {
 
 /// Largest ε accepted.
 pub const MAX_EPSILON: f64 = 1.0e6;
+/// Largest k_inertial accepted: beyond the modes of the largest lattice (127·√3).
+pub const MAX_K_INERTIAL: f64 = 256.0;
 /// Largest σ accepted.
 pub const MAX_SIGMA: f64 = 100.0;
 
 impl SpectrumParams {
-    /// Checks ranges. `max_k_inertial` is the largest wave number that still has modes
-    /// (half the smallest spatial extent minus one). Errors are named `{path}.name`.
-    pub fn validate(&self, path: &str, max_k_inertial: f64) -> Result<(), ParamError> {
+    /// Checks ranges. Errors are named `{path}.name`. A `k_inertial` above every mode of a
+    /// lattice ([`crate::field::lattice::Lattice::max_wave_number`]) is allowed: E(k) = 0
+    /// there, and the field is calm.
+    pub fn validate(&self, path: &str) -> Result<(), ParamError> {
         check::positive(&format!("{path}.epsilon"), self.epsilon, MAX_EPSILON)?;
-        if !(self.k_inertial.is_finite()
-            && self.k_inertial > 0.0
-            && self.k_inertial <= max_k_inertial)
-        {
-            return Err(ParamError::new(
-                format!("{path}.k_inertial"),
-                format!(
-                    "must be greater than 0 and at most {max_k_inertial} (half the smallest spatial extent minus one) (got {})",
-                    crate::error::number(self.k_inertial)
-                ),
-            ));
-        }
+        check::positive(
+            &format!("{path}.k_inertial"),
+            self.k_inertial,
+            MAX_K_INERTIAL,
+        )?;
         check::range(&format!("{path}.sigma"), self.sigma, 0.0, MAX_SIGMA)
+    }
+
+    /// Whether some mode of `lattice` carries energy (|k| ≥ `k_inertial`).
+    pub fn has_energy_on(&self, lattice: &crate::field::lattice::Lattice) -> bool {
+        self.k_inertial <= lattice.max_wave_number()
     }
 
     /// E(k), paper Eq. 9 (with the corrected exponents for [`SpectrumLaw::Kolmogorov`]).
@@ -219,27 +221,27 @@ mod tests {
     #[test]
     fn validation_names_parameters() {
         let p = SpectrumParams::default();
-        assert!(p.validate("s", 15.0).is_ok());
+        assert!(p.validate("s").is_ok());
         let e = SpectrumParams { epsilon: 0.0, ..p }
-            .validate("s", 15.0)
+            .validate("s")
             .unwrap_err();
         assert_eq!(e.path, "s.epsilon");
         let e = SpectrumParams {
-            k_inertial: 16.0,
+            k_inertial: 300.0,
             ..p
         }
-        .validate("s", 15.0)
+        .validate("s")
         .unwrap_err();
         assert_eq!(e.path, "s.k_inertial");
         let e = SpectrumParams {
             sigma: f64::NAN,
             ..p
         }
-        .validate("s", 15.0)
+        .validate("s")
         .unwrap_err();
         assert_eq!(e.path, "s.sigma");
         let e = SpectrumParams { sigma: -1.0, ..p }
-            .validate("s", 15.0)
+            .validate("s")
             .unwrap_err();
         assert_eq!(e.path, "s.sigma");
         assert_eq!(SpectrumLaw::parse("x", "s.law").unwrap_err().path, "s.law");

@@ -21,8 +21,10 @@ pub const MAX_SEED: u64 = 1 << 53;
 #[serde(deny_unknown_fields)]
 pub struct FieldParams {
     /// `[nx, ny, nz, nt]`, each an even number in 4..=256, at most 2^24 points in all.
+    #[serde(deserialize_with = "crate::whole::list")]
     pub size: [usize; 4],
     pub spectrum: SpectrumParams,
+    #[serde(deserialize_with = "crate::whole::number")]
     pub seed: u64,
 }
 
@@ -41,8 +43,7 @@ impl FieldParams {
     /// `field.spectrum.*` and `seed`.
     pub fn validate(&self) -> Result<Lattice, ParamError> {
         let lattice = Lattice::new(self.size, "field.size")?;
-        let max_k = (lattice.min_spatial_extent() / 2 - 1) as f64;
-        self.spectrum.validate("field.spectrum", max_k)?;
+        self.spectrum.validate("field.spectrum")?;
         check::integer("seed", self.seed, 0, MAX_SEED)?;
         Ok(lattice)
     }

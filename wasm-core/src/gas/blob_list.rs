@@ -53,8 +53,10 @@ pub enum Encoding {
 #[serde(deny_unknown_fields, default)]
 pub struct Image {
     #[schemars(range(min = 1, max = MAX_IMAGE_SIDE))]
+    #[serde(deserialize_with = "crate::whole::number")]
     pub width: u32,
     #[schemars(range(min = 1, max = MAX_IMAGE_SIDE))]
+    #[serde(deserialize_with = "crate::whole::number")]
     pub height: u32,
     pub encoding: Encoding,
 }

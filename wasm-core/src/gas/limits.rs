@@ -38,8 +38,10 @@ pub const MAX_SHAPES: usize = 256;
 /// Most keys on a repulsor's path.
 pub const MAX_PATH_KEYS: usize = 10_000;
 
-/// Longest simulated time (s) a run may ask for: `render.time`, the CLI's `--seconds`.
-pub const MAX_SECONDS: f64 = 1e5;
+/// Longest simulated time (s) a scene's `render.time` or a blob list's time may give: the
+/// longest run the step budget allows at the largest step (`simulation.dt` = 1 s). A run's own
+/// time (`--seconds`) is bounded by the step budget alone, whose refusal names `simulation.dt`.
+pub const MAX_SECONDS: f64 = 1e6;
 /// Most fixed steps one run may take (docs/FORMATS.md, the command line): more is refused before it starts.
 pub const MAX_STEPS: u64 = 1_000_000;
 

@@ -9,28 +9,105 @@
 //! or render.
 
 use crate::error::ParamError;
-use crate::gas::blob_list::BlobList;
+use crate::gas::blob_list::{BlobList, Light, Object, Phase};
 use crate::gas::json_errors::describe;
 use crate::gas::limits::MAX_SCENE_BYTES;
 use crate::gas::list_budget::{check_lists, BLOB_LIST_LISTS, SCENE_LISTS};
-use crate::gas::scene::{Scene, SCENE_VERSION};
+use crate::gas::scene::{Primitive, Scene, SCENE_VERSION};
 use serde::{Deserialize, Deserializer};
 use serde_json::Value;
 
 /// A serde error as a [`ParamError`] at its JSON path (`root` for the document itself); `text`
-/// is the JSON read, when it was text.
+/// is the JSON read, when it was text, `tree` the value read, when it was a value.
 fn at_path(
     root: &str,
     e: serde_path_to_error::Error<serde_json::Error>,
     text: Option<&str>,
+    tree: Option<&Value>,
 ) -> ParamError {
     // serde_path_to_error writes `.` for the document and `?` for a key it has not read.
     let path = e.path().to_string();
-    let path = match path.trim_end_matches(".?") {
+    let mut path = match path.trim_end_matches(".?") {
         "." | "?" | "" => root.to_string(),
         known => known.to_string(),
     };
+    if e.inner().classify() == serde_json::error::Category::Data && tagged(&path).is_some() {
+        let parsed: Option<Value> = match tree {
+            Some(_) => None,
+            None => text.and_then(|t| serde_json::from_str(t).ok()),
+        };
+        if let Some(key) = tree.or(parsed.as_ref()).and_then(|t| key_within(&path, t)) {
+            path = format!("{path}.{key}");
+        }
+    }
     ParamError::new(path, describe(e.inner(), text))
+}
+
+/// The internally tagged element (`"type": …`) a path ends at, if it does: a wind primitive,
+/// an object, a light or the phase function, in a scene or a blob list.
+#[derive(Clone, Copy)]
+enum Tagged {
+    Primitive,
+    Object,
+    Light,
+    Phase,
+}
+
+fn tagged(path: &str) -> Option<Tagged> {
+    if path == "medium.phase" || path == "render.medium.phase" {
+        return Some(Tagged::Phase);
+    }
+    let list = path.strip_suffix(']')?.rsplit_once('[')?.0;
+    match list {
+        "wind" => Some(Tagged::Primitive),
+        "objects" | "render.objects" => Some(Tagged::Object),
+        "lights" | "render.lights" => Some(Tagged::Light),
+        _ => None,
+    }
+}
+
+/// The value at a path as serde_path_to_error writes it (`render.objects[2]`).
+fn lookup<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
+    let mut at = root;
+    for part in path.split('.') {
+        let (key, indices) = part.split_once('[').unwrap_or((part, ""));
+        if !key.is_empty() {
+            at = at.get(key)?;
+        }
+        for index in indices.split('[').filter(|i| !i.is_empty()) {
+            at = at.get(index.strip_suffix(']')?.parse::<usize>().ok()?)?;
+        }
+    }
+    Some(at)
+}
+
+/// The key within a tagged element whose value serde refused. serde reads such an element whole
+/// before it picks the variant, so its error's path ends at the element; each key but `type`
+/// is left out in turn, and the one whose absence cures the element (or leaves only that key
+/// missing) is the one named. None when no single key is to blame.
+fn key_within(path: &str, root: &Value) -> Option<String> {
+    let kind = tagged(path)?;
+    let element = lookup(root, path)?.as_object()?;
+    let cured_without = |key: &str| {
+        let mut rest = element.clone();
+        rest.remove(key);
+        let rest = Value::Object(rest);
+        let read = match kind {
+            Tagged::Primitive => Primitive::deserialize(&rest).map(drop),
+            Tagged::Object => Object::deserialize(&rest).map(drop),
+            Tagged::Light => Light::deserialize(&rest).map(drop),
+            Tagged::Phase => Phase::deserialize(&rest).map(drop),
+        };
+        match read {
+            Ok(()) => true,
+            Err(e) => e.to_string() == format!("missing field `{key}`"),
+        }
+    };
+    let mut culprits = element.keys().filter(|k| *k != "type" && cured_without(k));
+    match (culprits.next(), culprits.next()) {
+        (Some(key), None) => Some(key.clone()),
+        _ => None,
+    }
 }
 
 /// A size in bytes as the limits are stated: `64 MiB`, `210.0 MiB`.
@@ -102,7 +179,7 @@ impl Scene {
         }
         let mut de = serde_json::Deserializer::from_str(text);
         let scene: Scene = serde_path_to_error::deserialize(&mut de)
-            .map_err(|e| at_path("scene", e, Some(text)))?;
+            .map_err(|e| at_path("scene", e, Some(text), None))?;
         de.end()
             .map_err(|e| ParamError::new("scene", describe(&e, Some(text))))?;
         scene.validate()?;
@@ -112,8 +189,8 @@ impl Scene {
     /// Validates a parsed JSON value, migrating older versions first.
     pub fn from_value(value: Value) -> Result<Self, ParamError> {
         let value = migrate(value)?;
-        let scene: Scene =
-            serde_path_to_error::deserialize(value).map_err(|e| at_path("scene", e, None))?;
+        let scene: Scene = serde_path_to_error::deserialize(&value)
+            .map_err(|e| at_path("scene", e, None, Some(&value)))?;
         scene.validate()?;
         Ok(scene)
     }
@@ -127,7 +204,8 @@ fn check_version(version: Option<&Value>) -> Result<(), ParamError> {
         None => bad(format!(
             "missing: a scene names its format version (current: {SCENE_VERSION})"
         )),
-        Some(v) if v.as_u64() == Some(SCENE_VERSION as u64) => Ok(()),
+        // 1 or 1.0: JSON has one kind of number.
+        Some(v) if v.as_f64() == Some(SCENE_VERSION as f64) => Ok(()),
         Some(Value::Number(n)) => bad(format!(
             "unsupported scene version {n}; this build reads version {SCENE_VERSION}"
         )),
@@ -155,8 +233,8 @@ fn migrate(value: Value) -> Result<Value, ParamError> {
 impl BlobList {
     /// Parses and validates a blob list from a JSON value; errors name the JSON path.
     pub fn from_value(value: Value) -> Result<Self, ParamError> {
-        let list =
-            serde_path_to_error::deserialize(value).map_err(|e| at_path("blob_list", e, None));
+        let list = serde_path_to_error::deserialize(&value)
+            .map_err(|e| at_path("blob_list", e, None, Some(&value)));
         Self::checked(list)
     }
 
@@ -168,7 +246,7 @@ impl BlobList {
         check_lists(text, BLOB_LIST_LISTS, "blob_list")?;
         let mut de = serde_json::Deserializer::from_str(text);
         let list = serde_path_to_error::deserialize(&mut de)
-            .map_err(|e| at_path("blob_list", e, Some(text)));
+            .map_err(|e| at_path("blob_list", e, Some(text), None));
         let list = Self::checked(list)?;
         de.end()
             .map_err(|e| ParamError::new("blob_list", describe(&e, Some(text))))?;
@@ -193,8 +271,8 @@ impl BlobList {
             }
         }
         let mut de = serde_json::Deserializer::from_reader(reader);
-        let list =
-            serde_path_to_error::deserialize(&mut de).map_err(|e| at_path("blob_list", e, None));
+        let list = serde_path_to_error::deserialize(&mut de)
+            .map_err(|e| at_path("blob_list", e, None, None));
         let list = Self::checked(list)?;
         de.end()
             .map_err(|e| ParamError::new("blob_list", describe(&e, None)))?;

@@ -35,9 +35,10 @@ fn yes() -> bool {
 pub struct Scene {
     /// Scene format version (currently 1).
     #[schemars(extend("const" = SCENE_VERSION))]
+    #[serde(deserialize_with = "crate::whole::number")]
     pub version: u32,
     /// Seeds the field's white noise, the emitters and the splitting.
-    #[serde(default = "one")]
+    #[serde(default = "one", deserialize_with = "crate::whole::number")]
     #[schemars(range(max = MAX_SEED))]
     pub seed: u64,
     #[serde(default)]
@@ -99,6 +100,7 @@ fn lattice_size_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
 pub struct FieldSettings {
     /// Lattice `[nx, ny, nz, nt]`, each an even number in 4..=256, at most 2^24 points in all.
     #[schemars(schema_with = "lattice_size_schema")]
+    #[serde(deserialize_with = "crate::whole::list")]
     pub size: [usize; 4],
     pub spectrum: SpectrumParams,
     /// World metres per spatial period along x, y, z (the paper's grid spacing control).
@@ -342,6 +344,7 @@ pub struct GasSettings {
     pub split_sigma: Option<f64>,
     /// Most live blobs; the oldest are removed first beyond it (at most 1,000,000).
     #[schemars(range(min = 1, max = MAX_BLOBS_LIMIT))]
+    #[serde(deserialize_with = "crate::whole::number")]
     pub max_blobs: usize,
     /// Blobs lighter than this are removed.
     #[schemars(range(min = 0, max = 1e12))]
@@ -455,8 +458,7 @@ pub fn json_schema() -> String {
             "Every per-value range the parser enforces is stated here. Rules over several \
              values are not: a direction (axis, normal, up) must have non-zero length; the \
              camera's target must differ from its position and its up must not be parallel to \
-             the view; a repulsor's key times must increase; field.spectrum.k_inertial is at \
-             most half the smallest spatial extent minus one; field.size holds at most 2^24 \
+             the view; a repulsor's key times must increase; field.size holds at most 2^24 \
              points; the enabled emitters make at most 100,000 births a step (the sum of \
              rate × simulation.dt); all shapes together make at most 1,000,000 blobs; a \
              reversed shape's run (reverse_from / simulation.dt) and render.time / \

@@ -46,6 +46,7 @@ pub struct Shape {
     pub thickness: f32,
     /// Number of blobs (ignored for `points`).
     #[schemars(range(min = 1, max = MAX_SHAPE_BLOBS))]
+    #[serde(deserialize_with = "crate::whole::number")]
     pub count: usize,
     /// Blob centres relative to `center`, for `points`.
     #[schemars(length(max = MAX_SHAPE_BLOBS), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]

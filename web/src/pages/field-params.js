@@ -43,9 +43,8 @@ export function validateField(field) {
   if (!(Number.isFinite(s.epsilon) && s.epsilon > 0 && s.epsilon <= 1e6)) {
     errors.push('field.spectrum.epsilon: must be greater than 0 and at most 1000000');
   }
-  const kMax = maxInertial(size);
-  if (!(Number.isFinite(s.k_inertial) && s.k_inertial > 0 && s.k_inertial <= kMax)) {
-    errors.push(`field.spectrum.k_inertial: must be greater than 0 and at most ${kMax}`);
+  if (!(Number.isFinite(s.k_inertial) && s.k_inertial > 0 && s.k_inertial <= 256)) {
+    errors.push('field.spectrum.k_inertial: must be a finite number greater than 0 and at most 256');
   }
   if (!(Number.isFinite(s.sigma) && s.sigma >= 0 && s.sigma <= 100)) {
     errors.push('field.spectrum.sigma: must be between 0 and 100');
@@ -69,7 +68,11 @@ export function withSize(field, size) {
   return { ...field, size: [...s], spectrum: { ...field.spectrum } };
 }
 
-/** Largest k_inertial that leaves modes on the lattice: half the smallest spatial extent, minus one. */
+/**
+ * Largest k_inertial that leaves modes with energy on the lattice (the explorer's slider goes no
+ * further): the largest |k| among its modes, √(Σ (n/2 − 1)²) over x, y and z (the Nyquist planes
+ * are zero). Above it the field is calm.
+ */
 export function maxInertial(size) {
-  return Math.min(size[0], size[1], size[2]) / 2 - 1;
+  return Math.hypot(size[0] / 2 - 1, size[1] / 2 - 1, size[2] / 2 - 1);
 }

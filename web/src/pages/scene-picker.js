@@ -1,13 +1,13 @@
-// The playground's scene picker: every preset of `scenes/index.json` as a card with its
+// The playground's scene picker: every preset of `presets.json` as a card with its
 // thumbnail, its title and its line from the paper, chosen by click or from the keyboard (a
 // radio group: arrow keys move, Enter or Space choose).
 
 /** Preset names are file names in `scenes/`: lower-case letters, digits and hyphens. */
 export const PRESET_NAME = /^[a-z0-9-]+$/;
 
-/** The presets' catalogue (`scenes/index.json`): [{name, title, quote, section}]. */
+/** The presets' catalogue (`presets.json`): [{name, title, quote, section}]. */
 export async function presetCatalog(base = document.baseURI) {
-  const response = await fetch(new URL('./scenes/index.json', base));
+  const response = await fetch(new URL('./presets.json', base));
   if (!response.ok) throw new Error(`the list of scenes could not be loaded (${response.status})`);
   const { presets } = await response.json();
   return presets;

@@ -1,6 +1,8 @@
 // The scene in the URL hash: `#scene=1.<base64url of the deflate-raw compressed JSON>`.
 // The leading "1." is the codec version, so links made today keep decoding after the format
-// grows; the scene inside carries its own format version too.
+// grows; the scene inside carries its own format version too. A link may also carry the scene
+// as plain JSON, percent-encoded or not (`#scene={"version":1,…}`), as a person or another
+// program writes one by hand; the page's own links are compressed.
 //
 // Links are opened by strangers: a link longer than `MAX_LINK_CHARS`, or one that inflates past
 // `MAX_SCENE_BYTES`, is refused before more of it is read. Errors say what is wrong with the
@@ -77,6 +79,7 @@ export async function decodeScene(hash) {
   const params = new URLSearchParams(hash.replace(/^#/, ''));
   const value = params.get(HASH_KEY);
   if (value === null) return null;
+  if (value.trimStart().startsWith('{')) return plainScene(value);
   const dot = value.indexOf('.');
   if (dot < 0) throw new Error(DAMAGED);
   const version = value.slice(0, dot);
@@ -99,6 +102,22 @@ export async function decodeScene(hash) {
   } catch {
     throw new Error(DAMAGED);
   }
+  return sceneObject(scene);
+}
+
+/** A scene given as plain JSON in the link (`#scene={…}`). */
+function plainScene(text) {
+  let scene;
+  try {
+    scene = JSON.parse(text);
+  } catch {
+    throw new Error("the link's scene is not valid JSON (written by hand, it must be percent-encoded: encodeURIComponent)");
+  }
+  return sceneObject(scene);
+}
+
+/** `scene` if it is a JSON object, else the link's error. */
+function sceneObject(scene) {
   if (typeof scene !== 'object' || scene === null || Array.isArray(scene)) throw new Error('the link holds no scene object');
   return scene;
 }

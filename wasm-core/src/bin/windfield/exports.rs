@@ -3,8 +3,8 @@
 //! browser's worker calls the same code).
 
 use super::{
-    check_seconds, grouped, read_input, read_scene, simulated, wall, write_atomically, Failure,
-    Input,
+    check_list_time, check_seconds, grouped, read_input, read_scene, simulated, wall,
+    write_atomically, Failure, Input,
 };
 use crate::output;
 use crate::sequence::{Output, Sequence};
@@ -168,7 +168,8 @@ pub struct VolumeArgs {
     /// Output .vdb; with --frames, a pattern with one %0Nd for the frame number.
     #[arg(long)]
     out: PathBuf,
-    /// For a scene: seconds to simulate, 0 to 100000 (default: the scene's render.time).
+    /// For a scene: seconds to simulate, 0 or more, at most 1,000,000 steps of simulation.dt
+    /// (default: the scene's render.time).
     #[arg(long, conflicts_with = "frames", allow_hyphen_values = true)]
     seconds: Option<f64>,
     /// For a scene: a sequence, frames k in the half-open range A..B at t = k/fps.
@@ -237,11 +238,7 @@ pub fn volume(args: VolumeArgs) -> Result<(), Failure> {
         }
         Input::List(list) => {
             if let Some(t) = args.time {
-                check_seconds(t).map_err(|_| {
-                    Failure::Input(format!(
-                        "--time: must be a number between 0 and 100000 (got {t})"
-                    ))
-                })?;
+                check_list_time(t)?;
             }
             (list, args.time)
         }

@@ -99,8 +99,8 @@ struct RenderArgs {
     /// Image height in pixels, 1 to 8192 (overrides the input's).
     #[arg(long, allow_hyphen_values = true)]
     height: Option<i64>,
-    /// For a scene: seconds to simulate before rendering, 0 to 100000 (default: the scene's
-    /// render.time, 3 when it has none).
+    /// For a scene: seconds to simulate before rendering, 0 or more, at most 1,000,000 steps of
+    /// simulation.dt (default: the scene's render.time, 3 when it has none).
     #[arg(long, conflicts_with = "frames", allow_hyphen_values = true)]
     seconds: Option<f64>,
     /// For a scene: a sequence, frames k in the half-open range A..B, frame k at t = k/fps.
@@ -130,7 +130,8 @@ struct RenderArgs {
 struct SimulateArgs {
     /// Scene file (JSON, format version 1).
     scene: PathBuf,
-    /// Simulated time in seconds, 0 to 100000 (rounded to whole steps of simulation.dt).
+    /// Simulated time in seconds, 0 or more (rounded to whole steps of simulation.dt, at most
+    /// 1,000,000 of them).
     #[arg(long, allow_hyphen_values = true)]
     seconds: f64,
     /// Output blob list (JSON).
@@ -170,7 +171,7 @@ struct GenerateArgs {
     /// (m/s): .vdb (a Vec3SGrid "wind") or .rgb32f (a raw 3-D texture, JSON beside it).
     #[arg(long)]
     out: PathBuf,
-    /// For .vdb and .rgb32f: the moment (s) of the slice, 0 to 100000 (default 0); linear in
+    /// For .vdb and .rgb32f: the moment (s) of the slice, 0 to 1000000 (default 0); linear in
     /// time between lattice times.
     #[arg(long, allow_hyphen_values = true)]
     time: Option<f64>,
@@ -354,6 +355,13 @@ fn generate(args: GenerateArgs) -> Result<(), Failure> {
         args.out.display(),
         sidecar(&args.out).display()
     );
+    if !params.spectrum.has_energy_on(&field.lattice) {
+        eprintln!(
+            "note: no mode of this lattice has |k| >= k_inertial = {} (the largest is {:.3}), so the field is zero",
+            number(params.spectrum.k_inertial),
+            field.lattice.max_wave_number()
+        );
+    }
     Ok(())
 }
 
@@ -638,14 +646,28 @@ pub(crate) fn read_input(path: &Path) -> Result<Input, Failure> {
     }
 }
 
-/// Seconds of simulated time asked for with `--seconds`: 0 to `gas::limits::MAX_SECONDS`.
+/// Seconds of simulated time asked for with `--seconds`: a number, 0 or more. How many the
+/// scene may take is the step budget's to say (`Simulation::budgeted_steps`, which names
+/// `simulation.dt` and the time).
 pub(crate) fn check_seconds(seconds: f64) -> Result<(), Failure> {
-    if seconds.is_finite() && (0.0..=MAX_SECONDS).contains(&seconds) {
+    if seconds.is_finite() && seconds >= 0.0 {
         Ok(())
     } else {
         Err(Failure::Input(format!(
-            "--seconds: must be a number between 0 and {MAX_SECONDS} (got {})",
+            "--seconds: must be a number, 0 or more (got {})",
             number(seconds)
+        )))
+    }
+}
+
+/// A blob list's time given with `--time`: 0 to `gas::limits::MAX_SECONDS`.
+pub(crate) fn check_list_time(time: f64) -> Result<(), Failure> {
+    if time.is_finite() && (0.0..=MAX_SECONDS).contains(&time) {
+        Ok(())
+    } else {
+        Err(Failure::Input(format!(
+            "--time: must be a number between 0 and {MAX_SECONDS} (got {})",
+            number(time)
         )))
     }
 }
@@ -741,11 +763,7 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
                 list.background = Background::Transparent;
             }
             if let Some(t) = args.time {
-                check_seconds(t).map_err(|_| {
-                    Failure::Input(format!(
-                        "--time: must be a number between 0 and {MAX_SECONDS} (got {t})"
-                    ))
-                })?;
+                check_list_time(t)?;
             }
             Ok((list, args.time))
         }
@@ -754,18 +772,10 @@ fn blob_list_for(args: &RenderArgs) -> Result<(BlobList, Option<f64>), Failure> 
 
 /// `render --frames`: a scene's sequence (the `sequence` module).
 fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<(), Failure> {
-    let size = match (
+    let size = [
         pixels("--width", args.width)?,
         pixels("--height", args.height)?,
-    ) {
-        (None, None) => None,
-        (Some(w), Some(h)) => Some((w, h)),
-        _ => {
-            return Err(Failure::Input(
-                "--width, --height: give both or neither with --frames".into(),
-            ))
-        }
-    };
+    ];
     let Some(out) = &args.out else {
         return Err(Failure::Input(
             "--out: a sequence needs a pattern with one %0Nd for the frame number (frames/f%04d.png)"

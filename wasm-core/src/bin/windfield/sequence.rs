@@ -233,9 +233,9 @@ pub fn scene_fingerprint(scene: &Scene, width: u32, height: u32) -> String {
 /// What each frame of a sequence is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Output {
-    /// A still of `size` (default the scene's), PNG or OpenEXR.
+    /// A still of `size`, width and height (each default the scene's), PNG or OpenEXR.
     Image {
-        size: Option<(u32, u32)>,
+        size: [Option<u32>; 2],
         format: StillFormat,
     },
     /// The gas as an OpenVDB volume of voxels of `voxel` m.
@@ -304,8 +304,12 @@ impl Sequence {
             .map_err(|e| Failure::Input(e.to_string()))?;
         let settings = sim.render_settings();
         let size = match self.output {
-            Output::Image { size, .. } => {
-                Some(size.unwrap_or((settings.image.width, settings.image.height)))
+            Output::Image {
+                size: [width, height],
+                ..
+            } => {
+                let image = &settings.image;
+                Some((width.unwrap_or(image.width), height.unwrap_or(image.height)))
             }
             Output::Volume { .. } => None,
         };

@@ -25,7 +25,7 @@ pub const MAX_TRACE_STEPS: f64 = 10_000.0;
 pub struct WindArgs {
     /// Scene file (JSON, format version 1).
     scene: PathBuf,
-    /// The time (s), 0 to 100000.
+    /// The time (s), 0 or more (at most 1,000,000 steps of simulation.dt).
     #[arg(long, allow_hyphen_values = true)]
     seconds: f64,
     /// A JSON array of points [x, y, z] (m); the output (.json) is an array of [u, v, w]
