@@ -65,7 +65,7 @@ test('npm pack ships the element (source for bundlers, standalone module), its t
   assert.equal(pkg.exports['.'].default, './web/src/embed.js');
   assert.equal(pkg.exports['.'].types, './types/index.d.ts');
   assert.equal(pkg.exports['./embed.js'].default, './dist/embed.js');
-  for (const path of ['package.json', 'types/index.d.ts', 'web/src/embed.js', 'public/scenes/default.json']) {
+  for (const path of ['package.json', 'types/index.d.ts', 'web/src/embed.js', 'public/scenes/default.json', 'public/presets.json']) {
     assert.ok(files.has(path), `${path} is packed`);
   }
   // Everything the bundler entry imports is in the package (the generated core once built).

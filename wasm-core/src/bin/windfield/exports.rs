@@ -3,7 +3,7 @@
 //! browser's worker calls the same code).
 
 use super::{
-    check_list_time, check_seconds, grouped, read_input, read_scene, simulated, wall,
+    check_list_time, check_seconds, grouped, image_format, read_input, read_scene, simulated, wall,
     write_atomically, Failure, Input,
 };
 use crate::output;
@@ -12,7 +12,6 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use windfield::export::flipbook::{parse_pair, FlipbookJob, FlipbookSpec, SettingNames};
-use windfield::export::still::StillFormat;
 use windfield::export::volume::{GasVolume, VolumeBuild};
 use windfield::gas::limits::MAX_IMAGE_SIDE;
 use windfield::ParamError;
@@ -105,7 +104,7 @@ pub fn flipbook(args: FlipbookArgs) -> Result<(), Failure> {
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .ok_or_else(|| Failure::Input("--out: must name a file".into()))?;
-    let format = StillFormat::of_name(&name);
+    let format = image_format(Path::new(&name))?;
     let scene = read_scene(&args.scene)?;
     let period = scene.field.time_period;
     let bad = |e: ParamError| Failure::Input(format!("{}: {e}", args.scene.display()));

@@ -660,6 +660,26 @@ pub(crate) fn check_seconds(seconds: f64) -> Result<(), Failure> {
     }
 }
 
+/// Extensions of image formats windfield does not write: an `--out` naming one is refused
+/// rather than given PNG bytes under that name.
+const OTHER_IMAGE_FORMATS: [&str; 10] = [
+    "jpg", "jpeg", "webp", "gif", "bmp", "tif", "tiff", "avif", "heic", "tga",
+];
+
+/// The image format an `--out` names: `.exr` OpenEXR, anything else PNG, but another image
+/// format's extension (`.jpg`, …) is an error.
+pub(crate) fn image_format(out: &Path) -> Result<StillFormat, Failure> {
+    let extension = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if let Some(e) = extension.filter(|e| OTHER_IMAGE_FORMATS.contains(&e.as_str())) {
+        return Err(Failure::Input(format!(
+            "--out: windfield writes PNG or OpenEXR images, not .{e} (name the file .png or .exr)"
+        )));
+    }
+    Ok(StillFormat::of_name(&out.to_string_lossy()))
+}
+
 /// A blob list's time given with `--time`: 0 to `gas::limits::MAX_SECONDS`.
 pub(crate) fn check_list_time(time: f64) -> Result<(), Failure> {
     if time.is_finite() && (0.0..=MAX_SECONDS).contains(&time) {
@@ -782,7 +802,7 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
                 .into(),
         ));
     };
-    let format = StillFormat::of_name(&out.to_string_lossy());
+    let format = image_format(out)?;
     let job = sequence::Sequence::parse(
         frames,
         args.fps,
@@ -814,6 +834,9 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
         pixels("--width", args.width)?,
         pixels("--height", args.height)?,
     );
+    if let Some(out) = &args.out {
+        image_format(out)?;
+    }
     let (list, time) = blob_list_for(&args)?;
     let size = match (width, height) {
         (None, None) => None,
