@@ -205,6 +205,18 @@ fn every_command_that_writes_says_what_it_wrote() {
         "{last}"
     );
     assert!(last.contains("at t = 1.00 s in the last"), "{last}");
+    // Either side alone, as for a still: the other is the scene's (480 high by default).
+    let narrow = format!("{}/g%02d.png", s(&dir));
+    let last = ok(&[
+        "render", &plume, "--frames", "0..2", "--fps", "2", "--width", "40", "--out", &narrow,
+    ]);
+    let last = last.lines().last().unwrap();
+    assert!(
+        last.starts_with(&format!(
+            "wrote 2 frames {narrow} (40×480; frames 0..2 at 2 fps)"
+        )),
+        "{last}"
+    );
 }
 
 #[test]
