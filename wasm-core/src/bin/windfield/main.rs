@@ -834,9 +834,12 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
         pixels("--width", args.width)?,
         pixels("--height", args.height)?,
     );
-    if let Some(out) = &args.out {
-        image_format(out)?;
-    }
+    // One still without --out: the input's name with .png, in the current folder.
+    let out = args.out.clone().unwrap_or_else(|| {
+        let stem = args.input.file_stem().unwrap_or_default();
+        PathBuf::from(stem).with_extension("png")
+    });
+    let format = image_format(&out)?;
     let (list, time) = blob_list_for(&args)?;
     let size = match (width, height) {
         (None, None) => None,
@@ -848,12 +851,6 @@ fn render_cmd(args: RenderArgs) -> Result<(), Failure> {
     let renderer = Renderer::new(&list, size, RenderOptions::default())
         .map_err(|e| Failure::Input(format!("{}: {e}", args.input.display())))?;
     let image = renderer.render();
-    // One still without --out: the input's name with .png, in the current folder.
-    let out = args.out.clone().unwrap_or_else(|| {
-        let stem = args.input.file_stem().unwrap_or_default();
-        PathBuf::from(stem).with_extension("png")
-    });
-    let format = StillFormat::of_name(&out.to_string_lossy());
     let info = ExrInfo {
         camera: Some(list.camera.clone()),
         time,
