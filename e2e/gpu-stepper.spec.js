@@ -4,8 +4,9 @@
 // the frame the views draw holds the state's blobs sorted by σ class as its description says,
 // and the real-time view draws it as it draws the worker's frame of the same blobs; the
 // real-time view of a 250,000-blob GPU-stepped plume matches the CPU reference still of its
-// read-back blobs; without float render targets, or with more solids than it takes, the worker
-// steps, and says so.
+// read-back blobs; among 150 solid spheres it walks the core's grid and still agrees blob by blob;
+// without float render targets, or with a wind table wider than a texture row, the worker steps,
+// and says so.
 import { test, expect } from './helpers.js';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { decodePng } from '../tests/support/png.js';
@@ -14,7 +15,7 @@ import { encodeScene } from '../web/src/state/url-codec.js';
 import { WORDS_PER_BLOB } from '../web/src/generated/contract.js';
 import { frameDescription } from '../web/src/views/scene-view.js';
 import { classOf } from '../web/src/views/volume/grid.js';
-import { centreStatistics, distances, everyKind, totalMass, withSolids } from '../tests/support/gas-twin.js';
+import { amongManySpheres, centreStatistics, distances, everyKind, totalMass, withSolids } from '../tests/support/gas-twin.js';
 
 const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
 
@@ -73,28 +74,36 @@ function distanceTo(o, x) {
   return dr > 0 && ds > 0 ? Math.hypot(dr, ds) : Math.max(dr, ds);
 }
 
-test('with solid objects and carried eddies: one step from the same state moves every blob where the core does, and no blob ends inside a solid', async ({ page }) => {
-  test.setTimeout(180_000);
-  await open(page, withSolids);
-  const out = await page.evaluate(async (scene) => {
+/**
+ * `scene` stepped 30 times in the worker, then once on the GPU (`gpu`, its blobs) and `more` times
+ * more there (`later`); and 31 times in the worker alone (`cpu`). `stepper`: who stepped once the
+ * GPU was asked, `now`: who steps at the end of the GPU's run.
+ */
+async function oneStepOnEach(page, scene, more) {
+  return page.evaluate(async ({ scene, more }) => {
     const w = window.windfield;
+    const blobs = async () => (await w.exportBlobs({ width: 32, height: 24 })).blobs;
     await w.setStepper('cpu');
     await w.setScene(scene);
     await w.step(30);
     const stepper = await w.setStepper('gpu');
     await w.step(1);
-    const gpu = await w.exportBlobs({ width: 32, height: 24 });
+    const gpu = await blobs();
+    await w.step(more);
+    const later = await blobs();
+    const now = w.stats().stepper;
     await w.setStepper('cpu');
     await w.setScene(scene);
     await w.step(31);
-    const cpu = await w.exportBlobs({ width: 32, height: 24 });
-    // 60 steps on the GPU (two resets of each carried phase).
-    await w.setStepper('gpu');
-    await w.setScene(scene);
-    await w.step(60);
-    const later = await w.exportBlobs({ width: 32, height: 24 });
-    return { stepper, reason: w.stats().stepperReason ?? null, now: w.stats().stepper, gpu: gpu.blobs, cpu: cpu.blobs, later: later.blobs };
-  }, withSolids);
+    return { stepper, now, gpu, later, cpu: await blobs() };
+  }, { scene, more });
+}
+
+test('with solid objects and carried eddies: one step from the same state moves every blob where the core does, and no blob ends inside a solid', async ({ page }) => {
+  test.setTimeout(180_000);
+  await open(page, withSolids);
+  // 60 steps on the GPU in all (two resets of each carried phase).
+  const out = await oneStepOnEach(page, withSolids, 59);
   expect(out.stepper).toBe('gpu');
   expect(out.now).toBe('gpu');
   expect(out.gpu.length).toBe(out.cpu.length);
@@ -111,14 +120,39 @@ test('with solid objects and carried eddies: one step from the same state moves 
   }
 });
 
-test('more solid objects than the GPU stepper takes: the worker steps the gas, and says why', async ({ page }) => {
-  const many = {
+test('among 150 solid spheres the GPU walks the core\'s grid: one step from the same state moves every blob where the core does, and no blob ends inside a solid', async ({ page }) => {
+  test.setTimeout(180_000);
+  const scene = amongManySpheres;
+  await open(page, scene);
+  const out = await oneStepOnEach(page, scene, 9);
+  expect(out.stepper).toBe('gpu');
+  expect(scene.render.objects.length).toBeGreaterThan(100);
+  expect(out.gpu.length).toBe(out.cpu.length);
+  const worst = Math.max(...distances(out.gpu, out.cpu));
+  const layer = scene.field.boundary_width;
+  const spheres = scene.render.objects.filter((o) => o.type === 'sphere').slice(1);
+  const near = out.cpu.filter((b) => spheres.some((o) => distanceTo(o, b.center) < layer)).length;
+  // Where a sphere's doublet acts: within 8 radii of its centre.
+  const reached = out.cpu.filter((b) => spheres.some((o) => distanceTo(o, b.center) < 7 * o.radius)).length;
+  console.log(`among ${scene.render.objects.length} solids, one step: the farthest blob ${worst.toExponential(2)} m from the core's (of ${out.cpu.length}, ${reached} where a small sphere's doublet acts, ${near} within its layer)`);
+  expect(reached).toBeGreaterThan(out.cpu.length / 2);
+  expect(near).toBeGreaterThan(5);
+  expect(worst).toBeLessThan(1e-5);
+  const deepest = Math.min(...out.later.flatMap((b) => scene.render.objects.map((o) => distanceTo(o, b.center))));
+  expect(deepest).toBeGreaterThanOrEqual(-1e-6);
+});
+
+test('a wind table wider than a texture row: the worker steps the gas, and says why', async ({ page }) => {
+  // 256 primitives, each with room for a mirror image in each of four solid planes far away.
+  const planes = [[0, 1, 0], [0, -1, 0], [1, 0, 0], [-1, 0, 0]].map((normal) => ({
+    type: 'plane', point: normal.map((v) => -50 * v), normal, color: [1, 1, 1], solid: true,
+  }));
+  const wide = {
     ...everyKind,
-    render: {
-      objects: Array.from({ length: 65 }, (_, i) => ({ type: 'sphere', center: [3 + 0.1 * i, 5, 0], radius: 0.02, color: [1, 1, 1], solid: true })),
-    },
+    wind: Array.from({ length: 256 }, (_, i) => ({ type: 'uniform', velocity: [0, 0.001 * (i % 3), 0] })),
+    render: { objects: planes },
   };
-  await open(page, many);
+  await open(page, wide);
   const out = await page.evaluate(async () => {
     const w = window.windfield;
     const got = await w.setStepper('gpu');
@@ -126,7 +160,7 @@ test('more solid objects than the GPU stepper takes: the worker steps the gas, a
     return { got, stats: w.stats() };
   });
   expect(out.got).toBe('cpu');
-  expect(out.stats.stepperReason).toMatch(/65 solid objects/);
+  expect(out.stats.stepperReason).toMatch(/wind table \(256 primitives.* 4 solid planes.*wider than the GPU stepper's 4096 texels/);
 });
 
 test('a turbulent plume stepped 240 times on each: the same count, mass and statistics', async ({ page }) => {

@@ -100,8 +100,9 @@ export async function benchBrowser() {
     }
 
     // The same plume among 16 and 256 solid spheres of radius 1.2 cm (as examples/bench.rs):
-    // the worker's step and the GPU's. The step shader tests every solid at every blob and
-    // takes at most 64; with 256 the worker steps (no GPU figure).
+    // the worker's step and the GPU's (each blob visits the solids its cell of the core's grid
+    // lists), and their ratios to the step without solids.
+    const solidSteps = {};
     for (const count of [16, 256]) {
       const among = structuredClone(plume);
       among.field.boundary_width = 0.02;
@@ -112,6 +113,11 @@ export async function benchBrowser() {
       emit(`worker_step_${k}_solids_${count}_ms`, w.step + w.pack, 'ms');
       const g = await gpuStep();
       if (g.ms !== null) emit(`gpu_step_${k}_solids_${count}_ms`, g.ms, 'ms');
+      solidSteps[count] = { worker: w.step + w.pack, gpu: g.ms };
+    }
+    emit('worker_step_256_solids_over_none', solidSteps[256].worker / (worker.step + worker.pack), 'ratio');
+    if (gpu100.ms !== null && solidSteps[256].gpu !== null) {
+      emit('gpu_step_256_solids_over_none', solidSteps[256].gpu / gpu100.ms, 'ratio');
     }
     await plumeOf(100_000);
 

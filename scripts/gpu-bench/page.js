@@ -10,9 +10,9 @@
 // (`rebuild: false`, the march alone, as while orbiting a paused scene). `live=S` then plays each
 // plume for S seconds in the playground's own view, filling the window, and reports the frame
 // rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
-// `solids=16,64,256` then steps the plume of each count among that many solid spheres (as `npm run
-// bench`), with each stepper (the GPU stepper takes at most 64 solids; beyond, its figure says
-// which stepper stepped).
+// `views=0` leaves the frames out. `solids=16,64,256` then steps the plume of each count among
+// that many solid spheres (as `npm run bench`), with each stepper (each figure says which stepper
+// stepped).
 import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
 import { plumeSpheres } from './plume-spheres.js';
 
@@ -65,6 +65,8 @@ async function main() {
         const passes = mode === 'raymarch' && rebuild ? w.stats().passes : undefined;
         log({ blobs, stepper: step.stepper, mode, quality, width, height, rebuild, ms, fps: 1000 / ms, passes });
       };
+      // `views=0` times the steps alone.
+      if (query.get('views') === '0') continue;
       for (const quality of qualities) {
         await frame('raymarch', 1920, 1080, quality);
         await frame('raymarch', 1920, 1080, quality, false);

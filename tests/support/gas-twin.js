@@ -39,6 +39,28 @@ export const withSolids = {
   },
 };
 
+/**
+ * `withSolids` among 150 more small solid spheres through its gas (a low-discrepancy spread, none
+ * holding an emitter's centre), so a blob's cell of the core's grid lists a few of the many.
+ */
+export const amongManySpheres = (() => {
+  const centres = withSolids.emitters.map((e) => e.center);
+  const spheres = [];
+  for (let i = 0; i < 150; i++) {
+    const f = (k) => ((i + 0.5) * k) % 1;
+    const center = [0.8 * f(0.7548777) - 0.4, 0.6 * f(0.5698403) - 0.1, 0.7 * f(0.4301597) - 0.3];
+    const radius = 0.015 + 0.01 * f(0.618034);
+    if (centres.every((c) => Math.hypot(...c.map((v, a) => v - center[a])) > radius + 0.02)) {
+      spheres.push({ type: 'sphere', center, radius, color: [1, 1, 1], solid: true });
+    }
+  }
+  return {
+    ...withSolids,
+    field: { ...withSolids.field, boundary_width: 0.02 },
+    render: { objects: [...withSolids.render.objects, ...spheres] },
+  };
+})();
+
 /** Each blob's distance (m) from the same blob of `other` (exportBlobs lists), Infinity where `other` has none. */
 export function distances(list, other) {
   return list.map((b, i) => (other[i] ? Math.hypot(...b.center.map((v, a) => v - other[i].center[a])) : Infinity));

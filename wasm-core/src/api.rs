@@ -56,7 +56,7 @@ export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Floa
 export interface SphereFlow { core: Float32Array; closedForm: Float32Array; lines: number;
   points: number; largestGap: number; }
 export interface GpuSteps { births: Float32Array; birthSlots: Uint32Array; freed: Uint32Array;
-  ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; count: number;
+  ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; solidGrid: Float32Array; count: number;
   highWater: number; sigmaRange: Float32Array; spheres: Float32Array; emissive: boolean;
   time: number; }
 "#;
@@ -442,7 +442,7 @@ impl SceneSimulation {
     }
 
     /// `n` steps while the GPU advects the centres, whole (`frame::gpu_steps::GpuSteps`):
-    /// `{births, birthSlots, freed, ranges, wind, windOffsets, count, highWater, sigmaRange,
+    /// `{births, birthSlots, freed, ranges, wind, windOffsets, solidGrid, count, highWater, sigmaRange,
     /// spheres, emissive, time}`.
     #[wasm_bindgen(js_name = stepForGpu, unchecked_return_type = "GpuSteps")]
     pub fn step_for_gpu(&mut self, n: u32) -> JsValue {
@@ -454,6 +454,7 @@ impl SceneSimulation {
             ("ranges", steps.ranges.into()),
             ("wind", steps.wind.into()),
             ("windOffsets", steps.wind_offsets.into()),
+            ("solidGrid", steps.solid_grid.into()),
             ("count", steps.count.into()),
             ("highWater", steps.high_water.into()),
             ("sigmaRange", steps.sigma_range.to_vec().into()),

@@ -17,6 +17,7 @@ use crate::frame::views::SPHERE_FLOATS;
 use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
 use crate::gas::blob_list::DEFAULT_RENDER_TIME;
 use crate::gas::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
+use crate::gas::solid_grid::SOLID_GRID_HEADER;
 use crate::gas::walls::{
     CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
 };
@@ -113,6 +114,8 @@ pub fn sections() -> Vec<Section> {
             "Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images."),
         shared!(WIND_TABLE_SOLID in "gas::wind_table":
             "Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector."),
+        shared!(SOLID_GRID_HEADER in "gas::solid_grid":
+            "Floats of the solids' grid before its cells: lo xyz, cells; cells per metre xyz, planes; cells along x, y, z, 0. Then one vec4 per cell (its lists' bounds) and the members, the planes first."),
         shared!(SPHERE_SOLID_KIND in "gas::wind_table": "A solid sphere's kind in a wind table."),
         shared!(PLANE_SOLID_KIND in "gas::wind_table": "A solid plane's kind in a wind table."),
         shared!(CYLINDER_SOLID_KIND in "gas::wind_table": "A solid cylinder's kind in a wind table."),

@@ -223,10 +223,11 @@ fn with_solids() -> Scene {
     s
 }
 
-/// The GPU's reading of a wind table with solids and carried offsets: `web/src/stepper/wind-glsl.js`
-/// (`windParts`, `pushOut`), function by function, in Rust.
+/// The GPU's reading of a wind table with solids and carried offsets, and of the solids' grid:
+/// `web/src/stepper/wind-glsl.js` (`windParts`, `pushOut`), function by function, in Rust.
 mod table {
     use glam::Vec3;
+    use windfield::gas::solid_grid::SOLID_GRID_HEADER;
     use windfield::gas::walls::{
         CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
     };
@@ -238,6 +239,8 @@ mod table {
 
     pub struct Table<'a> {
         pub t: &'a [f32],
+        /// The solids' grid (`GpuSteps::solid_grid`).
+        pub g: &'a [f32],
         pub u: &'a [f32],
         pub psi: &'a [f32],
         pub n: [usize; 4],
@@ -264,6 +267,37 @@ mod table {
         }
         fn solid_at(&self, j: usize) -> usize {
             self.prim(self.texel(4)[3] as usize) + WIND_TABLE_SOLID / 4 * j
+        }
+
+        fn grid_texel(&self, i: usize) -> [f32; 4] {
+            std::array::from_fn(|c| self.g[4 * i + c])
+        }
+        fn member(&self, k: usize) -> usize {
+            let t = self.grid_texel(SOLID_GRID_HEADER / 4 + self.grid_texel(0)[3] as usize + k / 4);
+            t[k % 4] as usize
+        }
+        fn planes(&self) -> usize {
+            self.grid_texel(1)[3] as usize
+        }
+        /// `cellLists`: bounds of the layers, spheres and other solids of x's cell.
+        fn cell_lists(&self, x: Vec3) -> [usize; 4] {
+            let head = self.grid_texel(0);
+            let dims = v(self.g, 8);
+            let q = (x - v(self.g, 0)) * v(self.g, 4);
+            if head[3] == 0.0 || !(q.cmpge(Vec3::ZERO).all() && q.cmplt(dims).all()) {
+                return [0; 4];
+            }
+            let (c, n) = (q.as_ivec3(), dims.as_ivec3());
+            let cell = (c.z * n.y + c.y) * n.x + c.x;
+            self.grid_texel(SOLID_GRID_HEADER / 4 + cell as usize)
+                .map(|b| b as usize)
+        }
+        /// `layerOrPlane` for every visit: the cell's layers list, then the planes.
+        fn layers_and_planes(&self, cell: [usize; 4]) -> Vec<usize> {
+            (cell[0]..cell[1])
+                .chain(0..self.planes())
+                .map(|k| self.member(k))
+                .collect()
         }
 
         fn lattice(&self, data: &[f32], x: Vec3, scale: Vec3) -> Vec3 {
@@ -556,10 +590,11 @@ mod table {
                 * ((c.length_squared() + head[3]) / (c0.length_squared() + head[3])).ln())
         }
 
-        fn ramped_potential(&self, n: usize, y: Vec3) -> Vec3 {
+        fn ramped_potential(&self, n: usize, lists: [usize; 4], y: Vec3) -> Vec3 {
             let mut psi = Vec3::ZERO;
-            for j in 0..self.texel(5)[0] as usize {
-                if j != n && self.texel(self.solid_at(j))[2] != 0.0 {
+            for k in lists[1]..lists[3] {
+                let j = self.member(k);
+                if j != n {
                     psi += self.doublet(j, y).0;
                 }
             }
@@ -586,7 +621,14 @@ mod table {
             Vec3::new(dy.z - dz.y, dz.x - dx.z, dx.y - dy.x)
         }
 
-        fn near_solid(&self, n: usize, near: (Vec3, f32), x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
+        fn near_solid(
+            &self,
+            n: usize,
+            near: (Vec3, f32),
+            x: Vec3,
+            cell: [usize; 4],
+            o: [Vec3; 2],
+        ) -> (Vec3, Vec3) {
             let at = self.solid_at(n);
             let s0 = self.texel(at);
             let axis = self.xyz(at + 2);
@@ -606,8 +648,10 @@ mod table {
             if s0[2] > 0.0 {
                 large += self.doublet(n, x).1;
             }
-            let solids = self.texel(5)[0] as usize;
-            let others = (0..solids).any(|j| j != n && self.texel(self.solid_at(j))[2] > 0.0);
+            let h = s0[1];
+            let c = if dist < -h { x + nrm * (-h - dist) } else { x };
+            let lists = if dist < -h { self.cell_lists(c) } else { cell };
+            let others = (lists[1]..lists[3]).any(|k| self.member(k) != n);
             let mut vortices = false;
             for j in 0..self.texel(4)[3] as usize {
                 if self.exact_near(n, j) {
@@ -620,7 +664,7 @@ mod table {
             }
             let has_field = self.texel(0)[0] > 0.5;
             let has_psi = self.texel(5)[2] > 0.5;
-            let projected_small = || {
+            let projected_small = |x: Vec3| {
                 if has_field {
                     Self::projected(self.small(x, o), nrm, alpha, false)
                 } else {
@@ -628,10 +672,8 @@ mod table {
                 }
             };
             if !(others || vortices || has_psi) {
-                return (large, projected_small());
+                return (large, projected_small(x));
             }
-            let h = s0[1];
-            let c = if dist < -h { x + nrm * (-h - dist) } else { x };
             let edge = self.edge(n);
             let axes = [Vec3::X, Vec3::Y, Vec3::Z];
             let points: [Vec3; 6] = std::array::from_fn(|k| {
@@ -648,7 +690,7 @@ mod table {
                 })
             };
             if others || vortices {
-                let psi = std::array::from_fn(|k| self.ramped_potential(n, points[k]));
+                let psi = std::array::from_fn(|k| self.ramped_potential(n, lists, points[k]));
                 large += Self::curl(&ramped(psi), &points);
             }
             let small = if has_psi {
@@ -656,36 +698,27 @@ mod table {
                 let psi = std::array::from_fn(|k| self.blended(self.psi, points[k], scale, o));
                 Self::curl(&ramped(psi), &points)
             } else {
-                projected_small()
+                projected_small(c)
             };
             (large, small)
         }
 
-        /// The solids in the core's order: the finite ones, then the planes.
-        fn order(&self) -> Vec<usize> {
-            let solids = self.texel(5)[0] as usize;
-            let plane = |j: usize| self.texel(self.solid_at(j))[0] == PLANE_SOLID_KIND;
-            (0..solids)
-                .filter(|&j| !plane(j))
-                .chain((0..solids).filter(|&j| plane(j)))
-                .collect()
-        }
-
         pub fn parts(&self, x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
             let width = self.texel(5)[1];
+            let cell = self.cell_lists(x);
             let mut best: Option<(usize, (Vec3, f32))> = None;
-            for j in self.order() {
+            for j in self.layers_and_planes(cell) {
                 let dn = self.distance(j, x, self.edge(j));
                 if dn.1 < width && best.is_none_or(|b| dn.1 < b.1 .1) {
                     best = Some((j, dn));
                 }
             }
             if let Some((n, near)) = best {
-                return self.near_solid(n, near, x, o);
+                return self.near_solid(n, near, x, cell, o);
             }
             let mut large = self.xyz(4);
-            for j in 0..self.texel(5)[0] as usize {
-                large += self.doublet(j, x).1;
+            for k in cell[1]..cell[3] {
+                large += self.doublet(self.member(k), x).1;
             }
             for j in 0..self.texel(4)[3] as usize {
                 large += self.primitive(j, x);
@@ -693,39 +726,78 @@ mod table {
             (large, self.small(x, o))
         }
 
+        fn inside(&self, x: Vec3) -> Option<(Vec3, f32)> {
+            self.layers_and_planes(self.cell_lists(x))
+                .into_iter()
+                .map(|j| self.distance(j, x, 0.0))
+                .find(|dn| dn.1 < 0.0)
+        }
+
         pub fn push_out(&self, mut x: Vec3) -> Vec3 {
             let gap = 1e-4 * self.texel(5)[1];
+            let (start, mut normal) = (x, Vec3::Y);
             for _ in 0..4 {
-                let Some((n, d)) = self
-                    .order()
-                    .into_iter()
-                    .map(|j| self.distance(j, x, 0.0))
-                    .find(|dn| dn.1 < 0.0)
-                else {
+                let Some((n, d)) = self.inside(x) else {
                     return x;
                 };
                 let g = gap + 4.0 * 1.192_092_9e-7 * x.abs().max_element();
                 x += n * (g - d);
+                normal = n;
+            }
+            if self.inside(x).is_none() {
+                return x;
+            }
+            // Overlapping solids: the shortest of seven ways out of them all.
+            let ways = [
+                normal,
+                Vec3::X,
+                -Vec3::X,
+                Vec3::Y,
+                -Vec3::Y,
+                Vec3::Z,
+                -Vec3::Z,
+            ];
+            let mut t = gap.max(1e-4);
+            while t < 1e3 {
+                if let Some(y) = ways
+                    .iter()
+                    .map(|&w| start + w * t)
+                    .find(|&y| self.inside(y).is_none())
+                {
+                    return y;
+                }
+                t *= 1.25;
             }
             x
         }
     }
 }
 
-#[test]
-fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the_cores_wind() {
-    let mut sim = Simulation::new(with_solids()).unwrap();
+/// The wind of `scene` at 400 points a table (a quarter of them pushed into the layer of one of
+/// its solids, in turn), read from its tables and grid as the GPU reads them, against the core's;
+/// and where each point is put back outside. Points in the box `lo` + [0, 1]³ · `size`. Returns
+/// the points checked, those near a solid, and the carried phases' resets seen in the tables.
+fn twin_against_core(scene: Scene, lo: Vec3, size: Vec3, rounds: usize) -> [usize; 3] {
+    let mut sim = Simulation::new(scene).unwrap();
     sim.hand_centres_to_gpu().unwrap();
     let field = sim.field().unwrap().clone();
     let psi = field.potential.clone().expect("a field with its potential");
     let walls = sim.wind.walls().unwrap().solids.clone();
+    let bodies = walls.bodies.len();
     let (mut checked, mut near, mut resets) = (0, 0, 0);
-    for _ in 0..30 {
+    let mut grid = Vec::new();
+    for round in 0..rounds {
         let steps = GpuSteps::run(&mut sim, 3);
+        // The grid comes with the first steps only: the solids stay the same.
+        assert_eq!(steps.solid_grid.is_empty(), round > 0, "round {round}");
+        if round == 0 {
+            grid = steps.solid_grid.clone();
+        }
         for (k, frame) in sim.wind_frames().iter().enumerate() {
             let at = steps.wind_offsets[steps.wind_offsets.len() - 2 + k] as usize;
             let t = table::Table {
                 t: &steps.wind[at..],
+                g: &grid,
                 u: &field.data,
                 psi: &psi,
                 n: field.lattice.size,
@@ -736,16 +808,12 @@ fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the
                 .count();
             for j in 0..400 {
                 let f = |k: f32| ((j as f32 + 0.5) * k).fract();
-                // Points all over the scene, a quarter of them in the layers of the solids.
-                let mut x = Vec3::new(
-                    2.4 * f(0.7548777) - 1.2,
-                    2.0 * f(0.5698403) - 0.5,
-                    1.6 * f(0.4301597) - 0.8,
-                );
+                let mut x = lo + size * Vec3::new(f(0.7548777), f(0.5698403), f(0.4301597));
                 if j % 4 == 0 {
-                    let b = j / 4 % 3;
+                    let b = j / 4 % bodies;
                     let (d, n) = walls.bodies[b].distance(x.into());
-                    x -= Vec3::from(n) * (d - 0.15 * f(0.1234567));
+                    let width = sim.scene.field.boundary_width as f32;
+                    x -= Vec3::from(n) * (d - width * f(0.1234567));
                     near += 1;
                 }
                 let o = [
@@ -775,6 +843,14 @@ fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the
             }
         }
     }
+    [checked, near, resets]
+}
+
+#[test]
+fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the_cores_wind() {
+    let lo = Vec3::new(-1.2, -0.5, -0.8);
+    let [checked, near, resets] =
+        twin_against_core(with_solids(), lo, Vec3::new(2.4, 2.0, 1.6), 30);
     assert!(
         checked == 24_000 && near > 5000,
         "{checked} points, {near} near solids"
@@ -783,4 +859,67 @@ fn the_wind_table_with_solids_and_carried_scales_read_as_the_gpu_reads_it_is_the
         resets > 5,
         "{resets} resets of the carried phases in the tables"
     );
+}
+
+/// [`with_solids`] among 150 more small solid spheres through its box, so most points' cells list
+/// a few of the many solids and the GPU must walk the grid as the core does.
+fn among_many_spheres() -> Scene {
+    let mut s = with_solids();
+    s.field.boundary_width = 0.04;
+    let mut objects = serde_json::to_value(&s.render.objects).unwrap();
+    for i in 0..150 {
+        let f = |k: f64| ((i as f64 + 0.5) * k).fract();
+        let c = [
+            2.4 * f(0.7548777) - 1.2,
+            2.0 * f(0.5698403) - 0.5,
+            1.6 * f(0.4301597) - 0.8,
+        ];
+        objects.as_array_mut().unwrap().push(json!(
+            {"type": "sphere", "center": c, "radius": 0.04 + 0.03 * f(0.618034), "color": [1, 1, 1], "solid": true}
+        ));
+    }
+    s.render.objects = serde_json::from_value(objects).unwrap();
+    // No emitter inside a sphere.
+    s.emitters.truncate(1);
+    s.emitters[0].center = [0.0, -0.25, 0.0];
+    s
+}
+
+#[test]
+fn among_many_solids_the_gpu_walks_the_cores_grid() {
+    let scene = among_many_spheres();
+    let sim = Simulation::new(scene.clone()).unwrap();
+    let (cells, members) = sim.wind.walls().unwrap().solids.grid_size().unwrap();
+    assert!(
+        cells > 1000 && members < 20 * cells,
+        "{cells} cells, {members} members"
+    );
+    let lo = Vec3::new(-1.2, -0.5, -0.8);
+    let [checked, near, _] = twin_against_core(scene, lo, Vec3::new(2.4, 2.0, 1.6), 8);
+    assert!(
+        checked == 6400 && near > 1500,
+        "{checked} points, {near} near solids"
+    );
+}
+
+/// The grid crosses again once an edit builds the solids anew, and not before.
+#[test]
+fn the_solids_grid_crosses_once_per_set_of_solids() {
+    let scene = with_solids();
+    let mut sim = Simulation::new(scene.clone()).unwrap();
+    sim.hand_centres_to_gpu().unwrap();
+    let first = GpuSteps::run(&mut sim, 2).solid_grid;
+    assert!(!first.is_empty());
+    assert!(GpuSteps::run(&mut sim, 2).solid_grid.is_empty());
+    let mut edited = scene.clone();
+    edited.render.objects.truncate(2);
+    let field = sim.field().cloned();
+    sim.edit(edited, field.clone()).unwrap();
+    let again = GpuSteps::run(&mut sim, 1).solid_grid;
+    assert!(!again.is_empty() && again != first);
+    // Without solids there is no grid to hand.
+    let mut bare = scene;
+    bare.render.objects.clear();
+    sim.edit(bare, field).unwrap();
+    assert!(GpuSteps::run(&mut sim, 1).solid_grid.is_empty());
 }

@@ -77,7 +77,7 @@ function sceneKeepsGpuAway(scene) {
 
 /** Bytes that crossed from the worker for GPU steps `steps` (whole buffers). */
 function crossedBytes(steps) {
-  return ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'spheres'].reduce((n, k) => n + steps[k].byteLength, 0);
+  return ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'solidGrid', 'spheres'].reduce((n, k) => n + steps[k].byteLength, 0);
 }
 
 function bytesToDataUrl(bytes) {

@@ -40,6 +40,9 @@ pub struct GpuSteps {
     /// ([`crate::gas::wind::WindFrame::write_gpu_table`]), and per step the offset of each.
     pub wind: Vec<f32>,
     pub wind_offsets: Vec<u32>,
+    /// The solids' grid and planes ([`Simulation::solid_grid_for_gpu`]), when the GPU has not
+    /// got this scene's yet; else empty.
+    pub solid_grid: Vec<f32>,
     /// Live blobs after the last step.
     pub count: u32,
     /// One past the highest slot in use after the last step.
@@ -136,6 +139,9 @@ impl GpuSteps {
                     out.wind[at + RESET_AT..at + RESET_AT + 2].copy_from_slice(&r);
                 }
             }
+        }
+        if steps > 0 {
+            sim.solid_grid_for_gpu(&mut out.solid_grid);
         }
         out.spheres = sphere_floats(sim);
         let b = &sim.gas.blobs;

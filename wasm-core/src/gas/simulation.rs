@@ -9,7 +9,7 @@ use crate::gas::blobs::{Blob, Blobs};
 use crate::gas::scene::{Primitive, Scene};
 use crate::gas::shapes::Shape;
 use crate::gas::slots::{SlotChanges, SlotTable};
-use crate::gas::wind::{Wind, WindFrame};
+use crate::gas::wind::{WallSet, Wind, WindFrame};
 use crate::gas::wind_slice::SlicePlane;
 use glam::Vec3;
 use std::borrow::Cow;
@@ -32,6 +32,8 @@ pub struct Simulation {
     frames: [WindFrame; 2],
     /// While the GPU advects the centres: where each blob lives there ([`SlotTable`]).
     slots: Option<SlotTable>,
+    /// The solids whose grid the GPU was last handed ([`Self::solid_grid_for_gpu`]).
+    gpu_walls: Option<Arc<WallSet>>,
 }
 
 /// What an edit did to the running simulation.
@@ -106,6 +108,7 @@ impl Simulation {
             steps_at_origin: 0,
             frames: Default::default(),
             slots: None,
+            gpu_walls: None,
         }
     }
 
@@ -342,7 +345,26 @@ impl Simulation {
         }
         self.gas.centres_elsewhere = true;
         self.slots = Some(SlotTable::new(&mut self.gas.blobs));
+        self.gpu_walls = None;
         Ok(())
+    }
+
+    /// The solids' grid and planes as the GPU stepper reads them
+    /// ([`crate::gas::solids::Solids::write_gpu_grid`]), appended to `out` when the GPU has not
+    /// been handed these solids since it took the centres (a new scene, an edit or a new field
+    /// builds them anew); else nothing.
+    pub fn solid_grid_for_gpu(&mut self, out: &mut Vec<f32>) {
+        let walls = self.wind.shared_walls();
+        let handed = match (&walls, &self.gpu_walls) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !handed {
+            if let Some(w) = &walls {
+                w.solids.write_gpu_grid(out);
+            }
+            self.gpu_walls = walls;
+        }
     }
 
     /// Whether the GPU advects the centres.

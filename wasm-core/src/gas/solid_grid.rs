@@ -21,6 +21,8 @@ use glam::Vec3A;
 /// A cell's edge, in the median solid's layer box (the solid grown by the layer, across its
 /// narrowest side): most points then have one or no solid in their first list.
 const CELL_FRACTION: f32 = 0.5;
+/// Floats of the grid's header as the GPU stepper reads it ([`SolidGrid::write_gpu`]).
+pub const SOLID_GRID_HEADER: usize = 12;
 /// Most cells of the grid (16 bytes each).
 const MAX_CELLS: usize = 1 << 18;
 /// Most cells along one axis.
@@ -230,6 +232,29 @@ impl SolidGrid {
             &m[b as usize..s as usize],
             &m[s as usize..e as usize],
         ]
+    }
+
+    /// The grid as the GPU stepper reads it, appended to `out` ([`SOLID_GRID_HEADER`] floats,
+    /// then one vec4 per cell, then the members four to a vec4): `[lo xyz (m), cells]`,
+    /// `[cells per metre xyz, planes]`, `[cells along x, y, z, 0]`; each cell `[a, b, s, e]`
+    /// (its lists `members[a..b]`, `[b..s]`, `[s..e]`, as [`Self::lists`]); the members are
+    /// `planes` (every plane, in the scene's order) and then the cells' lists, so each cell's
+    /// bounds are offset by the planes' count. Every number is an integer below 2²⁴ but the
+    /// grid's corner and scale, so a float holds it exactly.
+    pub fn write_gpu(&self, planes: &[u32], out: &mut Vec<f32>) {
+        let p = planes.len() as u32;
+        let dims = self
+            .dims
+            .map(|d| if self.cells.is_empty() { 0.0 } else { d as f32 });
+        out.extend_from_slice(&[self.lo.x, self.lo.y, self.lo.z, self.cells.len() as f32]);
+        let inv = self.inv_cell;
+        out.extend_from_slice(&[inv.x, inv.y, inv.z, p as f32]);
+        out.extend_from_slice(&[dims[0], dims[1], dims[2], 0.0]);
+        for cell in &self.cells {
+            out.extend(cell.map(|k| (k + p) as f32));
+        }
+        out.extend(planes.iter().chain(&self.members).map(|&i| i as f32));
+        out.resize(out.len().next_multiple_of(4), 0.0);
     }
 
     /// The cells' count and the entries of their lists (for the benchmarks).

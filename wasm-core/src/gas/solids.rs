@@ -328,6 +328,16 @@ impl Solids {
         }
     }
 
+    /// The grid and the planes as the GPU stepper reads them ([`SolidGrid::write_gpu`]); an
+    /// empty grid (no cells) without it.
+    pub fn write_gpu_grid(&self, out: &mut Vec<f32>) {
+        let none = SolidGrid::default();
+        self.grid
+            .as_ref()
+            .unwrap_or(&none)
+            .write_gpu(&self.planes, out);
+    }
+
     /// The grid's cells and the entries of their lists (none without the grid).
     pub fn grid_size(&self) -> Option<(usize, usize)> {
         self.grid.as_ref().map(SolidGrid::size)

@@ -446,6 +446,11 @@ impl Wind {
         self.walls.as_deref()
     }
 
+    /// [`Self::walls`], shared: the same solids as long as the wind is not built anew.
+    pub fn shared_walls(&self) -> Option<Arc<WallSet>> {
+        self.walls.clone()
+    }
+
     /// The same wind with every solid visited at every point (no grid): what the grid must
     /// give, for checks of it.
     pub fn every_solid_visited(&self) -> Self {

@@ -240,7 +240,7 @@ export function createHandlers(core, progress, memory = () => 0) {
       const out = stirred(steps, () => s.stepForGpu(steps));
       session.stepped(steps);
       const result = { ...out, stepMs: steps > 0 ? (performance.now() - t0) / steps : 0, fieldVersion: session.fieldVersion, gpu: true };
-      const arrays = ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'sigmaRange', 'spheres'];
+      const arrays = ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'solidGrid', 'sigmaRange', 'spheres'];
       return { result, transfer: arrays.map((k) => out[k].buffer) };
     },
     takeCentres: ({ centres, keepOnGpu }) => {

@@ -78,6 +78,9 @@ export const WIND_TABLE_PRIMITIVE = 16;
 /** Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector. (`gas::wind_table::WIND_TABLE_SOLID`) */
 export const WIND_TABLE_SOLID = 16;
 
+/** Floats of the solids' grid before its cells: lo xyz, cells; cells per metre xyz, planes; cells along x, y, z, 0. Then one vec4 per cell (its lists' bounds) and the members, the planes first. (`gas::solid_grid::SOLID_GRID_HEADER`) */
+export const SOLID_GRID_HEADER = 12;
+
 /** A solid sphere's kind in a wind table. (`gas::wind_table::SPHERE_SOLID_KIND`) */
 export const SPHERE_SOLID_KIND = 0;
 

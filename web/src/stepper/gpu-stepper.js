@@ -13,9 +13,10 @@
 // gas would move in jumps or not at all; a GPU with only half-float targets (many phones) has
 // the worker step the gas. At the WebGL2 phones' 4096 texels a side every texture fits any
 // scene (the state 1024 slots a row: the most live blobs and four steps' most births fill 1,369
-// rows, 2,054 once grown by half; the lattice 4096 points a row: 2²² points in 1,024 rows). Where these are missing the
-// worker steps the gas, and for scenes with more solid objects than MAX_GPU_SOLIDS (each is
-// tested at every blob).
+// rows, 2,054 once grown by half; the lattice 4096 points a row: 2²² points in 1,024 rows; the
+// solids' grid 4096 texels a row, at most 192 rows). Where these are missing the worker steps the
+// gas, and for scenes whose wind table would be wider than a texture row (hundreds of
+// primitives with their mirror images).
 
 import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB } from '../generated/contract.js';
@@ -23,7 +24,7 @@ import { Binning } from './binning.js';
 import { binClasses, binLayout } from './class-bins.js';
 import { BoundsPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
-import { HEADER_TEXELS, MAX_GPU_SOLIDS, PRIMITIVE_TEXELS } from './wind-glsl.js';
+import { HEADER_TEXELS, PRIMITIVE_TEXELS, SOLID_TEXELS } from './wind-glsl.js';
 
 /** Widest lattice texture row (texels); a lattice fills rows of this many points. */
 const LATTICE_WIDTH = 4096;
@@ -43,10 +44,20 @@ export function gpuStepperUnsupported(renderer) {
   return null;
 }
 
-/** Why the GPU stepper cannot step `scene` (its solid objects), or null when it can. */
+/**
+ * Why the GPU stepper cannot step `scene`, or null when it can: its wind table (a texture row:
+ * the header, each primitive and, at most, a mirror image of it in each solid plane, each solid)
+ * must fit in LATTICE_WIDTH texels. Any number of solids fits otherwise: each blob visits only
+ * those its cell of the core's grid lists.
+ */
 export function gpuStepperRefuses(scene) {
-  const solids = (scene.render?.objects ?? []).filter((o) => o.solid).length;
-  if (solids > MAX_GPU_SOLIDS) return `the scene has ${solids} solid objects, more than the GPU stepper's ${MAX_GPU_SOLIDS}`;
+  const solids = (scene.render?.objects ?? []).filter((o) => o.solid);
+  const planes = solids.filter((o) => o.type === 'plane').length;
+  const primitives = (scene.wind ?? []).length * (1 + planes);
+  const texels = HEADER_TEXELS + PRIMITIVE_TEXELS * primitives + SOLID_TEXELS * solids.length;
+  if (texels > LATTICE_WIDTH) {
+    return `the scene's wind table (${(scene.wind ?? []).length} primitives, their mirror images in ${planes} solid planes, ${solids.length} solids) is wider than the GPU stepper's ${LATTICE_WIDTH} texels`;
+  }
   return null;
 }
 
@@ -85,6 +96,7 @@ export class GpuStepper {
     this.state = null;
     this.lattice = null;
     this.windTable = null;
+    this.solidGrid = null;
     /** One past the highest slot in use; what the views draw. */
     this.highWater = 0;
     this.count = 0;
@@ -160,6 +172,16 @@ export class GpuStepper {
     this.state = grown;
   }
 
+  /** The solids' grid (`gas::solid_grid`, `SolidGrid::write_gpu`) as an RGBA32F texture, LATTICE_WIDTH texels a row. */
+  #setSolidGrid(grid) {
+    this.solidGrid?.dispose();
+    const rows = Math.ceil(grid.length / 4 / LATTICE_WIDTH);
+    const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
+    texels.set(grid);
+    this.solidGrid = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
+    this.solidGrid.needsUpdate = true;
+  }
+
   /** The wind table texture holding tables `a` (row 0) and `b` (row 1). */
   #setWind(a, b) {
     const width = Math.max(a.length / 4, b.length / 4, HEADER_TEXELS + PRIMITIVE_TEXELS);
@@ -190,6 +212,8 @@ export class GpuStepper {
       this.start({ records: this.startRecords, capacity: this.state.capacity, time: this.time, carried: true });
     }
     if (n > 0) this.startRecords = null;
+    // The solids' grid comes with the first steps of a scene (and after an edit that builds it anew).
+    if (steps.solidGrid?.length) this.#setSolidGrid(steps.solidGrid);
     this.#ensureCapacity(steps.highWater, carried);
     this.stepPass.configure({ solids, carried });
     const u = this.stepPass.material.uniforms;
@@ -199,6 +223,8 @@ export class GpuStepper {
     u.rk2.value = rk2;
     u.lattice.value = this.lattice;
     u.potentialLattice.value = this.potential ?? this.lattice;
+    u.solidGrid.value = this.solidGrid;
+    u.solidGridWidth.value = LATTICE_WIDTH;
     const [nx, ny, nz, nt] = this.latticeSize ?? [1, 1, 1, 1];
     u.latticeSize.value.set(nx, ny, nz, nt);
     u.latticeWidth.value = LATTICE_WIDTH;
@@ -411,6 +437,7 @@ export class GpuStepper {
     this.lattice?.dispose();
     this.potential?.dispose();
     this.windTable?.dispose();
+    this.solidGrid?.dispose();
     for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.binning, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
   }
 }

@@ -144,6 +144,8 @@ void main() {
       windTable: { value: null },
       lattice: { value: null },
       potentialLattice: { value: null },
+      solidGrid: { value: null },
+      solidGridWidth: { value: 1 },
       latticeSize: { value: new THREE.Vector4(1, 1, 1, 1) },
       latticeWidth: { value: 1 },
       centres: { value: null },

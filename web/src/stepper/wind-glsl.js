@@ -6,13 +6,14 @@
 // exponential decay). With SOLIDS defined, the wind goes round the table's solid objects as the
 // core's `WindFrame::parts` makes it (the field's vector potential from a second lattice,
 // doublets, mirror images, the ramped curl by differences, projections) and a point that ended
-// inside a solid is put back outside; with CARRIED, the small scales are sampled at each blob's
+// inside a solid is put back outside, each blob visiting only the solids its cell of the core's grid
+// lists (and the planes); with CARRIED, the small scales are sampled at each blob's
 // carried coordinates (two phases, cross-faded). `tests/gpu_steps.rs` in the core holds this
 // same arithmetic, written out in Rust, to the core's own wind.
 
 import {
-  CYLINDER_SOLID_KIND, CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, EDGE_STEPS, PLANE_SOLID_KIND, REPULSOR_KIND, SOURCE_KIND,
-  SPHERE_SOLID_KIND, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
+  CYLINDER_SOLID_KIND, CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, EDGE_STEPS, PLANE_SOLID_KIND, REPULSOR_KIND,
+  SOLID_GRID_HEADER, SOURCE_KIND, SPHERE_SOLID_KIND, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
   WIND_TABLE_SOLID,
 } from '../generated/contract.js';
 
@@ -21,8 +22,8 @@ export const HEADER_TEXELS = WIND_TABLE_HEADER / 4;
 export const PRIMITIVE_TEXELS = WIND_TABLE_PRIMITIVE / 4;
 export const SOLID_TEXELS = WIND_TABLE_SOLID / 4;
 
-/** Most solid objects the GPU stepper takes (each is tested at every blob); more are stepped in the worker. */
-export const MAX_GPU_SOLIDS = 64;
+/** Texels (RGBA32F) of the solids' grid's header (`gas::solid_grid`). */
+export const SOLID_GRID_TEXELS = SOLID_GRID_HEADER / 4;
 
 const f = (v) => (Number.isInteger(v) ? v.toFixed(1) : String(v));
 
@@ -120,7 +121,10 @@ vec3 wind(int row, vec3 x) {
  * two phases (used with CARRIED); and `vec3 pushOut(int row, vec3 x)` (with SOLIDS): x put back
  * just outside a solid it lies in. The core's `WindFrame::parts` and `Solids::push_out`, line by
  * line. With SOLIDS, `potentialLattice` holds the field's vector potential as `lattice` its
- * velocity.
+ * velocity, and `solidGrid` the core's grid over the solids (`gas::solid_grid`, `SolidGrid::write_gpu`:
+ * a header, a texel per cell with its lists' bounds, the members four to a texel, the planes first),
+ * texel i at (i mod `solidGridWidth`, i / `solidGridWidth`): a blob visits the solids its cell lists,
+ * as the core's `Solids::around` has it, so a step costs about the same among 16 solids or 256.
  */
 export const WIND_PARTS_GLSL = /* glsl */ `
 uniform highp sampler2D potentialLattice;
@@ -144,14 +148,47 @@ vec3 smallAt(int row, vec3 x, vec3 oa, vec3 ob) {
 }
 
 #ifdef SOLIDS
+uniform highp sampler2D solidGrid;
+uniform int solidGridWidth;
+
+vec4 gridTexel(int i) { return texelFetch(solidGrid, ivec2(i % solidGridWidth, i / solidGridWidth), 0); }
+
+/** Entry k of the grid's members: the planes (0 to planeCount() − 1), then the cells' lists. */
+int gridMember(int k) {
+  vec4 t = gridTexel(${SOLID_GRID_TEXELS} + int(gridTexel(0).w) + (k >> 2));
+  return int(t[k & 3]);
+}
+
+int planeCount() { return int(gridTexel(1).w); }
+
+/**
+ * The lists of the grid cell holding x, as bounds into the members: the solids whose layer may
+ * hold a point of it (x to y), the spheres (y to z) and the other solids (z to w) whose wind may
+ * reach one. Empty outside the grid. The core's \`SolidGrid::cell\` and \`lists\`.
+ */
+ivec4 cellLists(vec3 x) {
+  vec4 head = gridTexel(0);
+  vec3 dims = gridTexel(2).xyz;
+  vec3 q = (x - head.xyz) * gridTexel(1).xyz;
+  if (head.w == 0.0 || !(all(greaterThanEqual(q, vec3(0.0))) && all(lessThan(q, dims)))) return ivec4(0);
+  ivec3 c = ivec3(q);
+  ivec3 n = ivec3(dims);
+  return ivec4(gridTexel(${SOLID_GRID_TEXELS} + (c.z * n.y + c.y) * n.x + c.x));
+}
+
+/**
+ * The solid the i-th visit of a search at a point of \`cell\` tests: the cell's layers list,
+ * then the planes (the core's order); i below \`cell.y − cell.x + planeCount()\`.
+ */
+int layerOrPlane(ivec4 cell, int i) {
+  int layers = cell.y - cell.x;
+  return gridMember(i < layers ? cell.x + i : i - layers);
+}
+
 int solidAt(int row, int j) {
   return ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * int(tableTexel(row, 4).w) + ${SOLID_TEXELS} * j;
 }
 
-/** Whether solid j is a plane. */
-bool isPlane(int row, int j) {
-  return tableTexel(row, solidAt(row, j)).x == ${f(PLANE_SOLID_KIND)};
-}
 
 float rampOf(float s) {
   s = clamp(s, -1.0, 1.0);
@@ -341,17 +378,20 @@ vec3 gaugeOf(int row, int n, int j) {
 
 /** Whether primitive j passes exactly near solid n (it and its mirror image in that plane). */
 bool exactNear(int row, int n, int j) {
-  if (!isPlane(row, n)) return false;
+  if (tableTexel(row, solidAt(row, n)).x != ${f(PLANE_SOLID_KIND)}) return false;
   int image = imageOf(row, j);
   return image == n || (image < 0 && hasImageIn(row, j, n));
 }
 
-/** The large-scale potential turned by the ramped curl near solid n, at y. */
-vec3 rampedPotential(int row, int n, vec3 y) {
+/**
+ * The large-scale potential turned by the ramped curl near solid n, at y: the doublets of the
+ * solids whose wind \`lists\` (a cell's) says may reach, but n's, and the vortices.
+ */
+vec3 rampedPotential(int row, int n, ivec4 lists, vec3 y) {
   vec3 psi = vec3(0.0);
-  int solids = int(tableTexel(row, 5).x);
-  for (int j = 0; j < solids; j++) {
-    if (j == n || tableTexel(row, solidAt(row, j)).z == 0.0) continue;
+  for (int k = lists.y; k < lists.w; k++) {
+    int j = gridMember(k);
+    if (j == n) continue;
     vec3 p;
     vec3 u;
     doubletAt(row, j, y, p, u);
@@ -373,7 +413,7 @@ vec3 rampedCurl(vec3 a[6], vec3 points[6]) {
   return vec3(dy.z - dz.y, dz.x - dx.z, dx.y - dy.x);
 }
 
-void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
+void nearSolid(int row, int n, vec4 near_, vec3 x, ivec4 cell, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
   int at = solidAt(row, n);
   vec4 s0 = tableTexel(row, at);
   vec4 sb = tableTexel(row, at + 2);
@@ -396,9 +436,12 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
     doubletAt(row, n, x, p, u);
     large += u;
   }
-  int solids = int(tableTexel(row, 5).x);
+  // Deeper inside than a step, the ramped curl is the one a step deep, about c, with the lists there.
+  float h = s0.y;
+  vec3 c = near_.w < -h ? x + nrm * (-h - near_.w) : x;
+  ivec4 lists = near_.w < -h ? cellLists(c) : cell;
   bool others = false;
-  for (int j = 0; j < solids; j++) others = others || (j != n && tableTexel(row, solidAt(row, j)).z > 0.0);
+  for (int k = lists.y; k < lists.w; k++) others = others || gridMember(k) != n;
   bool vortices = false;
   int count = int(tableTexel(row, 4).w);
   for (int j = 0; j < count; j++) {
@@ -412,8 +455,6 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
     small = hasField ? projected(smallAt(row, x, oa, ob), nrm, alpha, false) : vec3(0.0);
     return;
   }
-  float h = s0.y;
-  vec3 c = near_.w < -h ? x + nrm * (-h - near_.w) : x;
   float edge = solidEdge(row, n);
   vec3 points[6];
   float alphas[6];
@@ -428,7 +469,7 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
   vec3 a[6];
   if (others || vortices) {
     for (int k = 0; k < 6; k++) {
-      vec3 psi = rampedPotential(row, n, points[k]);
+      vec3 psi = rampedPotential(row, n, lists, points[k]);
       a[k] = psi * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi));
     }
     large += rampedCurl(a, points);
@@ -441,52 +482,42 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, vec3 oa, vec3 ob, out vec3 la
     }
     small = rampedCurl(a, points);
   } else {
-    small = hasField ? projected(smallAt(row, x, oa, ob), nrm, alpha, false) : vec3(0.0);
+    // The field's potential is still being synthesised: project meanwhile (about c).
+    small = hasField ? projected(smallAt(row, c, oa, ob), nrm, alpha, false) : vec3(0.0);
   }
 }
 
-/**
- * Whether solid j is visited in the given pass of the core's order: the finite solids (pass 0),
- * then the planes (pass 1), each in the scene's order. Two passes over the table visit them in
- * that order, each solid's kind read once a pass.
- */
-bool inPass(int row, int j, int pass) {
-  return isPlane(row, j) == (pass == 1);
-}
-
-/** Whether x lies inside a solid; its signed distance and normal in \`dn\` when it does. */
-bool insideSolid(int row, int solids, vec3 x, out vec4 dn) {
-  for (int pass = 0; pass < 2; pass++) {
-    for (int j = 0; j < solids; j++) {
-      if (!inPass(row, j, pass)) continue;
-      dn = solidDistance(row, j, x, 0.0);
-      if (dn.w < 0.0) return true;
-    }
+/** Whether x lies inside a solid (one of its cell's, or a plane); its signed distance and normal in \`dn\` when it does. */
+bool insideSolid(int row, vec3 x, out vec4 dn) {
+  ivec4 cell = cellLists(x);
+  int visits = cell.y - cell.x + planeCount();
+  for (int i = 0; i < visits; i++) {
+    dn = solidDistance(row, layerOrPlane(cell, i), x, 0.0);
+    if (dn.w < 0.0) return true;
   }
   return false;
 }
 
 vec3 pushOut(int row, vec3 x) {
-  int solids = int(tableTexel(row, 5).x);
   float gap = 1e-4 * tableTexel(row, 5).y;
   vec3 start = x;
   vec3 normal = vec3(0.0, 1.0, 0.0);
   vec4 dn;
   for (int round_ = 0; round_ < 4; round_++) {
-    if (!insideSolid(row, solids, x, dn)) return x;
+    if (!insideSolid(row, x, dn)) return x;
     vec3 ax = abs(x);
     float g = gap + 4.0 * 1.1920929e-7 * max(ax.x, max(ax.y, ax.z));
     x += dn.xyz * (g - dn.w);
     normal = dn.xyz;
   }
-  if (!insideSolid(row, solids, x, dn)) return x;
+  if (!insideSolid(row, x, dn)) return x;
   // Overlapping solids sent it back and forth: the shortest of seven ways out of them all.
   vec3 ways[7] = vec3[7](normal, vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0),
     vec3(0, 0, 1), vec3(0, 0, -1));
   for (float t = max(gap, 1e-4); t < 1e3; t *= 1.25) {
     for (int w = 0; w < 7; w++) {
       vec3 y = start + ways[w] * t;
-      if (!insideSolid(row, solids, y, dn)) return y;
+      if (!insideSolid(row, y, dn)) return y;
     }
   }
   return x;
@@ -495,29 +526,28 @@ vec3 pushOut(int row, vec3 x) {
 
 void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
 #ifdef SOLIDS
-  int solids = int(tableTexel(row, 5).x);
   float width = tableTexel(row, 5).y;
+  ivec4 cell = cellLists(x);
+  int visits = cell.y - cell.x + planeCount();
   int nearest = -1;
   vec4 best = vec4(0.0);
-  for (int pass = 0; pass < 2; pass++) {
-    for (int j = 0; j < solids; j++) {
-      if (!inPass(row, j, pass)) continue;
-      vec4 dn = solidDistance(row, j, x, solidEdge(row, j));
-      if (dn.w < width && (nearest < 0 || dn.w < best.w)) {
-        nearest = j;
-        best = dn;
-      }
+  for (int i = 0; i < visits; i++) {
+    int j = layerOrPlane(cell, i);
+    vec4 dn = solidDistance(row, j, x, solidEdge(row, j));
+    if (dn.w < width && (nearest < 0 || dn.w < best.w)) {
+      nearest = j;
+      best = dn;
     }
   }
   if (nearest >= 0) {
-    nearSolid(row, nearest, best, x, oa, ob, large, small);
+    nearSolid(row, nearest, best, x, cell, oa, ob, large, small);
     return;
   }
   large = tableTexel(row, 4).xyz;
-  for (int j = 0; j < solids; j++) {
+  for (int k = cell.y; k < cell.w; k++) {
     vec3 p;
     vec3 u;
-    doubletAt(row, j, x, p, u);
+    doubletAt(row, gridMember(k), x, p, u);
     large += u;
   }
 #else
