@@ -355,11 +355,7 @@ impl Simulation {
     /// builds them anew); else nothing.
     pub fn solid_grid_for_gpu(&mut self, out: &mut Vec<f32>) {
         let walls = self.wind.shared_walls();
-        let handed = match (&walls, &self.gpu_walls) {
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            (a, b) => a.is_none() && b.is_none(),
-        };
-        if !handed {
+        if walls.as_ref().map(Arc::as_ptr) != self.gpu_walls.as_ref().map(Arc::as_ptr) {
             if let Some(w) = &walls {
                 w.solids.write_gpu_grid(out);
             }

@@ -243,9 +243,7 @@ impl SolidGrid {
     /// grid's corner and scale, so a float holds it exactly.
     pub fn write_gpu(&self, planes: &[u32], out: &mut Vec<f32>) {
         let p = planes.len() as u32;
-        let dims = self
-            .dims
-            .map(|d| if self.cells.is_empty() { 0.0 } else { d as f32 });
+        let dims = self.dims.map(|d| d as f32);
         out.extend_from_slice(&[self.lo.x, self.lo.y, self.lo.z, self.cells.len() as f32]);
         let inv = self.inv_cell;
         out.extend_from_slice(&[inv.x, inv.y, inv.z, p as f32]);

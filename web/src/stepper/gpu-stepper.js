@@ -53,10 +53,10 @@ export function gpuStepperUnsupported(renderer) {
 export function gpuStepperRefuses(scene) {
   const solids = (scene.render?.objects ?? []).filter((o) => o.solid);
   const planes = solids.filter((o) => o.type === 'plane').length;
-  const primitives = (scene.wind ?? []).length * (1 + planes);
-  const texels = HEADER_TEXELS + PRIMITIVE_TEXELS * primitives + SOLID_TEXELS * solids.length;
+  const winds = (scene.wind ?? []).length;
+  const texels = HEADER_TEXELS + PRIMITIVE_TEXELS * winds * (1 + planes) + SOLID_TEXELS * solids.length;
   if (texels > LATTICE_WIDTH) {
-    return `the scene's wind table (${(scene.wind ?? []).length} primitives, their mirror images in ${planes} solid planes, ${solids.length} solids) is wider than the GPU stepper's ${LATTICE_WIDTH} texels`;
+    return `the scene's wind table (${winds} primitives, their mirror images in ${planes} solid planes, ${solids.length} solids) is wider than the GPU stepper's ${LATTICE_WIDTH} texels`;
   }
   return null;
 }
@@ -175,11 +175,7 @@ export class GpuStepper {
   /** The solids' grid (`gas::solid_grid`, `SolidGrid::write_gpu`) as an RGBA32F texture, LATTICE_WIDTH texels a row. */
   #setSolidGrid(grid) {
     this.solidGrid?.dispose();
-    const rows = Math.ceil(grid.length / 4 / LATTICE_WIDTH);
-    const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
-    texels.set(grid);
-    this.solidGrid = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
-    this.solidGrid.needsUpdate = true;
+    this.solidGrid = rowsTexture(grid.length / 4, (texels) => texels.set(grid));
   }
 
   /** The wind table texture holding tables `a` (row 0) and `b` (row 1). */
@@ -442,15 +438,22 @@ export class GpuStepper {
   }
 }
 
-/** A lattice (xyz per point) as an RGBA32F texture, LATTICE_WIDTH points a row. */
-function latticeTexture(data) {
-  const points = data.length / 3;
-  const rows = Math.ceil(points / LATTICE_WIDTH);
+/** An RGBA32F texture of `count` texels, LATTICE_WIDTH a row, written by `fill` (given the texels' floats, zeros past the last). */
+function rowsTexture(count, fill) {
+  const rows = Math.ceil(count / LATTICE_WIDTH);
   const texels = new Float32Array(4 * LATTICE_WIDTH * rows);
-  for (let i = 0; i < points; i++) texels.set(data.subarray(3 * i, 3 * i + 3), 4 * i);
+  fill(texels);
   const texture = new THREE.DataTexture(texels, LATTICE_WIDTH, rows, THREE.RGBAFormat, THREE.FloatType);
   texture.needsUpdate = true;
   return texture;
+}
+
+/** A lattice (xyz per point) as an RGBA32F texture, LATTICE_WIDTH points a row. */
+function latticeTexture(data) {
+  const points = data.length / 3;
+  return rowsTexture(points, (texels) => {
+    for (let i = 0; i < points; i++) texels.set(data.subarray(3 * i, 3 * i + 3), 4 * i);
+  });
 }
 
 /** The blobs of records (those with mass), and their narrowest and widest σ (m; 0 without blobs). */
