@@ -12,7 +12,7 @@
 // rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
 // `views=0` leaves the frames out. `solids=16,64,256` then steps the plume of each count among
 // that many solid spheres (as `npm run bench`), with each stepper (each figure says which stepper
-// stepped).
+// stepped), and `widths` the layers' widths (m, 0.02 by default) it steps them with.
 import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
 import { plumeSpheres } from './plume-spheres.js';
 
@@ -75,15 +75,19 @@ async function main() {
       await frame('points', 1920, 1080);
     }
   }
+  // `widths=0.02,0.002`: the layer's width (`field.boundary_width`, m) of each solids scene.
+  const widths = (query.get('widths') || '0.02').split(',').map(Number);
   for (const count of (query.get('solids') || '').split(',').filter(Boolean).map(Number)) {
-    const among = structuredClone(plume);
-    among.field.boundary_width = 0.02;
-    among.render.objects = plumeSpheres(count);
-    for (const n of counts) {
-      for (const stepper of steppers) {
-        await w.setStepper(stepper);
-        const blobs = await plumeOf(w, among, n);
-        log({ blobs, solids: count, ...(await stepTimes(w)) });
+    for (const width of widths) {
+      const among = structuredClone(plume);
+      among.field.boundary_width = width;
+      among.render.objects = plumeSpheres(count);
+      for (const n of counts) {
+        for (const stepper of steppers) {
+          await w.setStepper(stepper);
+          const blobs = await plumeOf(w, among, n);
+          log({ blobs, solids: count, width, ...(await stepTimes(w)) });
+        }
       }
     }
   }

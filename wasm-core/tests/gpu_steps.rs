@@ -590,17 +590,41 @@ mod table {
                 * ((c.length_squared() + head[3]) / (c0.length_squared() + head[3])).ln())
         }
 
-        fn ramped_potential(&self, n: usize, lists: [usize; 4], y: Vec3) -> Vec3 {
-            let mut psi = Vec3::ZERO;
+        /// `reachesStencil`: whether solid j's doublet may be other than zero within h of c.
+        fn reaches_stencil(&self, j: usize, c: Vec3, h: f32) -> bool {
+            let at = self.solid_at(j);
+            if self.texel(at)[2] != 1.0 {
+                return true;
+            }
+            let a = self.texel(at + 1);
+            (c - Vec3::new(a[0], a[1], a[2])).length() <= SPHERE_ZONE_OUTER * a[3] + 1.01 * h
+        }
+
+        /// `rampedPotentials`: each solid's doublet at the six points in turn, then the vortices.
+        fn ramped_potentials(
+            &self,
+            n: usize,
+            lists: [usize; 4],
+            c: Vec3,
+            h: f32,
+            points: &[Vec3; 6],
+        ) -> [Vec3; 6] {
+            let mut psi = [Vec3::ZERO; 6];
             for k in lists[1]..lists[3] {
                 let j = self.member(k);
-                if j != n {
-                    psi += self.doublet(j, y).0;
+                if j == n || !self.reaches_stencil(j, c, h) {
+                    continue;
+                }
+                for (p, y) in psi.iter_mut().zip(points) {
+                    *p += self.doublet(j, *y).0;
                 }
             }
             for j in 0..self.texel(4)[3] as usize {
                 if !self.exact_near(n, j) && self.has_potential(j) {
-                    psi += self.vortex_potential(j, y, self.gauge(n, j));
+                    let gauge = self.gauge(n, j);
+                    for (p, y) in psi.iter_mut().zip(points) {
+                        *p += self.vortex_potential(j, *y, gauge);
+                    }
                 }
             }
             psi
@@ -690,10 +714,12 @@ mod table {
                 })
             };
             if others || vortices {
-                let psi = std::array::from_fn(|k| self.ramped_potential(n, lists, points[k]));
+                let psi = self.ramped_potentials(n, lists, c, h, &points);
                 large += Self::curl(&ramped(psi), &points);
             }
             let small = if has_psi {
+                // `blendedStencil` reads the lattice cell about c once, with `lattice`'s
+                // arithmetic at each point: here each point is sampled alone.
                 let scale = self.xyz(6);
                 let psi = std::array::from_fn(|k| self.blended(self.psi, points[k], scale, o));
                 Self::curl(&ramped(psi), &points)

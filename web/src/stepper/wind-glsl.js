@@ -142,6 +142,65 @@ vec3 blendedSample(highp sampler2D tex, int row, vec3 x, vec3 scale, vec3 oa, ve
 #endif
 }
 
+/**
+ * latticeSample at the six points y of a stencil about c, the same arithmetic with the lattice
+ * cell holding c fetched once (a point outside it samples on its own).
+ */
+void stencilSample(highp sampler2D tex, int row, vec3 y[6], vec3 c, vec3 scale, out vec3 s[6]) {
+  vec4 slices = tableTexel(row, 0);
+  vec3 origin = tableTexel(row, 1).xyz;
+  vec3 inv = tableTexel(row, 2).xyz;
+  ivec3 cell = ivec3(floor((c - origin) * inv));
+  int t0 = int(slices.y);
+  int t1 = int(slices.z);
+  vec3 lo[4];
+  vec3 hi[4];
+  for (int k = 0; k < 4; k++) {
+    ivec3 o = ivec3(0, k & 1, k >> 1);
+    vec3 a0 = latticePoint(tex, cell + o, t0);
+    vec3 a1 = latticePoint(tex, cell + o + ivec3(1, 0, 0), t0);
+    lo[k] = (a0 + (latticePoint(tex, cell + o, t1) - a0) * slices.w) * scale;
+    hi[k] = (a1 + (latticePoint(tex, cell + o + ivec3(1, 0, 0), t1) - a1) * slices.w) * scale;
+  }
+  for (int p = 0; p < 6; p++) {
+    vec3 q = (y[p] - origin) * inv;
+    vec3 fl = floor(q);
+    if (ivec3(fl) != cell) {
+      s[p] = latticeSample(tex, row, y[p], scale);
+      continue;
+    }
+    vec3 f = q - fl;
+    vec3 e[4];
+    for (int k = 0; k < 4; k++) e[k] = lo[k] + (hi[k] - lo[k]) * f.x;
+    vec3 l = e[0] + (e[1] - e[0]) * f.y;
+    vec3 h = e[2] + (e[3] - e[2]) * f.y;
+    s[p] = l + (h - l) * f.z;
+  }
+}
+
+/** blendedSample at the six points of a stencil about c. */
+void blendedStencil(highp sampler2D tex, int row, vec3 points[6], vec3 c, vec3 scale, vec3 oa, vec3 ob, out vec3 s[6]) {
+#ifdef CARRIED
+  vec4 w = tableTexel(row, 7);
+  vec3 shift = 0.5 * vec3(latticeSize.xyz) / tableTexel(row, 2).xyz;
+  vec3 y[6];
+  vec3 part[6];
+  for (int k = 0; k < 6; k++) s[k] = vec3(0.0);
+  if (w.x != 0.0) {
+    for (int k = 0; k < 6; k++) y[k] = points[k] + oa;
+    stencilSample(tex, row, y, c + oa, scale, part);
+    for (int k = 0; k < 6; k++) s[k] += part[k] * w.x;
+  }
+  if (w.y != 0.0) {
+    for (int k = 0; k < 6; k++) y[k] = points[k] + ob + shift;
+    stencilSample(tex, row, y, c + ob + shift, scale, part);
+    for (int k = 0; k < 6; k++) s[k] += part[k] * w.y;
+  }
+#else
+  stencilSample(tex, row, points, c, scale, s);
+#endif
+}
+
 vec3 smallAt(int row, vec3 x, vec3 oa, vec3 ob) {
   if (tableTexel(row, 0).x < 0.5) return vec3(0.0);
   return blendedSample(lattice, row, x, tableTexel(row, 3).xyz, oa, ob);
@@ -384,24 +443,40 @@ bool exactNear(int row, int n, int j) {
 }
 
 /**
- * The large-scale potential turned by the ramped curl near solid n, at y: the doublets of the
- * solids whose wind \`lists\` (a cell's) says may reach, but n's, and the vortices.
+ * Whether solid j's doublet may be other than zero at a point of the stencil about c with steps
+ * h (m): a sphere's ends ${f(SPHERE_ZONE_OUTER)} radii out, and every point lies within h of c.
  */
-vec3 rampedPotential(int row, int n, ivec4 lists, vec3 y) {
-  vec3 psi = vec3(0.0);
-  for (int k = lists.y; k < lists.w; k++) {
-    int j = gridMember(k);
-    if (j == n) continue;
-    vec3 p;
-    vec3 u;
-    doubletAt(row, j, y, p, u);
-    psi += p;
+bool reachesStencil(int row, int j, vec3 c, float h) {
+  int at = solidAt(row, j);
+  if (tableTexel(row, at).z != 1.0) return true;
+  vec4 a = tableTexel(row, at + 1);
+  return length(c - a.xyz) <= ${f(SPHERE_ZONE_OUTER)} * a.w + 1.01 * h;
+}
+
+/**
+ * The large-scale potential turned by the ramped curl near solid n, at the stencil's six points
+ * y: the doublets of the solids whose wind \`lists\` (a cell's) says may reach, but n's, and the
+ * vortices. Each solid's row of the table is read once for the six points; each point's sum
+ * keeps the core's order.
+ */
+void rampedPotentials(int row, int n, ivec4 lists, vec3 c, float h, vec3 y[6], out vec3 psi[6]) {
+  for (int k = 0; k < 6; k++) psi[k] = vec3(0.0);
+  for (int m = lists.y; m < lists.w; m++) {
+    int j = gridMember(m);
+    if (j == n || !reachesStencil(row, j, c, h)) continue;
+    for (int k = 0; k < 6; k++) {
+      vec3 p;
+      vec3 u;
+      doubletAt(row, j, y[k], p, u);
+      psi[k] += p;
+    }
   }
   int count = int(tableTexel(row, 4).w);
   for (int j = 0; j < count; j++) {
-    if (!exactNear(row, n, j) && hasPotential(row, j)) psi += vortexPotential(row, j, y, gaugeOf(row, n, j));
+    if (exactNear(row, n, j) || !hasPotential(row, j)) continue;
+    vec3 gauge = gaugeOf(row, n, j);
+    for (int k = 0; k < 6; k++) psi[k] += vortexPotential(row, j, y[k], gauge);
   }
-  return psi;
 }
 
 vec3 rampedCurl(vec3 a[6], vec3 points[6]) {
@@ -468,18 +543,15 @@ void nearSolid(int row, int n, vec4 near_, vec3 x, ivec4 cell, vec3 oa, vec3 ob,
   }
   vec3 a[6];
   if (others || vortices) {
-    for (int k = 0; k < 6; k++) {
-      vec3 psi = rampedPotential(row, n, lists, points[k]);
-      a[k] = psi * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi));
-    }
+    vec3 psi[6];
+    rampedPotentials(row, n, lists, c, h, points, psi);
+    for (int k = 0; k < 6; k++) a[k] = psi[k] * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi[k]));
     large += rampedCurl(a, points);
   }
   if (hasPsi) {
-    vec3 scale = tableTexel(row, 6).xyz;
-    for (int k = 0; k < 6; k++) {
-      vec3 psi = blendedSample(potentialLattice, row, points[k], scale, oa, ob);
-      a[k] = psi * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi));
-    }
+    vec3 psi[6];
+    blendedStencil(potentialLattice, row, points, c, tableTexel(row, 6).xyz, oa, ob, psi);
+    for (int k = 0; k < 6; k++) a[k] = psi[k] * alphas[k] + normals[k] * ((1.0 - alphas[k]) * dot(normals[k], psi[k]));
     small = rampedCurl(a, points);
   } else {
     // The field's potential is still being synthesised: project meanwhile (about c).
