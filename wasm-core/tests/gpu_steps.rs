@@ -729,7 +729,15 @@ mod table {
             (large, small)
         }
 
-        pub fn parts(&self, x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3) {
+        /// `clearanceOf`: how far x surely lies from every solid, from the nearest one's
+        /// rounded distance (the layer's width when none).
+        fn clearance(&self, nearest: f32, x: Vec3) -> f32 {
+            let d = nearest.min(self.texel(5)[1]);
+            (d - self.texel(6)[3]) * 0.999 - 1e-6 * (1.0 + x.abs().max_element())
+        }
+
+        /// `windPartsAndClearance`.
+        pub fn parts_and_clearance(&self, x: Vec3, o: [Vec3; 2]) -> (Vec3, Vec3, f32) {
             let width = self.texel(5)[1];
             let cell = self.cell_lists(x);
             let mut best: Option<(usize, (Vec3, f32))> = None;
@@ -740,7 +748,8 @@ mod table {
                 }
             }
             if let Some((n, near)) = best {
-                return self.near_solid(n, near, x, cell, o);
+                let (large, small) = self.near_solid(n, near, x, cell, o);
+                return (large, small, self.clearance(near.1, x));
             }
             let mut large = self.xyz(4);
             for k in cell[1]..cell[3] {
@@ -749,7 +758,7 @@ mod table {
             for j in 0..self.texel(4)[3] as usize {
                 large += self.primitive(j, x);
             }
-            (large, self.small(x, o))
+            (large, self.small(x, o), self.clearance(width, x))
         }
 
         fn inside(&self, x: Vec3) -> Option<(Vec3, f32)> {
@@ -846,9 +855,10 @@ fn twin_against_core(scene: Scene, lo: Vec3, size: Vec3, rounds: usize) -> [usiz
                     Vec3::new(f(0.31), f(0.47), f(0.59)) * 0.3,
                     Vec3::new(f(0.67), f(0.71), f(0.83)) * 0.3,
                 ];
-                let (gl, gs) = t.parts(x, o);
-                let (cl, cs) = frame.parts(x.into(), [o[0].into(), o[1].into()]);
+                let (gl, gs, gc) = t.parts_and_clearance(x, o);
+                let (cl, cs, cc) = frame.parts_and_clearance(x.into(), [o[0].into(), o[1].into()]);
                 let (cl, cs) = (Vec3::from(cl), Vec3::from(cs));
+                assert!((gc - cc).abs() <= 1e-6, "x = {x}: clearance {gc} vs {cc}");
                 let tol = |w: Vec3| 2e-4 * w.length().max(1.0);
                 assert!(
                     (gl - cl).length() <= tol(cl),

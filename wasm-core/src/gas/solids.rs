@@ -411,6 +411,12 @@ impl Solids {
         (d - self.slack) * 0.999 - 1e-6 * (1.0 + x.abs().max_element())
     }
 
+    /// The most by which a rounded distance exceeds the true one (m): the largest rounding of
+    /// an edge, which [`Self::clearance`] takes off.
+    pub fn slack(&self) -> f32 {
+        self.slack
+    }
+
     /// [`Self::push_out`] for the end `x1` of a move from `x0`, which lay at least `clear` (m,
     /// [`Self::clearance`]) from every solid: a move shorter than that cannot end inside one
     /// (the distance changes by no more than the point moves), so `x1` is kept as it is.

@@ -38,7 +38,8 @@ impl WindFrame {
     ///   (the eddies' shift by `carried_by_wind`), `[lattice cells per metre xyz, 0]`,
     ///   `[velocity scale xyz (m/s per lattice unit), 0]`, `[constant wind xyz (m/s),
     ///   primitive count]`, `[solid count, layer width d₀ (m), has potential, carried]`,
-    ///   `[potential scale xyz (m²/s per lattice unit), 0]`, `[carried weight of phase a,
+    ///   `[potential scale xyz (m²/s per lattice unit), the solids' slack (m): the
+    ///   largest rounding of an edge, for the clearance]`, `[carried weight of phase a,
     ///   of phase b, reset age of a, of b]` (reset ages [`NO_RESET`] unless the step that
     ///   ends with this table resets a phase; [`crate::frame::gpu_steps`] sets them), then
     ///   nothing more (the shift of phase b, half the field's period, is
@@ -75,7 +76,10 @@ impl WindFrame {
             if self.has_psi { 1.0 } else { 0.0 },
             if self.blend.is_some() { 1.0 } else { 0.0 },
         ]);
-        out.extend_from_slice(&v(self.psi.velocity_scale, 0.0));
+        out.extend_from_slice(&v(
+            self.psi.velocity_scale,
+            self.walls.as_ref().map_or(0.0, |w| w.solids.slack()),
+        ));
         let [wa, wb] = self.blend.map_or([0.0; 2], |b| b.weights);
         out.extend_from_slice(&[wa, wb, NO_RESET, NO_RESET]);
         for (i, p) in self.primitives.iter().enumerate() {

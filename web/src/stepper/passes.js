@@ -98,8 +98,10 @@ void main() {
   vec3 l;
   vec3 s;
   vec3 moved;
+  // How far the step's start surely lies from every solid: a shorter move cannot end inside one.
+  float clear;
   if (rk2) {
-    windParts(0, x, oa, ob, l, s);
+    windPartsAndClearance(0, x, oa, ob, l, s, clear);
     vec3 half_ = l * (-0.5 * dt);
     vec3 xm = x + (l + s + v) * (0.5 * dt);
     vec3 lm;
@@ -108,12 +110,13 @@ void main() {
     x += (lm + sm + v * exp(-0.5 * dt / tau)) * dt;
     moved = lm * -dt;
   } else {
-    windParts(0, x, oa, ob, l, s);
+    windPartsAndClearance(0, x, oa, ob, l, s, clear);
     x += (l + s + v) * dt;
     moved = l * -dt;
   }
 #ifdef SOLIDS
-  x = pushOut(0, x);
+  vec3 step_ = x - a.xyz;
+  if (!(clear > 0.0 && dot(step_, step_) < clear * clear)) x = pushOut(0, x);
 #endif
 #ifdef CARRIED
   oa += moved;

@@ -118,9 +118,10 @@ vec3 wind(int row, vec3 x) {
 /**
  * `void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small)`: the wind
  * at `x` in its large-scale and small-scale parts, with the carried offsets `oa`, `ob` of the
- * two phases (used with CARRIED); and `vec3 pushOut(int row, vec3 x)` (with SOLIDS): x put back
- * just outside a solid it lies in. The core's `WindFrame::parts` and `Solids::push_out`, line by
- * line. With SOLIDS, `potentialLattice` holds the field's vector potential as `lattice` its
+ * two phases (used with CARRIED); `windPartsAndClearance`, the same and how far x surely lies
+ * from every solid; and `vec3 pushOut(int row, vec3 x)` (with SOLIDS): x put back just outside
+ * a solid it lies in. The core's `WindFrame::parts`, `parts_and_clearance` and
+ * `Solids::push_out`, line by line. With SOLIDS, `potentialLattice` holds the field's vector potential as `lattice` its
  * velocity, and `solidGrid` the core's grid over the solids (`gas::solid_grid`, `SolidGrid::write_gpu`:
  * a header, a texel per cell with its lists' bounds, the members four to a texel, the planes first),
  * texel i at (i mod `solidGridWidth`, i / `solidGridWidth`): a blob visits the solids its cell lists,
@@ -596,7 +597,20 @@ vec3 pushOut(int row, vec3 x) {
 }
 #endif
 
-void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
+#ifdef SOLIDS
+/**
+ * How far x surely lies from every solid (m), from the rounded distance \`nearest\` of the
+ * nearest solid within the layer (the layer's width when none): the core's \`Solids::clearance\`.
+ */
+float clearanceOf(int row, float nearest, vec3 x) {
+  float d = min(nearest, tableTexel(row, 5).y);
+  vec3 ax = abs(x);
+  return (d - tableTexel(row, 6).w) * 0.999 - 1e-6 * (1.0 + max(ax.x, max(ax.y, ax.z)));
+}
+#endif
+
+/** The wind's parts at x, and how far x surely lies from every solid (\`clear\`, m; with SOLIDS). */
+void windPartsAndClearance(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small, out float clear) {
 #ifdef SOLIDS
   float width = tableTexel(row, 5).y;
   ivec4 cell = cellLists(x);
@@ -612,9 +626,11 @@ void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small
     }
   }
   if (nearest >= 0) {
+    clear = clearanceOf(row, best.w, x);
     nearSolid(row, nearest, best, x, cell, oa, ob, large, small);
     return;
   }
+  clear = clearanceOf(row, width, x);
   large = tableTexel(row, 4).xyz;
   for (int k = cell.y; k < cell.w; k++) {
     vec3 p;
@@ -623,10 +639,16 @@ void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small
     large += u;
   }
 #else
+  clear = 0.0;
   large = tableTexel(row, 4).xyz;
 #endif
   int count = int(tableTexel(row, 4).w);
   for (int j = 0; j < count; j++) large += primitiveWind(row, j, x);
   small = smallAt(row, x, oa, ob);
+}
+
+void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {
+  float clear;
+  windPartsAndClearance(row, x, oa, ob, large, small, clear);
 }
 `;
