@@ -121,8 +121,8 @@ vec3 wind(int row, vec3 x) {
  * two phases (used with CARRIED); `windPartsAndClearance`, the same and how far x surely lies
  * from every solid; and `vec3 pushOut(int row, vec3 x)` (with SOLIDS): x put back just outside
  * a solid it lies in. The core's `WindFrame::parts`, `parts_and_clearance` and
- * `Solids::push_out`, line by line. With SOLIDS, `potentialLattice` holds the field's vector potential as `lattice` its
- * velocity, and `solidGrid` the core's grid over the solids (`gas::solid_grid`, `SolidGrid::write_gpu`:
+ * `Solids::push_out`, line by line. With SOLIDS, `potentialLattice` holds the field's vector
+ * potential as `lattice` its velocity, and `solidGrid` the core's grid over the solids (`gas::solid_grid`, `SolidGrid::write_gpu`:
  * a header, a texel per cell with its lists' bounds, the members four to a texel, the planes first),
  * texel i at (i mod `solidGridWidth`, i / `solidGridWidth`): a blob visits the solids its cell lists,
  * as the core's `Solids::around` has it, so a step costs about the same among 16 solids or 256.
@@ -145,7 +145,9 @@ vec3 blendedSample(highp sampler2D tex, int row, vec3 x, vec3 scale, vec3 oa, ve
 
 /**
  * latticeSample at the six points y of a stencil about c, the same arithmetic with the lattice
- * cell holding c fetched once (a point outside it samples on its own).
+ * cell holding c fetched once (a point outside it samples on its own). The corners and the
+ * interpolation are written out again rather than shared with latticeSample through small
+ * functions: that split made every step half again as slow in SwiftShader.
  */
 void stencilSample(highp sampler2D tex, int row, vec3 y[6], vec3 c, vec3 scale, out vec3 s[6]) {
   vec4 slices = tableTexel(row, 0);
