@@ -1197,7 +1197,7 @@ export class Player {
       st.fieldVersion = lattice.version;
     }
     const { simulation, gas } = this.#state.scene;
-    st.gpu.apply(steps, { dt: simulation.dt, kappa: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
+    st.gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
   }
 
   /** The views' frame of the GPU stepper's state. */

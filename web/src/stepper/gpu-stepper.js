@@ -197,7 +197,7 @@ export class GpuStepper {
    * Takes the steps the core took (`steps`: its `stepForGpu` result) with time step `dt` (s),
    * diffusion κ (m²/s), dissipation α (1/s) and the RK2 midpoint rule or Euler.
    */
-  apply(steps, { dt, kappa, alpha, rk2 }) {
+  apply(steps, { dt, diffusion, alpha, rk2 }) {
     const renderer = this.renderer;
     const n = steps.ranges.length / 4;
     // The tables say whether the wind goes round solids and carries its small scales
@@ -214,7 +214,7 @@ export class GpuStepper {
     this.stepPass.configure({ solids, carried });
     const u = this.stepPass.material.uniforms;
     u.dt.value = dt;
-    u.kappa.value = kappa;
+    u.diffusion.value = diffusion;
     u.alpha.value = alpha;
     u.rk2.value = rk2;
     u.lattice.value = this.lattice;

@@ -63,7 +63,7 @@ uniform highp sampler2D ownVelocities;
 uniform highp sampler2D offsetsA;
 uniform highp sampler2D offsetsB;
 uniform float dt;
-uniform float kappa;
+uniform float diffusion;
 uniform float alpha;
 uniform bool rk2;
 layout(location = 0) out vec4 outCentre;
@@ -141,7 +141,7 @@ void main() {
     x += (wind(0, x) + v) * dt;
   }
 #endif
-  outCentre = vec4(x, a.w + kappa * dt);
+  outCentre = vec4(x, a.w + diffusion * dt);
   outMass = vec4(b.x * exp(-alpha * dt), b.y + dt, tau, 0.0);
 }`, {
       windTable: { value: null },
@@ -157,7 +157,7 @@ void main() {
       offsetsA: { value: null },
       offsetsB: { value: null },
       dt: { value: 0 },
-      kappa: { value: 0 },
+      diffusion: { value: 0 },
       alpha: { value: 0 },
       rk2: { value: true },
     });

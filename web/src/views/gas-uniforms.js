@@ -13,7 +13,7 @@ export function gasUniforms() {
     lightType: { value: new Array(VIEW_LIGHTS).fill(0) },
     lightVec: { value: Array.from({ length: VIEW_LIGHTS }, () => new THREE.Vector3()) },
     lightColor: { value: Array.from({ length: VIEW_LIGHTS }, () => new THREE.Vector3()) },
-    kappa: { value: new THREE.Vector3(1, 1, 1) },
+    extinction: { value: new THREE.Vector3(1, 1, 1) },
     hasShadows: { value: false },
     phaseType: { value: 0 },
     phaseG: { value: 0 },
@@ -29,7 +29,7 @@ export function gasUniforms() {
 /** Sets the lights (at most VIEW_LIGHTS) and the medium (extinction, phase) of the rendering model (docs/FORMATS.md). */
 export function setLights(u, lights, medium) {
   const k = Array.isArray(medium.extinction) ? medium.extinction : [medium.extinction, medium.extinction, medium.extinction];
-  u.kappa.value.fromArray(k);
+  u.extinction.value.fromArray(k);
   const used = lights.slice(0, VIEW_LIGHTS);
   u.lightCount.value = used.length;
   used.forEach((l, i) => {

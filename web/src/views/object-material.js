@@ -50,7 +50,7 @@ void main() {
     float column = 0.0;
     if (hasShadows && shadowSource == 1) column = shadowColumn(l, x);
     if (hasShadows && shadowSource == 2) column = volumeColumn(l, x, toLight, dist);
-    lit += c * exp(-kappa * column) * lightColor[l];
+    lit += c * exp(-extinction * column) * lightColor[l];
   }
   // Linear into the marches' opaque target; the canvas's encoding when drawn directly.
   fragColor = linearToOutputTexel(vec4(baseColor * lit, 1.0));

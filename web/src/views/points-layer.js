@@ -55,7 +55,7 @@ void main() {
   float shown = max(size, ${MIN_SIZE.toFixed(1)});
   gl_PointSize = shown;
   vReach = reach * shown / max(size, 1e-6);
-  float k = (kappa.r + kappa.g + kappa.b) / 3.0;
+  float k = (extinction.r + extinction.g + extinction.b) / 3.0;
   // The share of a blob's column within the sprite's disc: 1 − exp(−reach²/2).
   float held = 1.0 - exp(-0.5 * reach * reach);
   vDepth = k * mass / (6.2831853 * sigma * sigma) / held * min(1.0, (size * size) / (shown * shown));

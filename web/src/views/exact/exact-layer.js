@@ -1,13 +1,16 @@
 // The exact GPU march (the `exact` view, docs/FORMATS.md) of the blob list in a fragment shader.
 // Each pixel gathers the chords of the blobs in its screen tile, then steps along the ray as the
-// CPU reference does: steps of STEP_FRACTION of the smallest σ met, the exact Gaussian line integral of
-// every chord over each step (erf), the density-weighted source Ω L + (1 − Ω) Q, front-to-back
-// compositing. Shadows come from a grid of shadow columns ∫ρ towards each light computed by the
-// WASM core and interpolated trilinearly, and are complete where an object blocks the light (an
-// exact ray test, `shaders/occluders.js`). The opaque pass's colour and depth sit behind the gas.
-// Everything arrives from the engine worker as whole buffers (`exactFrame`): the blobs packed
-// as for every view (the core's level of detail, `marchFrame`: blobs much closer than their
-// width merged by moments), the shadow grid, and the screen tiles; this layer only uploads them.
+// CPU reference does (`render/renderer.rs`: paper Appendix B, Eqs. 22–28): steps of
+// STEP_FRACTION of the smallest σ met, the exact Gaussian line integral of every chord over each
+// step (Eq. 28, via erf), the density-weighted source Ω L + (1 − Ω) Q (Eq. 24), L the lights
+// through the phase function and the shadow transmittance S_k (Eq. 25), front-to-back
+// compositing (Eqs. 26–27). Shadows come from a grid of shadow columns ∫ρ towards each light
+// computed by the WASM core and interpolated trilinearly, and are complete where an object
+// blocks the light (an exact ray test, `shaders/occluders.js`). The opaque pass's colour and
+// depth sit behind the gas. Everything arrives from the engine worker as whole buffers
+// (`exactFrame`): the blobs packed as for every view (the core's level of detail, `marchFrame`:
+// blobs much closer than their width merged by moments), the shadow grid, and the screen tiles;
+// this layer only uploads them.
 
 import * as THREE from 'three';
 import { BLOBS_PER_ROW, STEP_FRACTION, TRUNCATION, VIEW_LIGHTS, WORDS_PER_BLOB } from '../../generated/contract.js';
@@ -176,11 +179,11 @@ void main() {
           vec3 toLight = towardsLight(l, x, dist);
           if (hasShadows && lightBlocked(1 + l, x, toLight, dist)) continue;
           float column = hasShadows ? shadowColumn(l, x) : 0.0;
-          L += phase(dot(rd, toLight)) * exp(-kappa * column) * lightColor[l];
+          L += phase(dot(rd, toLight)) * exp(-extinction * column) * lightColor[l]; // Eq. 25
         }
-        vec3 C = albedo * L + emitted / w;
-        vec3 absorbed = 1.0 - exp(-kappa * w);
-        rad += T * absorbed * C;
+        vec3 C = albedo * L + emitted / w; // Eq. 24
+        vec3 absorbed = 1.0 - exp(-extinction * w); // 1 − τ_i (Eq. 28)
+        rad += T * absorbed * C; // Eq. 27
         T *= 1.0 - absorbed;
         if (max(T.r, max(T.g, T.b)) < 1e-4) break;
         s = e;

@@ -1,6 +1,7 @@
-// GLSL: the lights and the medium every gas-aware shader shares (the rendering model, docs/FORMATS.md), over the uniforms
-// of `views/gas-uniforms.js`: at most VIEW_LIGHTS lights, κ_t, the phase function, and the
-// output encoding.
+// GLSL: the lights and the medium every gas-aware shader shares (paper Appendix B: the
+// extinction κ_t of Eqs. 23 and 28, the phase function p of Eq. 25), over the uniforms of
+// `views/gas-uniforms.js`: at most VIEW_LIGHTS lights, κ_t, the phase function, and the output
+// encoding.
 
 import { VIEW_LIGHTS } from '../../generated/contract.js';
 
@@ -10,7 +11,7 @@ uniform int lightCount;
 uniform int lightType[${VIEW_LIGHTS}];  // 0 point, 1 directional
 uniform vec3 lightVec[${VIEW_LIGHTS}];  // position, or unit vector towards the light
 uniform vec3 lightColor[${VIEW_LIGHTS}];
-uniform vec3 kappa;                    // extinction κ_t per channel
+uniform vec3 extinction;               // κ_t per channel
 uniform bool hasShadows;
 uniform int phaseType;                 // 0 isotropic, 1 Henyey-Greenstein
 uniform float phaseG;

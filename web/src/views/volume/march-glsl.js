@@ -9,8 +9,12 @@ import { BRICK_GLSL } from './occupancy-pass.js';
 export const MAX_MARCH_STEPS = 1024;
 
 /**
- * The march: front-to-back compositing of the voxel density (the rendering model of docs/FORMATS.md on the volume), each
- * sample lit through `shadowColumn` (the near part of the column summed, the rest read). Samples
+ * The march: the single-scattering model of paper Appendix B (Eqs. 22–28, as the CPU reference
+ * `render/renderer.rs` marches it) on the voxel density: each step's transparency τ_i =
+ * exp(−κ_t ρ ds) (Eq. 28 on the voxels), its source C = Ω L (+ the emitted source, Eq. 24), L
+ * the lights through the phase function and their shadow transmittance S_k (Eq. 25), each
+ * sample lit through `shadowColumn` (the near part of the column summed, the rest read), and
+ * front-to-back compositing (Eqs. 26–27). Samples
  * sit at s0 + (k + j)·ds; where a brick holds no gas the march goes on at the first such sample
  * past the brick, so it takes the same samples wherever there is gas as a march without leaps.
  */
@@ -63,7 +67,8 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
     }
     vec4 d = sampleVolume(densityVolume, grid, x);
     if (d.x <= 0.0) continue;
-    vec3 absorbed = 1.0 - exp(-kappa * (d.x / densityScale * ds));
+    // 1 − τ_i (Eq. 28), the voxel's density over the step.
+    vec3 absorbed = 1.0 - exp(-extinction * (d.x / densityScale * ds));
     vec3 albedo = d.yzw / d.x;
     vec3 L = vec3(0.0);
     for (int l = 0; l < ${VIEW_LIGHTS}; l++) {
@@ -71,12 +76,12 @@ void marchVolume(vec3 camPos, vec3 rd, float sMax, inout vec3 rad, inout vec3 T)
       float dist;
       vec3 toLight = towardsLight(l, x, dist);
       if (hasShadows && lightBlocked(1 + l, x, toLight, dist)) continue;
-      vec3 S = hasShadows ? exp(-kappa * shadowColumn(l, x, toLight, dist)) : vec3(1.0);
-      L += phase(dot(rd, toLight)) * S * lightColor[l];
+      vec3 S = hasShadows ? exp(-extinction * shadowColumn(l, x, toLight, dist)) : vec3(1.0);
+      L += phase(dot(rd, toLight)) * S * lightColor[l]; // Eq. 25
     }
-    vec3 C = albedo * L;
+    vec3 C = albedo * L; // Eq. 24
     if (emissive) C += sampleVolume(sourceVolume, grid, x).rgb / d.x;
-    rad += T * absorbed * C;
+    rad += T * absorbed * C; // Eq. 27
     T *= 1.0 - absorbed;
     if (max(T.r, max(T.g, T.b)) < 1e-4) break;
   }

@@ -315,8 +315,8 @@ export class VolumeLayer extends MarchQuad {
     if (this.#isLost(renderer)) return false;
     const info = this.info;
     const q = VOLUME_QUALITY[quality] ?? VOLUME_QUALITY.standard;
-    const kappa = this.gas.kappa.value;
-    const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}|${kappa.toArray()}|${this.memoryBytes}`;
+    const extinction = this.gas.extinction.value;
+    const key = `${this.frameSerial}|${quality}|${scale}|${this.gas.hasShadows.value}|${extinction.toArray()}|${this.memoryBytes}`;
     if (key === this.builtKey) return this.own.hasGas.value;
     this.builtKey = key;
     const hasGas = Boolean(info && info.count > 0);
@@ -361,7 +361,7 @@ export class VolumeLayer extends MarchQuad {
     this.grid = grid;
     this.#ensureTargets(renderer, formats, precision, grid, layouts, info.emissive);
     // Stored optical depths (see the head of this file): κ̄h per unit density, κ̄ per unit column.
-    const unit = Math.max(kappa.x, kappa.y, kappa.z);
+    const unit = Math.max(extinction.x, extinction.y, extinction.z);
     const perDensity = Number.isFinite(unit) && unit > 0 ? unit : 1;
     this.gas.densityScale.value = perDensity * grid.h;
     this.gas.columnScale.value = perDensity;
