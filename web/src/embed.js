@@ -1,8 +1,8 @@
 // <wind-field>: an embeddable player (docs/FORMATS.md, the browser API). This module is only the loader: it defines
 // the element, its poster, play button and attributes, and nothing heavy. The player's code
-// (the engine worker with the WASM core, three.js and the views, `player.js`) is imported when
-// the first element nears the viewport (`loading="lazy"`, the default) or at once
-// (`loading="eager"`), once for every player on the page.
+// (the engine worker with the WASM core, three.js and the views, `player/player.js`) is
+// imported when the first element nears the viewport (`loading="lazy"`, the default) or at
+// once (`loading="eager"`), once for every player on the page.
 //
 // Attributes (each mirrored by a property): `src` (scene JSON URL), `preset` (a name in
 // scenes/), `controls`, `autoplay`, `loading` (`lazy` | `eager`), `poster` (an image URL shown

@@ -19,7 +19,7 @@ const NOTICE_MS = 8000;
 let playerCode = null;
 /** The player's code, imported once for every element on the page (a failed import is retried). */
 function loadPlayerCode() {
-  playerCode ??= import('../player.js').catch((err) => {
+  playerCode ??= import('../player/player.js').catch((err) => {
     playerCode = null;
     throw new Error(`could not load the player's code (${err?.message ?? err})`);
   });

@@ -3,7 +3,7 @@
 // exposes `window.windfield`.
 
 import GUI from 'lil-gui';
-import { Player, QUALITIES, SLICE_PLANES } from '../player.js';
+import { Player, QUALITIES, SLICE_PLANES } from '../player/player.js';
 import { rememberChoice } from '../player/machine.js';
 import { VIEWS } from '../views/modes.js';
 import { decodeScene, encodeScene } from '../state/url-codec.js';

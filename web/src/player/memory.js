@@ -11,10 +11,12 @@
 // an eighth of the device's memory (2 GiB assumed where it is not reported), half of it for
 // the blobs, half for the real-time view's volume.
 
+import { formatsGaveUp } from '../views/precision.js';
+
 /** Device memory (GiB) at or below which a device counts as small. */
 const SMALL_DEVICE_GIB = 2;
 /** Largest texture side (texels) at or below which a GPU counts as phone-class. */
-export const PHONE_TEXTURE_SIZE = 4096;
+const PHONE_TEXTURE_SIZE = 4096;
 /** The share of the device's memory the player keeps within. */
 const SHARE = 1 / 8;
 
@@ -49,8 +51,74 @@ export function memoryBudget(deviceMemory, formats) {
 }
 
 /** What the budget gives up for a scene capped at `cap` blobs (or null), in words. */
-export function budgetWords(budget) {
+function budgetWords(budget) {
   const device = `${budget.deviceGib} GiB${budget.reported ? '' : ' assumed'}`;
   const gpu = budget.phoneClass ? ', a phone-class GPU' : '';
   return `a memory budget of ${Math.round(budget.bytes / 2 ** 20)} MiB (an eighth of ${device}${gpu})`;
+}
+
+/**
+ * A player's memory budget in use (`memoryBudget`, or none): the blob cap it sets, whether it
+ * holds the running scene to fewer blobs, the notice of it (told once a scene), and what it and
+ * the largest texture gave up (`stats().gaveUp`).
+ */
+export class MemoryLimit {
+  /** The budget, or null where none applies. */
+  #budget;
+  /** The scene (its JSON text) whose cap was last told of, so it is told once. */
+  #told = null;
+
+  /** @param {number | undefined} deviceMemory @param {object} formats the GPU's (`gpuFormats`) */
+  constructor(deviceMemory, formats) {
+    this.#budget = memoryBudget(deviceMemory, formats);
+  }
+
+  /** Most bytes of the real-time view's targets (Infinity where no budget applies). */
+  get volumeBytes() {
+    return this.#budget?.volumeBytes ?? Infinity;
+  }
+
+  /** The blob cap a scene runs under: `chosen` (a number, or null for none) within the budget's; null for none. */
+  blobCap(chosen) {
+    const caps = [chosen, this.#budget?.blobCap].filter((c) => Number.isInteger(c));
+    return caps.length > 0 ? Math.min(...caps) : null;
+  }
+
+  /** Whether the scene running under `sceneBlobCap` (the engine's) is held to fewer blobs by the budget. */
+  #holds(sceneBlobCap) {
+    return this.#budget !== null && sceneBlobCap === this.#budget.blobCap;
+  }
+
+  /**
+   * The notice that the budget holds the scene `sceneJson` (running under `sceneBlobCap`) to
+   * fewer blobs, the first time it does; else null.
+   */
+  notice(sceneJson, sceneBlobCap) {
+    if (!this.#holds(sceneBlobCap) || this.#told === sceneJson) return null;
+    this.#told = sceneJson;
+    return `This device has little memory for 3-D: the scene runs with at most ${this.#budget.blobCap.toLocaleString('en')} blobs `
+      + `(fewer, heavier blobs of the same gas), within ${budgetWords(this.#budget)}.`;
+  }
+
+  /** `stats().memoryBudget`: `{bytes, blobCap, volumeBytes}`, or null. */
+  snapshot() {
+    const b = this.#budget;
+    return b && { bytes: b.bytes, blobCap: b.blobCap, volumeBytes: b.volumeBytes };
+  }
+
+  /**
+   * What this device gave up against a full one, one phrase each (`stats().gaveUp`): the float
+   * formats its GPU lacks (`views/precision.js`), and what the budget (for a scene running
+   * under `sceneBlobCap`) and the largest texture held back of `view`'s.
+   */
+  gaveUp(view, sceneBlobCap) {
+    const formats = view.formats;
+    const out = formatsGaveUp(formats);
+    const grid = ({ voxels, of }) => `the real-time view's grid of ${voxels.toLocaleString('en')} voxels instead of ${of.toLocaleString('en')}`;
+    if (this.#holds(sceneBlobCap)) out.push(`${budgetWords(this.#budget)}: at most ${this.#budget.blobCap.toLocaleString('en')} blobs`);
+    const shrunk = view.volume.grid ? view.volume.shrunk : {};
+    if (shrunk.memory) out.push(`${budgetWords(this.#budget)}: ${grid(shrunk.memory)}`);
+    if (shrunk.textureSize) out.push(`textures of at most ${formats.maxTextureSize} texels a side: ${grid(shrunk.textureSize)}`);
+    return out;
+  }
 }

@@ -1,0 +1,192 @@
+// Who steps a player's gas, and the gas handed between them: the engine worker's core (the
+// reference, 'cpu') or the GPU stepper (`stepper/gpu-stepper.js`, 'gpu'), as the choice
+// (`setStepper`: 'auto', 'cpu' or 'gpu') allows and the scene and the machine permit. The gas
+// crosses as its blobs' centres: to the GPU with the worker's records and the field's lattice,
+// back to the worker as the GPU's centres (for good, or for a still, an export, a check).
+
+import { GpuStepper, gpuStepperRefuses, gpuStepperUnsupported, MAX_GPU_LATTICE } from '../stepper/gpu-stepper.js';
+
+/** Why 'auto' steps in the worker on a browser that draws 3-D in software. */
+const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps the gas faster than its GPU passes';
+
+/** Why `scene` must be stepped in the worker (it splits blobs, plays a shape in reverse, …), or null. */
+function sceneKeepsGpuAway(scene) {
+  if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
+  if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
+  return gpuStepperRefuses(scene);
+}
+
+/** Bytes that crossed from the worker for GPU steps `steps` (whole buffers). */
+function crossedBytes(steps) {
+  return ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'solidGrid', 'spheres'].reduce((n, k) => n + steps[k].byteLength, 0);
+}
+
+export class StepperHandoff {
+  #engine;
+  #renderer;
+  /** Whether the machine draws 3-D in software (`machine.js`). */
+  #software;
+  /** The running scene (as the core normalised it), or null. */
+  #scene;
+  /** Whether the view's GPU context is lost. */
+  #contextLost;
+  /** Runs the scene again in the worker to where it was (the GPU's copy of the gas is gone). */
+  #restep;
+  /** The choice: 'auto', 'cpu' or 'gpu' (`setStepper`). */
+  #choice = 'auto';
+  /** What steps the gas now: 'cpu' (the worker's core) or 'gpu'. */
+  #active = 'cpu';
+  /** Why the GPU does not step the gas when the choice allows it, or null. */
+  #reason = null;
+  /** The GPU stepper once made (null again once its context is lost). */
+  #gpu = null;
+  /** The field version its lattice is. */
+  #fieldVersion = -1;
+
+  /**
+   * @param {{engine: import('../engine/client.js').Engine, renderer: object, software: boolean,
+   *   scene: () => object | null, contextLost: () => boolean, restep: () => Promise<void>}} parts
+   */
+  constructor({ engine, renderer, software, scene, contextLost, restep }) {
+    this.#engine = engine;
+    this.#renderer = renderer;
+    this.#software = software;
+    this.#scene = scene;
+    this.#contextLost = contextLost;
+    this.#restep = restep;
+  }
+
+  /** The choice of stepper: 'auto', 'gpu' or 'cpu'; taken at the next `engage`. */
+  get choice() {
+    return this.#choice;
+  }
+
+  set choice(kind) {
+    this.#choice = kind;
+  }
+
+  /** What steps the gas now: 'cpu' or 'gpu'. */
+  get active() {
+    return this.#active;
+  }
+
+  /** Why the worker steps the gas where the choice allows the GPU (`stats().stepperReason`), or null. */
+  get reason() {
+    return this.#reason;
+  }
+
+  /** The GPU stepper while it steps the gas, else null. */
+  get onGpu() {
+    return this.#active === 'gpu' ? this.#gpu : null;
+  }
+
+  /** The gas is in the worker now (a new simulation, or one run again): the GPU takes it at `engage`. */
+  heldByWorker() {
+    this.#active = 'cpu';
+  }
+
+  /** Why the GPU cannot step the current scene here, or null when it can. */
+  #unavailable() {
+    const scene = this.#scene();
+    const lattice = scene && scene.field.amplitude > 0 ? scene.field.size.reduce((a, b) => a * b, 1) : 0;
+    return (this.#contextLost() && 'the view has lost its GPU context')
+      || gpuStepperUnsupported(this.#renderer)
+      || (scene && sceneKeepsGpuAway(scene))
+      || (lattice > MAX_GPU_LATTICE && `the field's lattice has over ${MAX_GPU_LATTICE} points`)
+      || null;
+  }
+
+  /** Puts the gas where the choice of stepper says: on the GPU where it can be, else in the worker. */
+  async engage() {
+    this.#reason = this.#choice === 'cpu' ? null : this.#unavailable()
+      // Drawn in software, the GPU's passes run on the CPU too, many times slower than the
+      // worker's core: 'auto' leaves the gas to the worker there ('gpu' still asks for it).
+      ?? (this.#choice === 'auto' && this.#software ? SOFTWARE_STEPPER : null);
+    const wanted = this.#choice !== 'cpu' && !this.#reason ? 'gpu' : 'cpu';
+    if (wanted === this.#active || !this.#scene()) return;
+    if (wanted === 'gpu') await this.#toGpu();
+    else await this.#toCpu();
+  }
+
+  /** Brings the gas back to the worker before an edit to `scene` where the GPU may not step it. */
+  async leaveFor(scene) {
+    if (this.#active === 'gpu' && (sceneKeepsGpuAway(scene) || this.#choice === 'cpu')) await this.#toCpu();
+  }
+
+  /** Hands the worker's gas to the GPU stepper. */
+  async #toGpu() {
+    const start = await this.#engine.request('gpuStart');
+    const scene = this.#scene();
+    const births = scene.emitters.reduce((n, e) => n + (e.enabled ? e.rate : 0), 0) * scene.simulation.dt;
+    this.#gpu ??= new GpuStepper(this.#renderer);
+    this.#gpu.start({ records: start.records, capacity: scene.gas.max_blobs + Math.ceil(4 * births) + 1024, time: start.time });
+    this.#gpu.setLattice(start.lattice.data, start.lattice.size, start.lattice.potential);
+    this.#fieldVersion = start.lattice.version;
+    this.#active = 'gpu';
+  }
+
+  /** Brings the gas back from the GPU stepper to the worker, which steps it from now on. */
+  async #toCpu() {
+    if (this.#active !== 'gpu') return;
+    // Without its context the GPU's copy is gone: the worker runs the gas again instead.
+    if (!this.#gpu) {
+      await this.#restep();
+      return;
+    }
+    const centres = this.#gpu.readCentres();
+    this.#active = 'cpu';
+    await this.#engine.request('takeCentres', { centres, keepOnGpu: false }, { transfer: [centres.buffer] });
+  }
+
+  /** Gives the worker the GPU's centres as they are now (for a still, an export, a check). */
+  async syncCentres() {
+    if (this.#active !== 'gpu') return;
+    if (!this.#gpu) {
+      await this.#restep();
+      return;
+    }
+    const centres = this.#gpu.readCentres();
+    await this.#engine.request('takeCentres', { centres, keepOnGpu: true }, { transfer: [centres.buffer] });
+  }
+
+  /** The GPU takes the steps the worker took (`steps`), on the field the worker now runs on. */
+  async takeSteps(steps) {
+    // Without a GPU stepper (its context lost) the steps are let go: the restore re-steps.
+    if (!this.#gpu) return;
+    if (steps.fieldVersion !== this.#fieldVersion) {
+      const lattice = await this.#engine.request('gpuLattice');
+      this.#gpu.setLattice(lattice.data, lattice.size, lattice.potential);
+      this.#fieldVersion = lattice.version;
+    }
+    const { simulation, gas } = this.#scene();
+    this.#gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
+  }
+
+  /**
+   * The views' frame of a step's `result`: the worker's frame as it is, or the GPU's after it
+   * took the steps; null where the GPU's copy of the gas was lost (the worker's run again,
+   * `#restep`, has the steps already).
+   */
+  async frameOf(result) {
+    if (!result.gpu) return result;
+    if (this.#active !== 'gpu') return null;
+    await this.takeSteps(result);
+    if (!this.#gpu) return null;
+    return { ...this.#gpu.frame(this.#scene().render.medium.albedo), stepMs: result.stepMs, packMs: 0, crossed: crossedBytes(result) };
+  }
+
+  /**
+   * The GPU's state went with its context: lets go of the GPU stepper (deleting its objects is
+   * a no-op while lost). Returns whether it held the gas (the worker must then run it again).
+   */
+  contextLost() {
+    this.dispose();
+    return this.#active === 'gpu';
+  }
+
+  /** Lets go of the GPU stepper's objects. */
+  dispose() {
+    this.#gpu?.dispose();
+    this.#gpu = null;
+  }
+}
