@@ -5,10 +5,10 @@
 import { removedError } from './removed.js';
 
 /** A request with no reply and no progress for this long (ms) has lost its worker. */
-export const REQUEST_TIMEOUT_MS = 30_000;
+const REQUEST_TIMEOUT_MS = 30_000;
 /** The range a request's time limit may be set in (ms): a second to an hour. */
-export const MIN_TIMEOUT_MS = 1000;
-export const MAX_TIMEOUT_MS = 3_600_000;
+const MIN_TIMEOUT_MS = 1000;
+const MAX_TIMEOUT_MS = 3_600_000;
 
 
 export class Engine {

@@ -20,7 +20,7 @@ const $ = (s) => document.querySelector(s);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
 
 /** The plotted series from a `windfield stats` report (the shells inside the inertial range). */
-export function spectrumSeries(report) {
+function spectrumSeries(report) {
   const shells = report.shells.filter((s) => s.energy_expected > 0);
   return {
     measured: shells.map((s) => [s.k, s.energy]),
@@ -151,7 +151,7 @@ function paint(canvas, data, n, scale) {
 }
 
 /** Figure 1's snapshot times (s): the row of panels, as in the paper's figure. */
-export const FIGURE1_TIMES = [0, 0.25, 0.5, 1, 2];
+const FIGURE1_TIMES = [0, 0.25, 0.5, 1, 2];
 /** The live panels play the first `FIGURE1_TIMES.at(-1)` seconds, hold this long (s), and restart. */
 const FIGURE1_HOLD = 1;
 /** Simulated seconds per animation frame of the live panels. */
@@ -235,11 +235,11 @@ async function figure1Lesson() {
 }
 
 /** Streamlines and the sphere's outline per panel: the core's wind, and the closed form. */
-export const SPHERE_LINES = 13;
+const SPHERE_LINES = 13;
 const SPHERE_POINTS = 240;
 
 /** `flat` (x, y pairs, `points` a line) as polylines of [x, y]. */
-export function polylines(flat, points) {
+function polylines(flat, points) {
   const lines = [];
   for (let i = 0; i < flat.length; i += 2 * points) {
     lines.push(Array.from({ length: points }, (_, k) => [flat[i + 2 * k], flat[i + 2 * k + 1]]));

@@ -52,7 +52,7 @@ export const latticeChoices = (n, kInertial = 0) => [...new Set([...LATTICE.filt
  * Items of one list shown with their own folder; a longer list (a link may hold hundreds)
  * shows the first ones and says how many more there are, to edit in the scene's JSON.
  */
-export const MAX_ITEM_FOLDERS = 24;
+const MAX_ITEM_FOLDERS = 24;
 
 const isTriple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number');
 
@@ -61,7 +61,7 @@ const isTriple = (v) => Array.isArray(v) && v.length === 3 && v.every((x) => typ
  * choices, and an on/off switch for each `optional` field (null when off). `changed` runs
  * after each edit.
  */
-export function addFields(folder, item, changed, optional = []) {
+function addFields(folder, item, changed, optional = []) {
   for (const [key, value] of Object.entries(item)) {
     if (SKIP.has(key)) continue;
     if (typeof value === 'number') {

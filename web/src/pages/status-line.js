@@ -10,7 +10,7 @@ const LIMITS = {
 };
 
 /** Frames a second as the status line shows them: one decimal below 10 (0.2 stays 0.2), whole above. */
-export function fpsText(fps) {
+function fpsText(fps) {
   return fps < 10 ? fps.toFixed(1) : String(Math.round(fps));
 }
 

@@ -11,9 +11,9 @@
 export const HASH_KEY = 'scene';
 const CODEC_VERSION = '1';
 /** Longest encoded scene a link may carry (characters of base64url): 1 MiB. */
-export const MAX_LINK_CHARS = 1 << 20;
+const MAX_LINK_CHARS = 1 << 20;
 /** Largest scene a link may inflate to (bytes of JSON): 4 MiB, far more than any scene needs. */
-export const MAX_SCENE_BYTES = 4 << 20;
+const MAX_SCENE_BYTES = 4 << 20;
 
 const DAMAGED = 'the link is damaged or cut short';
 

@@ -23,7 +23,7 @@ export const PRIMITIVE_TEXELS = WIND_TABLE_PRIMITIVE / 4;
 export const SOLID_TEXELS = WIND_TABLE_SOLID / 4;
 
 /** Texels (RGBA32F) of the solids' grid's header (`gas::solid_grid`). */
-export const SOLID_GRID_TEXELS = SOLID_GRID_HEADER / 4;
+const SOLID_GRID_TEXELS = SOLID_GRID_HEADER / 4;
 
 const f = (v) => (Number.isInteger(v) ? v.toFixed(1) : String(v));
 

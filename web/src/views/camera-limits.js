@@ -17,7 +17,7 @@ const TURN = Math.PI / 36;
 const ZOOM_STEP = 1.15;
 
 /** The height of the highest floor under the scene: planes whose normal points mostly up. */
-export function floorHeight(objects = []) {
+function floorHeight(objects = []) {
   const floors = objects.filter((o) => o.type === 'plane' && o.normal[1] > 0.7 * Math.hypot(...o.normal));
   return floors.length ? Math.max(...floors.map((o) => o.point[1])) : -Infinity;
 }

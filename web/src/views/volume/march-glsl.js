@@ -6,7 +6,7 @@
 import { NEAR_COLUMN_STEPS, NEAR_COLUMN_VOXELS, VIEW_LIGHTS } from '../../generated/contract.js';
 import { BRICK_GLSL } from './occupancy-pass.js';
 
-export const MAX_MARCH_STEPS = 1024;
+const MAX_MARCH_STEPS = 1024;
 
 /**
  * The march: the single-scattering model of paper Appendix B (Eqs. 22–28, as the CPU reference

@@ -138,7 +138,7 @@ const sizeOf = (t) => [t.width, t.height, t.depth];
  * scratch, the density volume (each but the mesh's twice for emissive gas: the source), and
  * an eighth of a voxel each for the light atlas and the light volume.
  */
-export function volumeBytesPerVoxel(texelBytes, emissive) {
+function volumeBytesPerVoxel(texelBytes, emissive) {
   return texelBytes * (4 + 3 * (emissive ? 2 : 1) + 2 / 8);
 }
 
