@@ -86,7 +86,7 @@ export class StepperHandoff {
   }
 
   /** Why the GPU cannot step the current scene here, or null when it can. */
-  #unavailable() {
+  #gpuUnavailable() {
     const scene = this.#scene();
     const lattice = scene && scene.field.amplitude > 0 ? scene.field.size.reduce((a, b) => a * b, 1) : 0;
     return (this.#contextLost() && 'the view has lost its GPU context')
@@ -98,7 +98,7 @@ export class StepperHandoff {
 
   /** Puts the gas where the choice of stepper says: on the GPU where it can be, else in the worker. */
   async engage() {
-    this.#reason = this.#choice === 'cpu' ? null : this.#unavailable()
+    this.#reason = this.#choice === 'cpu' ? null : this.#gpuUnavailable()
       // Drawn in software, the GPU's passes run on the CPU too, many times slower than the
       // worker's core: 'auto' leaves the gas to the worker there ('gpu' still asks for it).
       ?? (this.#choice === 'auto' && this.#software ? SOFTWARE_STEPPER : null);
