@@ -112,10 +112,9 @@ function updateStatus(force = false) {
 }
 setInterval(() => updateStatus(true), 1000);
 
-/** Redraws after a change of the wind slice; a slice plane turns the guides on (it is one). */
+/** After a change of the wind slice (which redraws): a slice plane turns the guides on (it is one). */
 const showSlice = () => {
   if (player.slicePlane !== 'off') player.setGuides(true);
-  player.invalidate();
 };
 
 function download(name, href) {

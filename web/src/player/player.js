@@ -144,7 +144,7 @@ export class Player {
       frames: 0, limitedBy: 'paused', sceneBlobCap: null,
     };
     this.#view = new SceneView(canvas);
-    this.#settings = new ViewSettings(this.#view, { resize: () => this.resize(), invalidate: () => this.invalidate() });
+    this.#settings = new ViewSettings(this.#view, { resize: () => this.resize(), invalidate: () => this.#invalidate() });
     this.#pace = new FramePace(this.#stats, this.#settings.resolution);
     this.#view.volume.profile = Boolean(hooks.profile);
     this.#machine = describeRenderer(this.#view.renderer.getContext());
@@ -200,7 +200,7 @@ export class Player {
       },
       restored: () => {
         if (this.#lastFrame) this.#view.setFrame(this.#lastFrame);
-        this.invalidate();
+        this.#invalidate();
         // The worker holds the gas since the loss: the GPU takes it back where it can.
         this.#exclusive(async () => {
           await this.#handoff.engage();
@@ -516,7 +516,7 @@ export class Player {
   }
 
   /** Redraws at the next animation frame. */
-  invalidate() {
+  #invalidate() {
     this.#dirty = true;
   }
 
