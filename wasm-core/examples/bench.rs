@@ -138,11 +138,11 @@ fn worker_plume() {
 
 /// `count` solid spheres of radius 8 cm over the blob-step benchmark's 4 m box (another
 /// low-discrepancy sequence), as scene objects.
-pub fn solid_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
+pub fn solid_spheres(count: usize) -> Vec<windfield::scene::blob_list::Object> {
     (0..count)
         .map(|i| {
             let f = |k: f32| ((i as f32 + 0.5) * k).fract() * 3.6 - 1.8;
-            windfield::gas::blob_list::Object::Sphere {
+            windfield::scene::blob_list::Object::Sphere {
                 center: [f(0.618_034), f(0.414_213_6) + 1.0, f(0.732_050_8)],
                 radius: 0.08,
                 color: [0.5; 3],
@@ -172,11 +172,11 @@ fn interleaved_medians<const N: usize>(sims: &mut [Simulation; N]) -> [f64; N] {
 
 /// `count` solid spheres of radius 1.2 cm through the dense plume's region (x, z within
 /// 0.3 m of its axis, 0.15 to 1.2 m up; another low-discrepancy sequence), as scene objects.
-pub fn plume_spheres(count: usize) -> Vec<windfield::gas::blob_list::Object> {
+pub fn plume_spheres(count: usize) -> Vec<windfield::scene::blob_list::Object> {
     (0..count)
         .map(|i| {
             let f = |k: f32| ((i as f32 + 0.5) * k).fract();
-            windfield::gas::blob_list::Object::Sphere {
+            windfield::scene::blob_list::Object::Sphere {
                 center: [
                     0.6 * f(0.618_034) - 0.3,
                     1.05 * f(0.414_213_6) + 0.15,

@@ -12,6 +12,7 @@
 
 #![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+use crate::classroom::figure1::{Figure1, Figure1Params};
 use crate::export::exr::ExrInfo;
 use crate::export::flipbook::{FlipbookJob, FlipbookSpec, SettingNames};
 use crate::export::still::{self, StillFormat};
@@ -23,13 +24,12 @@ use crate::frame::gpu_steps::{gas_by_slot, GpuSteps};
 use crate::frame::light_volume::light_twin;
 use crate::frame::volume::{density_twin, VoxelGrid};
 use crate::frame::{merged_list, MarchFrame, PackedFrame, ViewFrame};
-use crate::gas::blob_list::Camera;
-use crate::gas::blob_list::{BlobList, Encoding};
-use crate::gas::figure1::{Figure1, Figure1Params};
 use crate::gas::simulation::{Edit, Simulation};
-use crate::gas::wind_slice::SlicePlane;
-use crate::gas::Scene;
 use crate::render::{BandedRender, RenderOptions, Renderer};
+use crate::scene::blob_list::Camera;
+use crate::scene::blob_list::{BlobList, Encoding};
+use crate::scene::Scene;
+use crate::wind::wind_slice::SlicePlane;
 use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 
@@ -278,10 +278,10 @@ impl WindField {
 
 /// The classroom's solid sphere: `lines` streamlines of `points` points (x, y in radii) of the
 /// core's wind past a solid sphere of unit radius in a unit wind along x, and the same of the
-/// potential flow around it, with the largest gap between the two (`gas::sphere_flow`).
+/// potential flow around it, with the largest gap between the two (`classroom::sphere_flow`).
 #[wasm_bindgen(js_name = sphereFlow, unchecked_return_type = "SphereFlow")]
 pub fn sphere_flow(lines: u32, points: u32) -> JsValue {
-    let flow = crate::gas::sphere_flow::sphere_flow(lines as usize, points as usize);
+    let flow = crate::classroom::sphere_flow::sphere_flow(lines as usize, points as usize);
     object(vec![
         ("core", flow.core.into()),
         ("closedForm", flow.closed_form.into()),

@@ -1,6 +1,6 @@
 //! Per-value checks that name the offending value by its path in the scene or blob list
 //! (`field.period[1]: must be a finite number between 0.001 and 10000 (got 0)`). The walks
-//! that apply them are `gas::validate` (scenes and blob lists) and the field's own parameters
+//! that apply them are `scene::validate` (scenes and blob lists) and the field's own parameters
 //! (`FieldParams::validate`, `SpectrumParams::validate`).
 
 use crate::error::{number, ParamError};

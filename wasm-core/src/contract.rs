@@ -15,19 +15,19 @@ use crate::frame::packed::{
 use crate::frame::shadow_grid::SHADOW_GRID_HEADER;
 use crate::frame::views::SPHERE_FLOATS;
 use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
-use crate::gas::blob_list::DEFAULT_RENDER_TIME;
-use crate::gas::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
-use crate::gas::solid_grid::SOLID_GRID_HEADER;
-use crate::gas::walls::{
+use crate::render::{STEP_FRACTION, TRUNCATION};
+use crate::scene::blob_list::DEFAULT_RENDER_TIME;
+use crate::scene::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
+use crate::wind::solid_grid::SOLID_GRID_HEADER;
+use crate::wind::wall_set::EDGE_STEPS;
+use crate::wind::walls::{
     CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
 };
-use crate::gas::wind::EDGE_STEPS;
-use crate::gas::wind::{
+use crate::wind::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
+use crate::wind::wind_table::{
     REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
     WIND_TABLE_SOLID,
 };
-use crate::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
-use crate::render::{STEP_FRACTION, TRUNCATION};
 
 /// Where the generated module lives, from the repository's root.
 pub const JS_PATH: &str = "web/src/generated/contract.js";
@@ -108,31 +108,31 @@ pub fn sections() -> Vec<Section> {
     let gpu_stepper = vec![
         shared!(BLOB_FLOATS in "frame::gpu_steps":
             "Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0."),
-        shared!(WIND_TABLE_HEADER in "gas::wind_table":
+        shared!(WIND_TABLE_HEADER in "wind::wind_table":
             "Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets."),
-        shared!(WIND_TABLE_PRIMITIVE in "gas::wind_table":
+        shared!(WIND_TABLE_PRIMITIVE in "wind::wind_table":
             "Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images."),
-        shared!(WIND_TABLE_SOLID in "gas::wind_table":
+        shared!(WIND_TABLE_SOLID in "wind::wind_table":
             "Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector."),
-        shared!(SOLID_GRID_HEADER in "gas::solid_grid":
+        shared!(SOLID_GRID_HEADER in "wind::solid_grid":
             "Floats of the solids' grid before its cells: lo xyz, cells; cells per metre xyz, planes; cells along x, y, z, 0. Then one vec4 per cell (its lists' bounds) and the members, the planes first."),
-        shared!(SPHERE_SOLID_KIND in "gas::wind_table": "A solid sphere's kind in a wind table."),
-        shared!(PLANE_SOLID_KIND in "gas::wind_table": "A solid plane's kind in a wind table."),
-        shared!(CYLINDER_SOLID_KIND in "gas::wind_table": "A solid cylinder's kind in a wind table."),
-        shared!(EDGE_STEPS in "gas::wind":
+        shared!(SPHERE_SOLID_KIND in "wind::wind_table": "A solid sphere's kind in a wind table."),
+        shared!(PLANE_SOLID_KIND in "wind::wind_table": "A solid plane's kind in a wind table."),
+        shared!(CYLINDER_SOLID_KIND in "wind::wind_table": "A solid cylinder's kind in a wind table."),
+        shared!(EDGE_STEPS in "wind::wall_set":
             "A cylinder's rims are rounded by this many difference steps for the wind."),
-        shared!(SPHERE_ZONE_INNER in "gas::walls":
+        shared!(SPHERE_ZONE_INNER in "wind::walls":
             "A sphere's doublet is exact within this many radii of its centre."),
-        shared!(SPHERE_ZONE_OUTER in "gas::walls":
+        shared!(SPHERE_ZONE_OUTER in "wind::walls":
             "A sphere's doublet has faded to nothing at this many radii."),
-        shared!(CYLINDER_ZONE_INNER in "gas::walls":
+        shared!(CYLINDER_ZONE_INNER in "wind::walls":
             "A cylinder's doublet is exact within this many radii of its axis."),
-        shared!(CYLINDER_ZONE_OUTER in "gas::walls":
+        shared!(CYLINDER_ZONE_OUTER in "wind::walls":
             "A cylinder's doublet has faded to nothing at this many radii."),
-        shared!(UNIFORM_KIND in "gas::wind": "A uniform wind's kind in a wind table."),
-        shared!(SOURCE_KIND in "gas::wind": "A source's (or sink's) kind in a wind table."),
-        shared!(VORTEX_KIND in "gas::wind": "A vortex's kind in a wind table."),
-        shared!(REPULSOR_KIND in "gas::wind": "A repulsor's kind in a wind table."),
+        shared!(UNIFORM_KIND in "wind::wind_table": "A uniform wind's kind in a wind table."),
+        shared!(SOURCE_KIND in "wind::wind_table": "A source's (or sink's) kind in a wind table."),
+        shared!(VORTEX_KIND in "wind::wind_table": "A vortex's kind in a wind table."),
+        shared!(REPULSOR_KIND in "wind::wind_table": "A repulsor's kind in a wind table."),
     ];
     let scene_format = vec![
         shared!(MIN_EXTENT in "field::lattice":
@@ -140,11 +140,11 @@ pub fn sections() -> Vec<Section> {
         shared!(MAX_EXTENT in "field::lattice":
             "Largest lattice extent along any axis (field.size[i])."),
         shared!(MAX_POINTS in "field::lattice": "Most lattice points in all (nx · ny · nz · nt)."),
-        shared!(DEFAULT_RENDER_TIME in "gas::blob_list":
+        shared!(DEFAULT_RENDER_TIME in "scene::blob_list":
             "The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one."),
-        shared!(MAX_IMAGE_SIDE in "gas::limits":
+        shared!(MAX_IMAGE_SIDE in "scene::limits":
             "Widest and tallest image (pixels) a still, a capture or an export may be."),
-        shared!(MAX_STEPS in "gas::limits": "Most fixed steps one run may take (a step call, a recording)."),
+        shared!(MAX_STEPS in "scene::limits": "Most fixed steps one run may take (a step call, a recording)."),
     ];
     vec![
         Section {

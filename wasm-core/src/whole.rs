@@ -3,7 +3,7 @@
 //! integer field; these readers take either, so a scene written by a program that keeps every
 //! number as a float (Python's `json` module, a spreadsheet) reads as one written by hand.
 //! Fractions, negative numbers and numbers out of the type's range are refused with serde's
-//! own messages, which `gas::json_errors` words for people.
+//! own messages, which `scene::json_errors` words for people.
 
 use serde::de::{Error, Unexpected, Visitor};
 use serde::{Deserialize, Deserializer};

@@ -8,7 +8,7 @@ use glam::{Vec3, Vec3A};
 use serde_json::json;
 use windfield::field::lattice::wave_number;
 use windfield::field::spectrum::SpectrumParams;
-use windfield::gas::wind::Wind;
+use windfield::wind::Wind;
 use windfield::{Scene, Simulation};
 
 const L: f64 = 4.0;

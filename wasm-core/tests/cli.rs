@@ -323,7 +323,7 @@ fn hostile_scenes_are_refused_under_3_gb_not_aborted() {
     }
     // Blob lists too: one blob past the limit is refused as it is read.
     let blob = r#"{"center":[0,0,0],"sigma":1,"mass":1}"#;
-    let n = windfield::gas::limits::MAX_LIST_BLOBS + 1;
+    let n = windfield::scene::limits::MAX_LIST_BLOBS + 1;
     let list = dir.join("flood.json");
     std::fs::write(
         &list,

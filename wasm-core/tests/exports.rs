@@ -11,9 +11,9 @@ use windfield::export::exr::{self, ExrInfo};
 use windfield::export::flipbook::{FlipbookJob, FlipbookSpec, SettingNames};
 use windfield::export::still::{self, StillFormat};
 use windfield::export::volume::VolumeBuild;
-use windfield::gas::blob_list::{Background, BlobList, Encoding};
 use windfield::render::image::srgb_encode;
 use windfield::render::{decode_png, LinearImage, RenderOptions, Renderer};
+use windfield::scene::blob_list::{Background, BlobList, Encoding};
 use windfield::{Scene, Simulation};
 
 fn root() -> PathBuf {

@@ -2,7 +2,7 @@
 //! non-negative and bounded at its documented stability limit, matches the closed form of a
 //! diffusing, drifting square, and agrees with the blob model of the same setup.
 
-use windfield::gas::figure1::{Figure1, Figure1Params};
+use windfield::classroom::figure1::{Figure1, Figure1Params};
 
 fn demo(p: Figure1Params) -> Figure1 {
     Figure1::new(p).unwrap()

@@ -21,9 +21,9 @@ use std::path::PathBuf;
 use windfield::field::npy;
 use windfield::field::spectrum::SpectrumParams;
 use windfield::field::{FieldParams, TurbulentField};
-use windfield::gas::blob_list::BlobList;
-use windfield::gas::limits::MAX_LIST_BLOBS;
 use windfield::render::{RenderOptions, Renderer};
+use windfield::scene::blob_list::BlobList;
+use windfield::scene::limits::MAX_LIST_BLOBS;
 use windfield::{Scene, Simulation};
 
 const DEFAULT_INPUTS: usize = 120_000;

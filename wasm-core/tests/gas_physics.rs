@@ -4,9 +4,9 @@
 
 use glam::Vec3;
 use serde_json::json;
-use windfield::gas::scene::{Integrator, Scene};
-use windfield::gas::wind::Wind;
 use windfield::gas::{Blob, Gas};
+use windfield::scene::scene_format::{Integrator, Scene};
+use windfield::wind::Wind;
 use windfield::Simulation;
 
 fn scene(v: serde_json::Value) -> Scene {
@@ -367,7 +367,7 @@ fn repulsor_keeps_gas_out_of_a_moving_sphere() {
         let spheres = sim.wind.visible_spheres(sim.time());
         assert!(spheres.is_empty(), "no colour: invisible");
         let c = {
-            let (p, _) = windfield::gas::spline::Path::new(&[
+            let (p, _) = windfield::wind::spline::Path::new(&[
                 [0.0, -1.5, 1.0, 0.0],
                 [3.0, 0.0, 1.6, 0.2],
                 [6.0, 1.5, 1.0, 0.0],

@@ -6,7 +6,7 @@
 use glam::Vec3;
 use serde_json::json;
 use windfield::frame::gpu_steps::{GpuSteps, BLOB_FLOATS};
-use windfield::gas::wind::{
+use windfield::wind::wind_table::{
     REPULSOR_KIND, SOURCE_KIND, UNIFORM_KIND, VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE,
 };
 use windfield::{Scene, Simulation};
@@ -210,7 +210,7 @@ fn with_solids() -> Scene {
     s.field.carry_time = Some(0.3);
     s.field.boundary_width = 0.15;
     // The vortex lies along the plane (so it is mirrored in it).
-    if let windfield::gas::scene::Primitive::Vortex { axis, .. } = &mut s.wind[4] {
+    if let windfield::scene::scene_format::Primitive::Vortex { axis, .. } = &mut s.wind[4] {
         *axis = [1.0, 0.0, 0.2];
     }
     s.render.objects = serde_json::from_value(json!([
@@ -227,15 +227,15 @@ fn with_solids() -> Scene {
 /// `web/src/stepper/wind-glsl.js` (`windParts`, `pushOut`), function by function, in Rust.
 mod table {
     use glam::Vec3;
-    use windfield::gas::solid_grid::SOLID_GRID_HEADER;
-    use windfield::gas::walls::{
+    use windfield::wind::solid_grid::SOLID_GRID_HEADER;
+    use windfield::wind::wall_set::EDGE_STEPS;
+    use windfield::wind::walls::{
         CYLINDER_ZONE_INNER, CYLINDER_ZONE_OUTER, SPHERE_ZONE_INNER, SPHERE_ZONE_OUTER,
     };
-    use windfield::gas::wind::EDGE_STEPS;
-    use windfield::gas::wind::{
+    use windfield::wind::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
+    use windfield::wind::wind_table::{
         VORTEX_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE, WIND_TABLE_SOLID,
     };
-    use windfield::gas::wind_table::{CYLINDER_SOLID_KIND, PLANE_SOLID_KIND, SPHERE_SOLID_KIND};
 
     pub struct Table<'a> {
         pub t: &'a [f32],

@@ -198,7 +198,7 @@ fn stirring_moves_the_gas_near_the_pointer_more_than_the_gas_far_from_it() {
     sim.run(30);
     let before = sim.blobs().position.clone();
     let n = sim.blobs().len();
-    sim.stir(Some(windfield::gas::scene::Primitive::Uniform {
+    sim.stir(Some(windfield::scene::scene_format::Primitive::Uniform {
         velocity: [0.0, 1.0, 0.0],
         position: [-0.8, 0.0, 0.0],
         decay: Some(0.1),

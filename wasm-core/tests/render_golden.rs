@@ -4,8 +4,8 @@
 //! The presets at scale have theirs in `at_scale`.
 
 use std::path::PathBuf;
-use windfield::gas::blob_list::BlobList;
 use windfield::render::{decode_png, encode_png, psnr, RenderOptions, Renderer};
+use windfield::scene::blob_list::BlobList;
 use windfield::{Scene, Simulation};
 
 /// PSNR a still must reach against its golden image.

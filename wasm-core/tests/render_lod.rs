@@ -5,8 +5,8 @@
 
 use windfield::frame::lod::DEFAULT_FRACTION;
 use windfield::frame::merge_blobs;
-use windfield::gas::blob_list::BlobList;
 use windfield::render::{psnr, RenderOptions, Renderer};
+use windfield::scene::blob_list::BlobList;
 use windfield::{Scene, Simulation};
 
 /// PSNR the merged list's still must reach against the exact list's.

@@ -3,8 +3,8 @@
 
 use glam::DVec3;
 use serde_json::json;
-use windfield::gas::blob_list::{BlobList, Encoding, Object};
 use windfield::render::{psnr, RenderOptions, Renderer, TRUNCATION};
+use windfield::scene::blob_list::{BlobList, Encoding, Object};
 use windfield::{Scene, Simulation};
 
 /// the rendering model (docs/FORMATS.md) by direct quadrature in f64: every blob untruncated, midpoint steps along the
@@ -184,12 +184,12 @@ fn twin_with(list: &BlobList, object_shadows: bool) -> Vec<f64> {
         .lights
         .iter()
         .map(|l| match l {
-            windfield::gas::blob_list::Light::Point { position, color } => (
+            windfield::scene::blob_list::Light::Point { position, color } => (
                 Some(DVec3::from_array(position.map(f64::from))),
                 DVec3::ZERO,
                 DVec3::from_array(color.map(f64::from)),
             ),
-            windfield::gas::blob_list::Light::Directional { direction, color } => (
+            windfield::scene::blob_list::Light::Directional { direction, color } => (
                 None,
                 -DVec3::from_array(direction.map(f64::from)).normalize(),
                 DVec3::from_array(color.map(f64::from)),
@@ -201,8 +201,8 @@ fn twin_with(list: &BlobList, object_shadows: bool) -> Vec<f64> {
         None => (l.1, f64::INFINITY),
     };
     let phase = |cos: f64| match list.medium.phase {
-        windfield::gas::blob_list::Phase::Isotropic => 1.0,
-        windfield::gas::blob_list::Phase::HenyeyGreenstein { g } => {
+        windfield::scene::blob_list::Phase::Isotropic => 1.0,
+        windfield::scene::blob_list::Phase::HenyeyGreenstein { g } => {
             let g = g as f64;
             (1.0 - g * g) / (1.0 + g * g - 2.0 * g * cos).powf(1.5)
         }

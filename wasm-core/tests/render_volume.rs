@@ -9,12 +9,12 @@ use glam::Vec3;
 use windfield::frame::light_volume::{column, light_columns, transmittance, Towards};
 use windfield::frame::volume::{splat, VoxelGrid};
 use windfield::frame::PackedFrame;
-use windfield::gas::blob_list::Object;
 use windfield::render::{CameraRays, RenderOptions, Renderer};
+use windfield::scene::blob_list::Object;
 use windfield::{Scene, Simulation};
 
 /// A preset simulated for `seconds`: its blob list and packed frame.
-fn preset(name: &str, seconds: f64) -> (windfield::gas::blob_list::BlobList, PackedFrame) {
+fn preset(name: &str, seconds: f64) -> (windfield::scene::blob_list::BlobList, PackedFrame) {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join(format!("../public/scenes/{name}.json"));
     let value: serde_json::Value =
@@ -148,7 +148,7 @@ fn a_sphere_in_the_light_shadows_the_steam_in_the_twin_as_in_the_reference() {
 /// A dense, fine plume (`tests/fixtures/dense-fine-plume.json`: about 290,000 blobs of σ = 4 mm
 /// in a medium of extinction 16 at its `render.time`, each blob of optical depth 3 through its
 /// centre).
-fn dense_fine_plume() -> (windfield::gas::blob_list::BlobList, PackedFrame) {
+fn dense_fine_plume() -> (windfield::scene::blob_list::BlobList, PackedFrame) {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../tests/fixtures/dense-fine-plume.json");
     let scene = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();

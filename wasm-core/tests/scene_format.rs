@@ -1,7 +1,7 @@
 //! The scene format (docs/FORMATS.md): strict parsing with path-naming errors, defaults, versions,
 //! and the shipped JSON Schema.
 
-use windfield::gas::scene::{json_schema, Scene};
+use windfield::scene::scene_format::{json_schema, Scene};
 
 const GOOD: &str = r#"{
   "version": 1, "seed": 1,
@@ -63,7 +63,7 @@ fn render_time_is_optional_and_kept_as_given() {
     assert_eq!(t.render.still_time(), 0.0);
     assert_eq!(Scene::from_json(&t.to_json()).unwrap(), t);
     // A blob list made from the scene is one moment: it carries no time.
-    let list = windfield::gas::blob_list::BlobList::new(t.render.clone(), Vec::new());
+    let list = windfield::scene::blob_list::BlobList::new(t.render.clone(), Vec::new());
     assert!(!serde_json::to_string(&list).unwrap().contains("\"time\""));
 }
 

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use serde_json::json;
-use windfield::gas::shapes::{Shape, Solid};
+use windfield::scene::shapes::{Shape, Solid};
 use windfield::{Scene, Simulation};
 
 fn scene(v: serde_json::Value) -> Scene {

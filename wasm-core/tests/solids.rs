@@ -6,8 +6,8 @@
 
 use glam::{Vec3, Vec3A};
 use serde_json::{json, Value};
-use windfield::gas::solids::Body;
-use windfield::gas::wind::WindFrame;
+use windfield::scene::bodies::Body;
+use windfield::wind::WindFrame;
 use windfield::{Scene, Simulation};
 
 fn scene(v: Value) -> Scene {
@@ -112,7 +112,7 @@ fn surface_points(body: &Body, n: usize) -> Vec<(Vec3A, Vec3A)> {
                     (center + d * radius, d)
                 }
                 Body::Plane { point, normal } => {
-                    let e1 = windfield::gas::solids::perpendicular(normal);
+                    let e1 = windfield::scene::bodies::perpendicular(normal);
                     let e2 = normal.cross(e1);
                     (point + e1 * (2.0 * u - 1.0) + e2 * (2.0 * v - 1.0), normal)
                 }
@@ -122,7 +122,7 @@ fn surface_points(body: &Body, n: usize) -> Vec<(Vec3A, Vec3A)> {
                     radius,
                     height,
                 } => {
-                    let e1 = windfield::gas::solids::perpendicular(axis);
+                    let e1 = windfield::scene::bodies::perpendicular(axis);
                     let e2 = axis.cross(e1);
                     let phi = std::f32::consts::TAU * v;
                     let radial = e1 * phi.cos() + e2 * phi.sin();
@@ -367,7 +367,7 @@ fn a_thousand_steps_of_the_steam_mug_leave_no_blob_inside_the_mug() {
     .unwrap();
     let mut s = Scene::from_json(&text).unwrap();
     for o in &mut s.render.objects {
-        if let windfield::gas::blob_list::Object::Cylinder { solid, .. } = o {
+        if let windfield::scene::blob_list::Object::Cylinder { solid, .. } = o {
             *solid = true;
         }
     }

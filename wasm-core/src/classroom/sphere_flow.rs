@@ -2,8 +2,8 @@
 //! wind, beside the same streamlines of the closed form, the potential flow around a sphere
 //! (u = U − (a³/2)(3(U·r̂)r̂ − U)/r³), in the plane through the sphere's centre along the wind.
 
-use crate::gas::scene::Scene;
-use crate::gas::wind::Wind;
+use crate::scene::scene_format::Scene;
+use crate::wind::Wind;
 use glam::Vec3;
 use serde_json::json;
 

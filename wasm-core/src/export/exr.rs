@@ -16,7 +16,7 @@
 //! Attributes are written in a fixed order, and the angles computed with `libm` (as in
 //! WebAssembly), so the same image gives the same bytes natively and in the browser.
 
-use crate::gas::blob_list::Camera;
+use crate::scene::blob_list::Camera;
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
     Blocks, Compression, Encoding, Image, Layer, LayerAttributes, LineOrder, SpecificChannels,

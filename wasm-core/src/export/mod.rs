@@ -7,7 +7,8 @@
 //!   the header.
 //! - [`flipbook`]: a scene's frames as one sprite sheet and its JSON description, optionally a
 //!   seamless loop.
-//! - [`volume`]: the gas's density (and emission) sampled at voxel centres, sparse.
+//! - [`volume`]: the gas's density, the sum of its blobs (Eq. 13), and emission sampled at
+//!   voxel centres, sparse.
 //! - [`vdb`]: OpenVDB files, written as OpenVDB writes them.
 //! - [`vector_grid`]: the wind on a box of cells, as OpenVDB or as a raw RGB32F 3-D texture.
 //!

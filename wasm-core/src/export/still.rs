@@ -2,8 +2,8 @@
 //! colour when it carries alpha) or OpenEXR (half-float linear RGBA, premultiplied).
 
 use super::exr::{self, ExrInfo};
-use crate::gas::blob_list::Encoding;
 use crate::render::LinearImage;
+use crate::scene::blob_list::Encoding;
 
 /// The file formats of stills and sheets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

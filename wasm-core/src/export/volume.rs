@@ -18,8 +18,8 @@
 
 use super::vdb::{self, AnyGrid, Grid, GridClass, Leaf, Leaves, Meta, MetaMap, Transform};
 use crate::error::ParamError;
-use crate::gas::blob_list::BlobList;
 use crate::render::RenderBlob;
+use crate::scene::blob_list::BlobList;
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -426,7 +426,7 @@ impl GasVolume {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gas::blob_list::BlobRecord;
+    use crate::scene::blob_list::BlobRecord;
 
     fn list(blobs: Vec<BlobRecord>) -> BlobList {
         BlobList {

@@ -123,13 +123,6 @@ impl TurbulentField {
         })
     }
 
-    /// The vector potential ψ at lattice point `(x, y, z, t)` (field units: radians times
-    /// lattice velocity), if the field has it.
-    pub fn potential_at(&self, x: usize, y: usize, z: usize, t: usize) -> Option<[f32; 3]> {
-        let i = 3 * self.lattice.index(x, y, z, t);
-        self.potential.as_ref().map(|p| [p[i], p[i + 1], p[i + 2]])
-    }
-
     /// Velocity at lattice point `(x, y, z, t)`.
     #[inline]
     pub fn at(&self, x: usize, y: usize, z: usize, t: usize) -> [f32; 3] {

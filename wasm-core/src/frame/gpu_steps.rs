@@ -17,10 +17,10 @@
 
 use crate::frame::views::sphere_floats;
 use crate::gas::blobs::Blobs;
-use crate::gas::scene::Integrator;
 use crate::gas::simulation::Simulation;
 use crate::gas::slots::SlotChanges;
-use crate::gas::wind_table::{NO_RESET, RESET_AT};
+use crate::scene::scene_format::Integrator;
+use crate::wind::wind_table::{NO_RESET, RESET_AT};
 
 /// Floats per blob record.
 pub const BLOB_FLOATS: usize = 28;
@@ -37,7 +37,7 @@ pub struct GpuSteps {
     /// Per step `[first birth, births, first freed, freed]` (indices into the lists above).
     pub ranges: Vec<u32>,
     /// Per step the wind tables at the step's start and middle
-    /// ([`crate::gas::wind::WindFrame::write_gpu_table`]), and per step the offset of each.
+    /// ([`crate::wind::WindFrame::write_gpu_table`]), and per step the offset of each.
     pub wind: Vec<f32>,
     pub wind_offsets: Vec<u32>,
     /// The solids' grid and planes ([`Simulation::solid_grid_for_gpu`]), when the GPU has not

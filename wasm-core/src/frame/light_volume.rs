@@ -18,12 +18,12 @@
 use crate::error::ParamError;
 use crate::frame::packed::PackedFrame;
 use crate::frame::volume::{splat, DensityVolume, VoxelGrid};
-use crate::gas::blob_list::{Light, Object};
 use crate::render::occluded;
+use crate::scene::blob_list::{Light, Object};
 use glam::Vec3;
 
 /// Most lights the GPU views draw: a light volume holds one per channel. (A scene may have more,
-/// [`crate::gas::limits::MAX_LIGHTS`]; the CPU reference still draws them all.)
+/// [`crate::scene::limits::MAX_LIGHTS`]; the CPU reference still draws them all.)
 pub const VIEW_LIGHTS: usize = 4;
 
 /// Where a light is, seen from the gas.

@@ -17,7 +17,7 @@
 //! The first three moments of the density are kept; the error is of order (offset/σ)³ relative,
 //! and `tests/render_lod.rs` bounds it on rendered images against the exact list.
 
-use crate::gas::blob_list::{BlobList, BlobRecord};
+use crate::scene::blob_list::{BlobList, BlobRecord};
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
 

@@ -2,11 +2,13 @@
 //! the core's twins of what those views compute, so that tests can hold the GPU to the twins
 //! and the twins to the CPU reference renderer ([`crate::render`]).
 //!
-//! - [`packed`]: every blob in eight 32-bit words, sorted into σ classes, with the gas's
-//!   bounds: the one buffer every GPU view draws from.
+//! - [`packed`]: every blob (Eq. 13: its centre, σ and mass, with its albedo and emission) in
+//!   eight 32-bit words, sorted into σ classes, with the gas's bounds: the one buffer every GPU
+//!   view draws from.
 //! - [`lod`]: the exact march's level of detail, blobs much closer than their width merged by
 //!   their moments.
-//! - [`shadow_grid`](mod@shadow_grid): the exact march's shadow columns towards each light.
+//! - [`shadow_grid`](mod@shadow_grid): the exact march's shadow columns towards each light
+//!   (the transmittance of Eq. 25).
 //! - [`volume`]: the real-time view's density volume, computed as its shaders do;
 //!   [`light_volume`]: its light volume, the columns towards each light.
 //! - [`views`]: the two frames the page asks for, each made whole in one call.

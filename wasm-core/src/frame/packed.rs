@@ -28,10 +28,10 @@
 //! that a view can cut a class at a width (the direct splat's limit) by a binary search over the
 //! words and draw only the part that needs it.
 
-use crate::gas::blob_list::BlobList;
 use crate::gas::blobs::Blobs;
 use crate::gas::simulation::Simulation;
 use crate::render::RenderBlob;
+use crate::scene::blob_list::BlobList;
 use glam::Vec3;
 use half::f16;
 

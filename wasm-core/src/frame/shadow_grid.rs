@@ -6,8 +6,8 @@
 //! the reference renderer does, and the objects' material reads these columns at surfaces.
 
 use crate::error::ParamError;
-use crate::gas::blob_list::BlobList;
 use crate::render::{RenderOptions, Renderer};
+use crate::scene::blob_list::BlobList;
 use glam::Vec3;
 
 /// Floats before the columns: `[lo.xyz, hi.xyz, res, lights]`.

@@ -8,9 +8,9 @@
 use crate::gas::blobs::{Blob, Blobs};
 use crate::gas::emitter::EmitterState;
 use crate::gas::random::{stream_seed, uniform};
-use crate::gas::scene::{Emitter, GasSettings, Integrator};
-use crate::gas::wind::{Wind, WindFrame};
 use crate::lanes::{exp4, load3};
+use crate::scene::scene_format::{Emitter, GasSettings, Integrator};
+use crate::wind::{Wind, WindFrame};
 use glam::{Quat, Vec3, Vec3A};
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -303,7 +303,7 @@ impl Gas {
 
     /// [`Self::advect`] where the wind goes round solids or carries its small scales: each
     /// blob's carried coordinates move with it less the large-scale wind, so its offsets by
-    /// −u_l dt ([`crate::gas::carried`]), and a blob a step carried into a solid is put back on
+    /// −u_l dt ([`crate::wind::carried`]), and a blob a step carried into a solid is put back on
     /// its surface, just outside.
     fn advect_deflected(
         &mut self,
@@ -665,7 +665,7 @@ impl Gas {
 }
 
 /// The carried offsets of a blob at `x` whose phases are `ages` old (s): −u_l(x)·τ for each,
-/// u_l the large-scale wind of `frame` ([`crate::gas::carried`]).
+/// u_l the large-scale wind of `frame` ([`crate::wind::carried`]).
 fn newborn_offsets(ages: [f64; 2], frame: &WindFrame, x: Vec3A) -> [f32; 6] {
     let u = frame.parts(x, [Vec3A::ZERO; 2]).0;
     let (a, b) = (u * -(ages[0] as f32), u * -(ages[1] as f32));

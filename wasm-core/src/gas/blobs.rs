@@ -34,7 +34,7 @@ pub struct Blobs {
     /// ([`NO_SLOT`] when it has none): see [`super::slots`].
     pub slot: Vec<u32>,
     /// The offsets X − x (m) of each blob's carried coordinates, phase a's xyz then phase
-    /// b's ([`super::carried`]), while `carries` (empty otherwise).
+    /// b's ([`crate::wind::carried`]), while `carries` (empty otherwise).
     pub carried: Vec<f32>,
     carries: bool,
     /// Whether any blob pushed since the arrays were built has a velocity of its own (saves a

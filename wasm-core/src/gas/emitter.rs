@@ -3,8 +3,8 @@
 //! blobs unchanged).
 
 use crate::gas::random::{stream_seed, uniform};
-use crate::gas::scene::{Emitter, EmitterShape};
-use crate::gas::spline::Path;
+use crate::scene::scene_format::{Emitter, EmitterShape};
+use crate::wind::spline::Path;
 use glam::Vec3;
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::rand_core::SeedableRng;

@@ -4,13 +4,14 @@
 use crate::error::ParamError;
 use crate::field::TurbulentField;
 use crate::gas::blob_gas::Gas;
-use crate::gas::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
 use crate::gas::blobs::{Blob, Blobs};
-use crate::gas::scene::{Primitive, Scene};
-use crate::gas::shapes::Shape;
-use crate::gas::slots::{SlotChanges, SlotTable};
-use crate::gas::wind::{WallSet, Wind, WindFrame};
-use crate::gas::wind_slice::SlicePlane;
+use crate::gas::slots::SlotTable;
+use crate::scene::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
+use crate::scene::scene_format::{Primitive, Scene};
+use crate::scene::shapes::Shape;
+use crate::wind::wall_set::WallSet;
+use crate::wind::wind_slice::SlicePlane;
+use crate::wind::{Wind, WindFrame};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -22,7 +23,7 @@ pub struct Simulation {
     /// Emitted blobs and the shapes played forwards.
     pub gas: Gas,
     /// Shapes played in reverse, one run each: `snapshots[k]` is the run after k steps.
-    reversed: Vec<Vec<Blobs>>,
+    pub(super) reversed: Vec<Vec<Blobs>>,
     field: Option<Arc<TurbulentField>>,
     steps: u64,
     /// The clock: time = time_origin + (steps − steps_at_origin)·dt, both 0 from the start; an
@@ -31,9 +32,9 @@ pub struct Simulation {
     steps_at_origin: u64,
     frames: [WindFrame; 2],
     /// While the GPU advects the centres: where each blob lives there ([`SlotTable`]).
-    slots: Option<SlotTable>,
-    /// The solids whose grid the GPU was last handed ([`Self::solid_grid_for_gpu`]).
-    gpu_walls: Option<Arc<WallSet>>,
+    pub(super) slots: Option<SlotTable>,
+    /// The solids whose grid the GPU was last handed ([`Simulation::solid_grid_for_gpu`], in [`crate::gas::gpu_handoff`]).
+    pub(super) gpu_walls: Option<Arc<WallSet>>,
 }
 
 /// What an edit did to the running simulation.
@@ -295,7 +296,7 @@ impl Simulation {
     }
 
     /// Steps that make up `seconds`, refused (naming `simulation.dt` and the time) over
-    /// [`crate::gas::limits::MAX_STEPS`].
+    /// [`crate::scene::limits::MAX_STEPS`].
     pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
         self.scene.simulation.budgeted_steps(seconds)
     }
@@ -324,88 +325,6 @@ impl Simulation {
             &mut self.frames,
         );
         self.steps += 1;
-    }
-
-    /// Hands the centres to the GPU: from now on a step leaves them where they are (the GPU
-    /// advects them, Eq. 14) and does the rest (births, σ, mass, removal, the cap), and every
-    /// blob has a slot in the GPU's state ([`crate::gas::slots`]). Refused for a scene that
-    /// splits blobs or plays a shape in reverse: those are stepped here.
-    pub fn hand_centres_to_gpu(&mut self) -> Result<(), ParamError> {
-        if self.scene.gas.split_sigma.is_some() {
-            return Err(ParamError::new(
-                "gas.split_sigma",
-                "a scene that splits blobs is stepped by the worker, not on the GPU",
-            ));
-        }
-        if !self.reversed.is_empty() {
-            return Err(ParamError::new(
-                "shapes",
-                "a scene that plays a shape in reverse is stepped by the worker, not on the GPU",
-            ));
-        }
-        self.gas.centres_elsewhere = true;
-        self.slots = Some(SlotTable::new(&mut self.gas.blobs));
-        self.gpu_walls = None;
-        Ok(())
-    }
-
-    /// The solids' grid and planes as the GPU stepper reads them
-    /// ([`crate::gas::solids::Solids::write_gpu_grid`]), appended to `out` when the GPU has not
-    /// been handed these solids since it took the centres (a new scene, an edit or a new field
-    /// builds them anew); else nothing.
-    pub fn solid_grid_for_gpu(&mut self, out: &mut Vec<f32>) {
-        let walls = self.wind.shared_walls();
-        if walls.as_ref().map(Arc::as_ptr) != self.gpu_walls.as_ref().map(Arc::as_ptr) {
-            if let Some(w) = &walls {
-                w.solids.write_gpu_grid(out);
-            }
-            self.gpu_walls = walls;
-        }
-    }
-
-    /// Whether the GPU advects the centres.
-    pub fn centres_on_gpu(&self) -> bool {
-        self.slots.is_some()
-    }
-
-    /// One past the highest GPU slot in use (0 while the centres are here).
-    pub fn slot_high_water(&self) -> u32 {
-        self.slots.as_ref().map_or(0, SlotTable::high_water)
-    }
-
-    /// Takes the GPU's centres (`xyz` per slot, m) as the blobs' own: for an export, a still, or
-    /// to step here again (`keep_on_gpu` false). Slots beyond `centres` leave their blob as it
-    /// is.
-    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool) {
-        let b = &mut self.gas.blobs;
-        for (i, &s) in b.slot.iter().enumerate() {
-            let s = s as usize;
-            if let Some(c) = centres.get(3 * s..3 * s + 3) {
-                b.position[3 * i..3 * i + 3].copy_from_slice(c);
-            }
-        }
-        if !keep_on_gpu {
-            self.slots = None;
-            self.gas.centres_elsewhere = false;
-            b.slot
-                .iter_mut()
-                .for_each(|s| *s = crate::gas::blobs::NO_SLOT);
-            // The GPU kept the carried offsets: start them again here as a newborn's.
-            let t = self.time();
-            let frame = self.wind.large_frame(t);
-            self.gas.offsets_as_newborn(&self.wind, t, &frame);
-        }
-    }
-
-    /// One fixed step while the GPU advects the centres: what changed in the GPU's slots (the
-    /// newborns to write, the slots to empty). The wind the GPU steps through is
-    /// [`Self::wind_frames`]. Without slots it is a plain step.
-    pub fn step_for_gpu(&mut self) -> SlotChanges {
-        self.step();
-        match &mut self.slots {
-            Some(table) => table.reconcile(&mut self.gas.blobs),
-            None => SlotChanges::default(),
-        }
     }
 
     /// The wind of the last step frozen at its start and at its middle (the RK2 midpoint;

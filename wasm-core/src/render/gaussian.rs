@@ -5,7 +5,7 @@
 //! m/(4πσ²) · exp(−r²/(2σ²)) · [erf((b − s*)/(σ√2)) − erf((a − s*)/(σ√2))]
 //! (the paper's table T(s) = √(π/2) erf(s/√2)). Blobs are truncated at [`TRUNCATION`] σ.
 
-use crate::gas::blob_list::BlobRecord;
+use crate::scene::blob_list::BlobRecord;
 use glam::Vec3;
 
 /// Blobs are truncated at this many standard deviations.

@@ -1,7 +1,7 @@
 //! Pinhole camera rays and the opaque objects that stand in for the paper's conventional ray
 //! tracer C_N (the rendering model of docs/FORMATS.md).
 
-use crate::gas::blob_list::{Camera, Object};
+use crate::scene::blob_list::{Camera, Object};
 use glam::Vec3;
 
 /// Camera basis for primary rays through pixel centres (row 0 at the top).

@@ -3,7 +3,7 @@
 //! carries its coverage α; its colour is then premultiplied (the radiance over nothing), and its
 //! PNG is RGBA with straight colour, as PNG expects.
 
-use crate::gas::blob_list::Encoding;
+use crate::scene::blob_list::Encoding;
 
 /// Linear radiance, RGB interleaved, row 0 at the top; with `alpha`, premultiplied colour over
 /// a transparent background and its coverage, one float a pixel.

@@ -1,6 +1,7 @@
 //! The CPU reference renderer: the single-scattering model of paper §5 and Appendix B, with
 //! shadows and a bounding-volume hierarchy, producing exactly the image a blob list stands for
-//! (the rendering model of docs/FORMATS.md) in the limit of fine steps.
+//! (Appendix B's Eqs. 22–28, the rendering model of docs/FORMATS.md) in the limit of fine
+//! steps.
 //!
 //! A primary ray is cut into intervals at the entry and exit points of the truncated blobs it
 //! meets (Figure 2). Each interval is subdivided into steps no longer than
@@ -16,7 +17,7 @@
 //! code the WebAssembly build runs, so a blob list renders to the same bytes natively and in
 //! the browser (the platform's own `expf` and `powf` differ in the last bit now and then).
 //!
-//! Its input is the blob list of [`crate::gas::blob_list`]; it knows nothing of scenes, of the
+//! Its input is the blob list of [`crate::scene::blob_list`]; it knows nothing of scenes, of the
 //! gas's state or of the browser. The browser's GPU views have their own frame format
 //! ([`crate::frame`]), held against this renderer by tests.
 //!

@@ -8,7 +8,7 @@ use super::gaussian::{Chord, RenderBlob};
 use super::geometry::{nearest_hit, occluded, CameraRays};
 use super::image::LinearImage;
 use crate::error::ParamError;
-use crate::gas::blob_list::{BlobList, Light, Object, Phase};
+use crate::scene::blob_list::{BlobList, Light, Object, Phase};
 use glam::Vec3;
 
 /// Quality and method switches.

@@ -5,7 +5,7 @@
 //! A scene's `render` section is a [`RenderSettings`], the list without its blobs. Reading a
 //! list from JSON is [`super::read`]; its checks are [`super::validate`].
 
-use crate::gas::limits::{
+use crate::scene::limits::{
     MAX_COORD, MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_LIST_BLOBS, MAX_OBJECTS, MAX_SECONDS,
 };
 use schemars::JsonSchema;

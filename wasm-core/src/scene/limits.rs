@@ -1,6 +1,6 @@
 //! The bounds of the two formats (the scene and the blob list of docs/FORMATS.md): largest
 //! coordinates, list lengths and the memory guards, checked before anything is built
-//! ([`super::validate`]) and stated in the JSON Schema ([`super::scene::json_schema`]).
+//! ([`super::validate`]) and stated in the JSON Schema ([`super::scene_format::json_schema`]).
 //!
 //! Costs behind the memory guards: a live blob costs the core 80 bytes (76 of state, 4 of decay
 //! factor); a blob handed to a renderer 88 more (its record), and the renderer's own copy of it

@@ -12,7 +12,7 @@
 //! the parser to refuse with its own message.
 
 use crate::error::ParamError;
-use crate::gas::limits::{
+use crate::scene::limits::{
     MAX_EMITTERS, MAX_LIGHTS, MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_OBJECTS, MAX_PATH_KEYS,
     MAX_PRIMITIVES, MAX_SHAPES, MAX_SHAPE_BLOBS,
 };
@@ -490,7 +490,8 @@ mod tests {
 
     #[test]
     fn the_budgets_are_the_schemas_list_lengths() {
-        let schema: Value = serde_json::from_str(&crate::gas::scene::json_schema()).unwrap();
+        let schema: Value =
+            serde_json::from_str(&crate::scene::scene_format::json_schema()).unwrap();
         let mut arrays = Vec::new();
         schema_arrays(&schema, &schema, "", 0, &mut arrays);
         assert!(arrays.len() > 20, "{arrays:?}");

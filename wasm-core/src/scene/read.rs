@@ -9,11 +9,11 @@
 //! or render.
 
 use crate::error::ParamError;
-use crate::gas::blob_list::{BlobList, Light, Object, Phase};
-use crate::gas::json_errors::describe;
-use crate::gas::limits::MAX_SCENE_BYTES;
-use crate::gas::list_budget::{check_lists, BLOB_LIST_LISTS, SCENE_LISTS};
-use crate::gas::scene::{Primitive, Scene, SCENE_VERSION};
+use crate::scene::blob_list::{BlobList, Light, Object, Phase};
+use crate::scene::json_errors::describe;
+use crate::scene::limits::MAX_SCENE_BYTES;
+use crate::scene::list_budget::{check_lists, BLOB_LIST_LISTS, SCENE_LISTS};
+use crate::scene::scene_format::{Primitive, Scene, SCENE_VERSION};
 use serde::{Deserialize, Deserializer};
 use serde_json::Value;
 

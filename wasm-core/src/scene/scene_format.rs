@@ -11,11 +11,11 @@ use crate::error::ParamError;
 use crate::field::lattice::{MAX_EXTENT, MIN_EXTENT};
 use crate::field::spectrum::SpectrumParams;
 use crate::field::{FieldParams, MAX_SEED};
-use crate::gas::blob_list::RenderSettings;
-use crate::gas::limits::{
+use crate::scene::blob_list::RenderSettings;
+use crate::scene::limits::{
     MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_SHAPES, MAX_STEPS,
 };
-use crate::gas::shapes::Shape;
+use crate::scene::shapes::Shape;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -4,27 +4,27 @@
 //! checks are [`crate::check`]'s; the bounds are [`super::limits`]'. An error names the value
 //! by its JSON path and says what is allowed; the walk stops at the first.
 //!
-//! Everything that builds from a scene ([`super::simulation::Simulation`]) or a blob list
+//! Everything that builds from a scene ([`crate::gas::simulation::Simulation`]) or a blob list
 //! ([`crate::render::Renderer`]) runs this walk once at its door and nothing after it checks
 //! again.
 
 use crate::check;
 use crate::error::ParamError;
 use crate::field::MAX_SEED;
-use crate::gas::blob_list::{
+use crate::scene::blob_list::{
     Background, BlobList, Camera, Image, Light, Medium, Object, Phase, RenderSettings,
 };
-use crate::gas::limits::{
+use crate::scene::bodies::Body;
+use crate::scene::limits::{
     MAX_BIRTHS_PER_STEP, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_IMAGE_SIDE, MAX_LIGHTS,
     MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_OBJECTS, MAX_PATH_KEYS, MAX_PRIMITIVES,
     MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS, MAX_SHAPES, MAX_SHAPES_BLOBS,
     MAX_SHAPE_BLOBS,
 };
-use crate::gas::scene::{
+use crate::scene::scene_format::{
     Emitter, GasSettings, Primitive, Scene, DEFAULT_BOUNDARY_WIDTH, SCENE_VERSION,
 };
-use crate::gas::shapes::{Shape, Solid};
-use crate::gas::solids::Body;
+use crate::scene::shapes::{Shape, Solid};
 
 impl Scene {
     /// Checks every value against its range, section by section in the order of the format:

@@ -1,11 +1,11 @@
-//! The doublets of the solids whose wind reaches a point ([`crate::gas::walls::Doublet`]),
+//! The doublets of the solids whose wind reaches a point ([`crate::wind::walls::Doublet`]),
 //! summed there: the spheres four at a time, a sphere a lane of four-wide vectors, the others
 //! one by one. A point among many spheres lies in the zones of several; their sum is most of
 //! the cost of a wind among them.
 
-use crate::gas::solids::Around;
-use crate::gas::walls::{Doublet, SPHERE_ZONE};
 use crate::lanes::sqrt4;
+use crate::wind::solids::Around;
+use crate::wind::walls::{Doublet, SPHERE_ZONE};
 use glam::{Mat4, Vec3A, Vec4};
 
 /// The scene's doublets (none for a solid without one), each sphere's centre and radius as one
@@ -151,7 +151,7 @@ impl Doublets {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gas::solids::Body;
+    use crate::scene::bodies::Body;
 
     /// Spheres four at a time (with the dead lanes of a last, partial four) and a cylinder
     /// one by one give the sum of [`Doublet::at`] over the list, inside, outside and in the

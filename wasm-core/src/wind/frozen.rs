@@ -3,9 +3,9 @@
 //! whether it is a mirror image in a solid plane ([`FrozenPrimitive::mirrored`],
 //! docs/CONVENTIONS.md, solid objects).
 
-use crate::gas::scene::Primitive;
-use crate::gas::spline::Path;
 use crate::lanes::{exp4, EXP4_IS_VECTOR};
+use crate::scene::scene_format::Primitive;
+use crate::wind::spline::Path;
 use glam::Vec3A;
 use std::f32::consts::PI;
 

@@ -5,7 +5,7 @@
 //!   the nearest solid and a point inside one are searched among these (and the planes);
 //! - the solids whose wind (a doublet, reaching `reach[i]` metres from solid i) may reach a
 //!   point of the cell: the doublets summed there, the spheres first (summed four at a time,
-//!   [`crate::gas::doublets`]), then the others.
+//!   [`crate::wind::doublets`]), then the others.
 //!
 //! A sphere is listed in a cell when the cell's box comes within its reach of the sphere; any
 //! other solid when its signed distance from the cell's centre is less than its reach plus the
@@ -14,8 +14,8 @@
 //! solids in the scene's order, so a sum over a list is the sum over every solid, less terms
 //! that are exactly zero.
 
-use crate::gas::solids::Body;
 use crate::lanes::ints3;
+use crate::scene::bodies::Body;
 use glam::Vec3A;
 
 /// A cell's edge, in the median solid's layer box (the solid grown by the layer, across its

@@ -12,7 +12,7 @@
 //! - Closed forms where they exist ([`Doublet`]): a uniform wind past a sphere is the
 //!   potential flow around it, past a cylinder the two-dimensional potential flow of its
 //!   cross-flow; a localised primitive in front of a plane gets its mirror image
-//!   ([`crate::gas::frozen::FrozenPrimitive::mirrored`]).
+//!   ([`crate::wind::frozen::FrozenPrimitive::mirrored`]).
 //! - What has neither (a source, a repulsor, anything with decay, a uniform wind into a plane,
 //!   or along a cylinder's axis at its caps) is projected: u − (1 − α)(u·n) n; a plane keeps
 //!   what blows away from it: u − (1 − α) min(u·n, 0) n. (A uniform wind into an infinite
@@ -20,7 +20,7 @@
 //!   would have to leave along the plane, ever faster with the distance. It stops in the
 //!   layer, and the gas it carries gathers there.)
 
-use crate::gas::solids::Body;
+use crate::scene::bodies::Body;
 use glam::Vec3A;
 
 /// The ramp r(s) = (15s − 10s³ + 3s⁵)/8 for s in [−1, 1] and ±1 beyond: 0 at the surface,

@@ -2,7 +2,7 @@
 //! wind-slice overlay draws as arrows.
 
 use crate::error::ParamError;
-use crate::gas::wind::WindFrame;
+use crate::wind::WindFrame;
 use glam::Vec3;
 
 /// Most samples along either side of a slice.

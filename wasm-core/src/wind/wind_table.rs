@@ -1,12 +1,12 @@
 //! The wind frozen at one time as the page's GPU stepper reads it: one row of floats a frame
-//! ([`crate::gas::wind::WindFrame::write_gpu_table`]), written by the core and read by the step
+//! ([`crate::wind::WindFrame::write_gpu_table`]), written by the core and read by the step
 //! shader (`web/src/stepper/wind-glsl.js`, which computes the core's wind from it:
 //! `wasm-core/tests/gpu_steps.rs` holds the same arithmetic, in Rust, to the core's wind).
 
-use crate::gas::frozen::{Frozen, NOT_AN_IMAGE};
-use crate::gas::solids::Body;
-use crate::gas::walls::Doublet;
-use crate::gas::wind::WindFrame;
+use crate::scene::bodies::Body;
+use crate::wind::frozen::{Frozen, NOT_AN_IMAGE};
+use crate::wind::walls::Doublet;
+use crate::wind::WindFrame;
 use glam::Vec3A;
 
 /// Floats of a wind table's header ([`WindFrame::write_gpu_table`]).

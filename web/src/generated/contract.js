@@ -69,52 +69,52 @@ export const SHADOW_GRID_HEADER = 8;
 /** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
 export const BLOB_FLOATS = 28;
 
-/** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets. (`gas::wind_table::WIND_TABLE_HEADER`) */
+/** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets. (`wind::wind_table::WIND_TABLE_HEADER`) */
 export const WIND_TABLE_HEADER = 32;
 
-/** Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images. (`gas::wind_table::WIND_TABLE_PRIMITIVE`) */
+/** Floats per frozen primitive of a wind table: kind, 1/decay, a, b; decay origin, plane it is the image in; p, first image; q, images. (`wind::wind_table::WIND_TABLE_PRIMITIVE`) */
 export const WIND_TABLE_PRIMITIVE = 16;
 
-/** Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector. (`gas::wind_table::WIND_TABLE_SOLID`) */
+/** Floats per solid of a wind table: kind, difference step, doublet, 0; centre/point/base, radius; normal/axis, height; the doublet's vector. (`wind::wind_table::WIND_TABLE_SOLID`) */
 export const WIND_TABLE_SOLID = 16;
 
-/** Floats of the solids' grid before its cells: lo xyz, cells; cells per metre xyz, planes; cells along x, y, z, 0. Then one vec4 per cell (its lists' bounds) and the members, the planes first. (`gas::solid_grid::SOLID_GRID_HEADER`) */
+/** Floats of the solids' grid before its cells: lo xyz, cells; cells per metre xyz, planes; cells along x, y, z, 0. Then one vec4 per cell (its lists' bounds) and the members, the planes first. (`wind::solid_grid::SOLID_GRID_HEADER`) */
 export const SOLID_GRID_HEADER = 12;
 
-/** A solid sphere's kind in a wind table. (`gas::wind_table::SPHERE_SOLID_KIND`) */
+/** A solid sphere's kind in a wind table. (`wind::wind_table::SPHERE_SOLID_KIND`) */
 export const SPHERE_SOLID_KIND = 0;
 
-/** A solid plane's kind in a wind table. (`gas::wind_table::PLANE_SOLID_KIND`) */
+/** A solid plane's kind in a wind table. (`wind::wind_table::PLANE_SOLID_KIND`) */
 export const PLANE_SOLID_KIND = 1;
 
-/** A solid cylinder's kind in a wind table. (`gas::wind_table::CYLINDER_SOLID_KIND`) */
+/** A solid cylinder's kind in a wind table. (`wind::wind_table::CYLINDER_SOLID_KIND`) */
 export const CYLINDER_SOLID_KIND = 2;
 
-/** A cylinder's rims are rounded by this many difference steps for the wind. (`gas::wind::EDGE_STEPS`) */
+/** A cylinder's rims are rounded by this many difference steps for the wind. (`wind::wall_set::EDGE_STEPS`) */
 export const EDGE_STEPS = 3;
 
-/** A sphere's doublet is exact within this many radii of its centre. (`gas::walls::SPHERE_ZONE_INNER`) */
+/** A sphere's doublet is exact within this many radii of its centre. (`wind::walls::SPHERE_ZONE_INNER`) */
 export const SPHERE_ZONE_INNER = 4;
 
-/** A sphere's doublet has faded to nothing at this many radii. (`gas::walls::SPHERE_ZONE_OUTER`) */
+/** A sphere's doublet has faded to nothing at this many radii. (`wind::walls::SPHERE_ZONE_OUTER`) */
 export const SPHERE_ZONE_OUTER = 8;
 
-/** A cylinder's doublet is exact within this many radii of its axis. (`gas::walls::CYLINDER_ZONE_INNER`) */
+/** A cylinder's doublet is exact within this many radii of its axis. (`wind::walls::CYLINDER_ZONE_INNER`) */
 export const CYLINDER_ZONE_INNER = 6;
 
-/** A cylinder's doublet has faded to nothing at this many radii. (`gas::walls::CYLINDER_ZONE_OUTER`) */
+/** A cylinder's doublet has faded to nothing at this many radii. (`wind::walls::CYLINDER_ZONE_OUTER`) */
 export const CYLINDER_ZONE_OUTER = 12;
 
-/** A uniform wind's kind in a wind table. (`gas::wind::UNIFORM_KIND`) */
+/** A uniform wind's kind in a wind table. (`wind::wind_table::UNIFORM_KIND`) */
 export const UNIFORM_KIND = 0;
 
-/** A source's (or sink's) kind in a wind table. (`gas::wind::SOURCE_KIND`) */
+/** A source's (or sink's) kind in a wind table. (`wind::wind_table::SOURCE_KIND`) */
 export const SOURCE_KIND = 1;
 
-/** A vortex's kind in a wind table. (`gas::wind::VORTEX_KIND`) */
+/** A vortex's kind in a wind table. (`wind::wind_table::VORTEX_KIND`) */
 export const VORTEX_KIND = 2;
 
-/** A repulsor's kind in a wind table. (`gas::wind::REPULSOR_KIND`) */
+/** A repulsor's kind in a wind table. (`wind::wind_table::REPULSOR_KIND`) */
 export const REPULSOR_KIND = 3;
 
 // The scene format
@@ -128,11 +128,11 @@ export const MAX_EXTENT = 256;
 /** Most lattice points in all (nx · ny · nz · nt). (`field::lattice::MAX_POINTS`) */
 export const MAX_POINTS = 16777216;
 
-/** The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one. (`gas::blob_list::DEFAULT_RENDER_TIME`) */
+/** The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one. (`scene::blob_list::DEFAULT_RENDER_TIME`) */
 export const DEFAULT_RENDER_TIME = 3;
 
-/** Widest and tallest image (pixels) a still, a capture or an export may be. (`gas::limits::MAX_IMAGE_SIDE`) */
+/** Widest and tallest image (pixels) a still, a capture or an export may be. (`scene::limits::MAX_IMAGE_SIDE`) */
 export const MAX_IMAGE_SIDE = 8192;
 
-/** Most fixed steps one run may take (a step call, a recording). (`gas::limits::MAX_STEPS`) */
+/** Most fixed steps one run may take (a step call, a recording). (`scene::limits::MAX_STEPS`) */
 export const MAX_STEPS = 1000000;

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use windfield::export::flipbook::{parse_pair, FlipbookJob, FlipbookSpec, SettingNames};
 use windfield::export::volume::{GasVolume, VolumeBuild};
-use windfield::gas::limits::MAX_IMAGE_SIDE;
+use windfield::scene::limits::MAX_IMAGE_SIDE;
 use windfield::ParamError;
 
 #[derive(Args)]

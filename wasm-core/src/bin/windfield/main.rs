@@ -41,10 +41,10 @@ use windfield::export::vector_grid::VectorGrid;
 use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
 use windfield::field::{npy, statistics};
 use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
-use windfield::gas::blob_list::{Background, BlobList};
-use windfield::gas::limits::{MAX_IMAGE_SIDE, MAX_SCENE_BYTES, MAX_SECONDS};
-use windfield::gas::read::check_scene_size;
 use windfield::render::{RenderOptions, Renderer};
+use windfield::scene::blob_list::{Background, BlobList};
+use windfield::scene::limits::{MAX_IMAGE_SIDE, MAX_SCENE_BYTES, MAX_SECONDS};
+use windfield::scene::read::check_scene_size;
 use windfield::{ParamError, Scene, Simulation};
 
 #[derive(Parser)]
@@ -888,7 +888,7 @@ fn main() -> ExitCode {
         Command::Flipbook(a) => exports::flipbook(a),
         Command::Volume(a) => exports::volume(a),
         Command::Schema => {
-            print!("{}", windfield::gas::scene::json_schema());
+            print!("{}", windfield::scene::scene_format::json_schema());
             Ok(())
         }
         Command::Contract => {

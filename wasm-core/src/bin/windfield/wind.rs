@@ -11,8 +11,8 @@ use std::sync::Arc;
 use std::time::Instant;
 use windfield::export::vector_grid::VectorGrid;
 use windfield::field::{npy, TurbulentField};
-use windfield::gas::limits::MAX_COORD;
-use windfield::gas::wind::Wind;
+use windfield::scene::limits::MAX_COORD;
+use windfield::wind::Wind;
 use windfield::Scene;
 
 /// Most points one run samples (as many as a field's lattice may hold).
