@@ -89,23 +89,3 @@ pub fn colour(path: &str, v: [f32; 3], hi: f64) -> Result<(), ParamError> {
     }
     Ok(())
 }
-
-/// What every born blob carries, under `path`: σ0 in (0, 1e4] m, m0 in (0, 1e12], an optional
-/// albedo in [0, 1] and an optional emission in [0, 1e6] per channel.
-pub fn blob_birth(
-    path: &str,
-    sigma0: f32,
-    mass0: f32,
-    albedo: Option<[f32; 3]>,
-    emission: Option<[f32; 3]>,
-) -> Result<(), ParamError> {
-    positive(&format!("{path}.sigma0"), sigma0 as f64, 1e4)?;
-    positive(&format!("{path}.mass0"), mass0 as f64, 1e12)?;
-    if let Some(a) = albedo {
-        colour(&format!("{path}.albedo"), a, 1.0)?;
-    }
-    if let Some(q) = emission {
-        colour(&format!("{path}.emission"), q, 1e6)?;
-    }
-    Ok(())
-}

@@ -1000,11 +1000,11 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
         ),
         (
             r#"{"version": 1, "gas": {"max_blobs": -1}}"#,
-            "gas.max_blobs: must be a whole number ≥ 0 (got -1)",
+            "gas.max_blobs: must be an integer between 1 and 1000000 (got -1)",
         ),
         (
             r#"{"version": 1, "seed": 1.5}"#,
-            "seed: must be a whole number ≥ 0 (got 1.5)",
+            "seed: must be an integer between 0 and 9007199254740992 (got 1.5)",
         ),
         (
             r#"{"version": 1, "simulation": {"dt": 1e308}}"#,
@@ -1020,7 +1020,7 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
         ),
         (
             r#"{"version": 1, "simulation": {"dt": null}}"#,
-            "simulation.dt: must be a number (got null): JSON has no NaN or infinity",
+            "simulation.dt: must be a finite number greater than 0 and at most 1 (got null): JSON has no NaN or infinity",
         ),
         (
             r#"{"version": 1, "render": {"shadows": "yes"}}"#,
@@ -1056,7 +1056,9 @@ fn every_refusal_starts_with_windfield_and_says_what_a_person_would() {
     );
     let e = refused(&["render", &list, "--out", &out]);
     assert!(
-        e.contains(r#"blobs[0].center[2]: must be a number (got the string "a")"#),
+        e.contains(
+            r#"blobs[0].center[2]: must be a finite number between -1000000 and 1000000 (got the string "a")"#
+        ),
         "{e}"
     );
     // The flags, as clap reads them.

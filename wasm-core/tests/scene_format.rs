@@ -141,7 +141,48 @@ fn whole_numbers_written_as_floats_read_as_integers() {
     let e = Scene::from_json(&floats.replace("3.2e1", "32.5"))
         .unwrap_err()
         .to_string();
-    assert_eq!(e, "field.size[1]: must be a whole number ≥ 0 (got 32.5)");
+    assert_eq!(
+        e,
+        "field.size[1]: must be an even number between 4 and 256 (got 32.5)"
+    );
+}
+
+/// A value of the wrong type is told the key's own range, in the words the validation walk
+/// uses for a number of the right type out of it, whatever the type met.
+#[test]
+fn a_wrong_type_is_told_the_keys_range() {
+    use serde_json::json;
+    for (pointer, wrong, out_of_range) in [
+        ("/field/size/1", json!(-1), json!(33)),
+        ("/field/size/1", json!("32"), json!(258)),
+        ("/field/size/1", json!(32.5), json!(2)),
+        ("/seed", json!(1.5), json!(9007199254740993u64)),
+        ("/gas/max_blobs", json!(-1), json!(0)),
+        ("/field/period/0", json!("far"), json!(0)),
+        ("/wind/1/strength", json!("strong"), json!(2e6)),
+        ("/render/image/width", json!(-5), json!(0)),
+        ("/render/medium/phase/g", json!(null), json!(1)),
+        ("/emitters/0/albedo/1", json!(true), json!(1.5)),
+    ] {
+        let set = |value: &serde_json::Value| {
+            let value = value.clone();
+            move |v: &mut serde_json::Value| *v.pointer_mut(pointer).unwrap() = value.clone()
+        };
+        let said = error_of(set(&wrong));
+        let expected = error_of(set(&out_of_range));
+        let range = |e: &str| e.split_once(" (got ").map(|(r, _)| r.to_string());
+        assert!(range(&said).is_some(), "{pointer} = {wrong}: {said}");
+        assert_eq!(range(&said), range(&expected), "{pointer} = {wrong}");
+    }
+    assert_eq!(
+        error_of(|v| v["field"]["size"][1] = json!(-1)),
+        "field.size[1]: must be an even number between 4 and 256 (got -1)"
+    );
+    // Where no number reads (a list for a flag), serde's own words stay.
+    assert_eq!(
+        error_of(|v| v["render"]["shadows"] = json!([1])),
+        "render.shadows: must be true or false (got a list)"
+    );
 }
 
 #[test]
@@ -159,7 +200,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/seed", json!(-1)),
             "seed",
-            "must be a whole number ≥ 0 (got -1)",
+            "must be an integer between 0 and 9007199254740992 (got -1)",
         ),
         (
             set("/seed", json!(9007199254740993u64)),
@@ -194,7 +235,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/field/size/0", json!("32")),
             "field.size[0]",
-            "must be a whole number ≥ 0 (got the string \"32\")",
+            "must be an even number between 4 and 256 (got the string \"32\")",
         ),
         (
             set("/field/spectrum/law", json!("kolmogoroff")),
@@ -254,7 +295,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/wind/1/strength", json!("strong")),
             "wind[1].strength",
-            "must be a number (got the string \"strong\")",
+            "must be a finite number between -1000000 and 1000000 (got the string \"strong\")",
         ),
         (
             insert("/render/objects/0", "solid", json!("yes")),
@@ -274,7 +315,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             set("/render/medium/phase/g", json!(null)),
             "render.medium.phase.g",
-            "must be a number (got null)",
+            "must be strictly between -1 and 1 (got null)",
         ),
         (
             insert("/wind/1", "radius", json!(0)),
@@ -414,7 +455,7 @@ fn malformed_scenes_are_rejected_with_their_path() {
         (
             insert("/render", "time", json!("soon")),
             "render.time",
-            "must be a number (got the string \"soon\")",
+            "must be a finite number between 0 and 1000000 (got the string \"soon\")",
         ),
         (
             insert("/render", "time", json!(20_000)),

@@ -14,6 +14,37 @@ pub const MAX_SCENE_BYTES: usize = 64 << 20;
 /// Largest accepted coordinate magnitude (m).
 pub const MAX_COORD: f64 = 1.0e6;
 
+/// The world mapping's ranges (docs/FORMATS.md, the field), `[lowest, highest]` of each.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorldMapping {
+    /// Metres one spatial period of the field spans, along each axis.
+    pub period: [f64; 2],
+    /// Seconds one temporal period of the field spans.
+    pub time_period: [f64; 2],
+    /// The small-scale velocity's scale (0 turns the turbulence off).
+    pub amplitude: [f64; 2],
+}
+
+/// The world mapping's ranges, one home for every check of them. Periods far below a
+/// millimetre or a millisecond put world points at lattice coordinates and speeds beyond single
+/// precision.
+pub const WORLD_MAPPING: WorldMapping = WorldMapping {
+    period: [1e-3, 1e4],
+    time_period: [1e-3, 1e6],
+    amplitude: [0.0, 1e3],
+};
+
+/// The largest σ0 (m) a born blob may have (an emitter's births and an initial set's points
+/// alike, paper §6); σ0 is greater than 0.
+pub const MAX_SIGMA0: f64 = 1e4;
+/// The largest m0 a born blob may have; m0 is greater than 0.
+pub const MAX_MASS0: f64 = 1e12;
+/// The largest albedo of a channel: the fraction of the light a blob scatters, from 0 (a whole
+/// number, as the JSON Schema writes it).
+pub const MAX_ALBEDO: u8 = 1;
+/// The largest self-emission Q of a channel, from 0.
+pub const MAX_EMISSION: f64 = 1e6;
+
 /// Most live blobs (`gas.max_blobs`): 80 MB of blob state, twice that while a step splits.
 pub const MAX_BLOBS_LIMIT: usize = 1_000_000;
 /// Most births in one step: Σ over the enabled emitters of rate × `simulation.dt` (a step

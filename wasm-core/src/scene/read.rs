@@ -40,7 +40,66 @@ fn at_path(
             path = format!("{path}.{key}");
         }
     }
-    ParamError::new(path, describe(e.inner(), text))
+    let mut message = describe(e.inner(), text);
+    if e.inner().classify() == serde_json::error::Category::Data {
+        if let Some(range) = range_of(root, &path, text, tree) {
+            if let Some((_, got)) = message.split_once(" (got ") {
+                message = format!("{range} (got {got}");
+            }
+        }
+    }
+    ParamError::new(path, message)
+}
+
+/// The largest document (bytes of JSON) read again to find a key's range ([`range_of`]).
+const RANGE_PROBE_BYTES: usize = 1 << 20;
+
+/// The range the one validation walk states for the key at `path` (`must be an even number
+/// between 4 and 256`), so that a value of the wrong type is told the key's range as one of the
+/// right type out of it is: the document is read again with a whole number far beyond every
+/// range in the key's place (the largest of each unsigned width, the first that reads) and
+/// validated. None where no such number reads (a string, a list, a flag), where the walk stops
+/// at another key first, or where its message states no range; and for documents longer than
+/// [`RANGE_PROBE_BYTES`], which are not read twice.
+fn range_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
+    let parsed: Value;
+    let tree = match (tree, text) {
+        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t,
+        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => {
+            parsed = serde_json::from_str(t).ok()?;
+            &parsed
+        }
+        _ => return None,
+    };
+    let far = [u64::MAX, u32::MAX as u64, u16::MAX as u64, u8::MAX as u64];
+    far.into_iter().find_map(|n| {
+        let mut probe = tree.clone();
+        *lookup_mut(&mut probe, path)? = Value::from(n);
+        let refusal = match root {
+            "scene" => Scene::deserialize(&probe).ok()?.validate().err()?,
+            _ => BlobList::deserialize(&probe).ok()?.validate().err()?,
+        };
+        let (range, _) = refusal.message.split_once(" (got ")?;
+        (refusal.path == path).then(|| range.to_string())
+    })
+}
+
+/// Whether `value` written as compact JSON is at most `limit` bytes (counted, not written).
+fn compact_length_within(value: &Value, limit: usize) -> bool {
+    struct Count(usize, usize);
+    impl std::io::Write for Count {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0 += bytes.len();
+            if self.0 > self.1 {
+                return Err(std::io::Error::other("over the limit"));
+            }
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    serde_json::to_writer(Count(0, limit), value).is_ok()
 }
 
 /// The internally tagged element (`"type": …`) a path ends at, if it does: a wind primitive,
@@ -76,6 +135,21 @@ fn lookup<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
         }
         for index in indices.split('[').filter(|i| !i.is_empty()) {
             at = at.get(index.strip_suffix(']')?.parse::<usize>().ok()?)?;
+        }
+    }
+    Some(at)
+}
+
+/// [`lookup`], for writing.
+fn lookup_mut<'a>(root: &'a mut Value, path: &str) -> Option<&'a mut Value> {
+    let mut at = root;
+    for part in path.split('.') {
+        let (key, indices) = part.split_once('[').unwrap_or((part, ""));
+        if !key.is_empty() {
+            at = at.get_mut(key)?;
+        }
+        for index in indices.split('[').filter(|i| !i.is_empty()) {
+            at = at.get_mut(index.strip_suffix(']')?.parse::<usize>().ok()?)?;
         }
     }
     Some(at)

@@ -13,7 +13,8 @@ use crate::field::spectrum::SpectrumParams;
 use crate::field::{FieldParams, MAX_SEED};
 use crate::scene::blob_list::RenderSettings;
 use crate::scene::limits::{
-    MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_SHAPES, MAX_STEPS,
+    MAX_ALBEDO, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS, MAX_MASS0, MAX_PATH_KEYS,
+    MAX_PRIMITIVES, MAX_SHAPES, MAX_SIGMA0, MAX_STEPS, WORLD_MAPPING,
 };
 use crate::scene::shapes::Shape;
 use schemars::JsonSchema;
@@ -104,13 +105,13 @@ pub struct FieldSettings {
     pub size: [usize; 4],
     pub spectrum: SpectrumParams,
     /// World metres per spatial period along x, y, z (the paper's grid spacing control).
-    #[schemars(inner(range(min = 1e-3, max = 1e4)))]
+    #[schemars(inner(range(min = WORLD_MAPPING.period[0], max = WORLD_MAPPING.period[1])))]
     pub period: [f64; 3],
     /// Seconds per temporal period.
-    #[schemars(range(min = 1e-3, max = 1e6))]
+    #[schemars(range(min = WORLD_MAPPING.time_period[0], max = WORLD_MAPPING.time_period[1]))]
     pub time_period: f64,
     /// Scale of the small-scale velocity; 0 turns the turbulence off.
-    #[schemars(range(min = 0, max = 1e3))]
+    #[schemars(range(min = 0, max = WORLD_MAPPING.amplitude[1]))]
     pub amplitude: f64,
     /// Sample the field at x − U·t, U the sum of the uniform winds: the whole field translated
     /// by the mean wind (the simplest form of the paper's remedy for its independence
@@ -283,16 +284,16 @@ pub struct Emitter {
     #[schemars(range(min = 0, max = 1e6))]
     pub rate: f64,
     /// Initial standard deviation σ0 (m).
-    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
+    #[schemars(range(max = MAX_SIGMA0), extend("exclusiveMinimum" = 0))]
     pub sigma0: f32,
     /// Initial mass m0.
-    #[schemars(range(max = 1e12), extend("exclusiveMinimum" = 0))]
+    #[schemars(range(max = MAX_MASS0), extend("exclusiveMinimum" = 0))]
     pub mass0: f32,
     /// Albedo colour; none uses the medium's.
-    #[schemars(inner(range(min = 0, max = 1)))]
+    #[schemars(inner(range(min = 0, max = MAX_ALBEDO)))]
     pub albedo: Option<[f32; 3]>,
     /// Self-emission colour Q; none is no emission.
-    #[schemars(inner(range(min = 0, max = 1e6)))]
+    #[schemars(inner(range(min = 0, max = MAX_EMISSION)))]
     pub emission: Option<[f32; 3]>,
     /// Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
     /// exp(−age/`velocity_time`).

@@ -2,7 +2,9 @@
 //! from simple solids, each point the centre of a blob born at time 0, optionally played in
 //! reverse (the morph of one shape into another). The sampling is [`crate::gas`]'s.
 
-use crate::scene::limits::{MAX_COORD, MAX_SHAPE_BLOBS};
+use crate::scene::limits::{
+    MAX_ALBEDO, MAX_COORD, MAX_EMISSION, MAX_MASS0, MAX_SHAPE_BLOBS, MAX_SIGMA0,
+};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -46,15 +48,15 @@ pub struct Shape {
     #[schemars(length(max = MAX_SHAPE_BLOBS), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]
     pub points: Vec<[f32; 3]>,
     /// σ0 (m) and m0 of every blob.
-    #[schemars(range(max = 1e4), extend("exclusiveMinimum" = 0))]
+    #[schemars(range(max = MAX_SIGMA0), extend("exclusiveMinimum" = 0))]
     pub sigma0: f32,
-    #[schemars(range(max = 1e12), extend("exclusiveMinimum" = 0))]
+    #[schemars(range(max = MAX_MASS0), extend("exclusiveMinimum" = 0))]
     pub mass0: f32,
     /// Albedo colour; none uses the medium's. Zero lights the set by its emission alone.
-    #[schemars(inner(range(min = 0, max = 1)))]
+    #[schemars(inner(range(min = 0, max = MAX_ALBEDO)))]
     pub albedo: Option<[f32; 3]>,
     /// Self-emission colour Q.
-    #[schemars(inner(range(min = 0, max = 1e6)))]
+    #[schemars(inner(range(min = 0, max = MAX_EMISSION)))]
     pub emission: Option<[f32; 3]>,
     /// Play this set backwards from this time (s): at time t it shows its forward state at
     /// max(reverse_from − t, 0).

@@ -16,10 +16,10 @@ use crate::scene::blob_list::{
 };
 use crate::scene::bodies::Body;
 use crate::scene::limits::{
-    MAX_BIRTHS_PER_STEP, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMITTERS, MAX_IMAGE_SIDE, MAX_LIGHTS,
-    MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_OBJECTS, MAX_PATH_KEYS, MAX_PRIMITIVES,
-    MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS, MAX_SHAPES, MAX_SHAPES_BLOBS,
-    MAX_SHAPE_BLOBS,
+    MAX_ALBEDO, MAX_BIRTHS_PER_STEP, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS,
+    MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_MASS0, MAX_OBJECTS,
+    MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS,
+    MAX_SHAPES, MAX_SHAPES_BLOBS, MAX_SHAPE_BLOBS, MAX_SIGMA0, WORLD_MAPPING,
 };
 use crate::scene::scene_format::{
     Emitter, GasSettings, Primitive, Scene, DEFAULT_BOUNDARY_WIDTH, SCENE_VERSION,
@@ -75,12 +75,12 @@ impl BlobList {
             let bp = format!("blobs[{i}]");
             check::vector(&format!("{bp}.center"), b.center, MAX_COORD)?;
             check::positive(&format!("{bp}.sigma"), b.sigma as f64, MAX_COORD)?;
-            check::range(&format!("{bp}.mass"), b.mass as f64, 0.0, 1e12)?;
+            check::range(&format!("{bp}.mass"), b.mass as f64, 0.0, MAX_MASS0)?;
             if let Some(a) = b.albedo {
-                check::colour(&format!("{bp}.albedo"), a, 1.0)?;
+                check::colour(&format!("{bp}.albedo"), a, f64::from(MAX_ALBEDO))?;
             }
             if let Some(q) = b.emission {
-                check::colour(&format!("{bp}.emission"), q, 1e6)?;
+                check::colour(&format!("{bp}.emission"), q, MAX_EMISSION)?;
             }
         }
         Ok(())
@@ -110,13 +110,14 @@ fn lengths(scene: &Scene) -> Result<(), ParamError> {
 fn field(scene: &Scene) -> Result<(), ParamError> {
     scene.field_params().validate()?;
     let f = &scene.field;
-    // Periods far below a millimetre or a millisecond put world points at lattice
-    // coordinates and speeds beyond single precision.
+    let [lo, hi] = WORLD_MAPPING.period;
     for (i, &l) in f.period.iter().enumerate() {
-        check::range(&format!("field.period[{i}]"), l, 1e-3, 1e4)?;
+        check::range(&format!("field.period[{i}]"), l, lo, hi)?;
     }
-    check::range("field.time_period", f.time_period, 1e-3, 1e6)?;
-    check::range("field.amplitude", f.amplitude, 0.0, 1e3)?;
+    let [lo, hi] = WORLD_MAPPING.time_period;
+    check::range("field.time_period", f.time_period, lo, hi)?;
+    let [lo, hi] = WORLD_MAPPING.amplitude;
+    check::range("field.amplitude", f.amplitude, lo, hi)?;
     // The layer over a solid: thinner than half the field's shortest period, so the ramp never
     // spans a whole period of the eddies it turns. The layer acts only on solids: a scene
     // without them and with the default width keeps any period the field allows.
@@ -294,9 +295,30 @@ fn emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
         check::range(&format!("{path}.size[{i}]"), s as f64, 0.0, MAX_COORD)?;
     }
     check::range(&p("rate"), e.rate, 0.0, 1e6)?;
-    check::blob_birth(path, e.sigma0, e.mass0, e.albedo, e.emission)?;
+    blob_birth(path, e.sigma0, e.mass0, e.albedo, e.emission)?;
     check::vector(&p("velocity"), e.velocity, 1e4)?;
     check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)
+}
+
+/// What every born blob carries, under `path` (paper §6: an emitter's births and an initial
+/// set's points alike): σ0 in (0, [`MAX_SIGMA0`]] m, m0 in (0, [`MAX_MASS0`]], an optional
+/// albedo in [0, [`MAX_ALBEDO`]] and an optional emission in [0, [`MAX_EMISSION`]] per channel.
+fn blob_birth(
+    path: &str,
+    sigma0: f32,
+    mass0: f32,
+    albedo: Option<[f32; 3]>,
+    emission: Option<[f32; 3]>,
+) -> Result<(), ParamError> {
+    check::positive(&format!("{path}.sigma0"), sigma0 as f64, MAX_SIGMA0)?;
+    check::positive(&format!("{path}.mass0"), mass0 as f64, MAX_MASS0)?;
+    if let Some(a) = albedo {
+        check::colour(&format!("{path}.albedo"), a, f64::from(MAX_ALBEDO))?;
+    }
+    if let Some(q) = emission {
+        check::colour(&format!("{path}.emission"), q, MAX_EMISSION)?;
+    }
+    Ok(())
 }
 
 /// Births a step, Σ over the enabled emitters of rate × dt, within [`MAX_BIRTHS_PER_STEP`].
@@ -356,7 +378,7 @@ fn shape(path: &str, s: &Shape) -> Result<(), ParamError> {
     for (i, &q) in s.points.iter().enumerate() {
         check::vector(&format!("{path}.points[{i}]"), q, MAX_COORD)?;
     }
-    check::blob_birth(path, s.sigma0, s.mass0, s.albedo, s.emission)?;
+    blob_birth(path, s.sigma0, s.mass0, s.albedo, s.emission)?;
     if let Some(t) = s.reverse_from {
         check::positive(&p("reverse_from"), t, 1e4)?;
     }
