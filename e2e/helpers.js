@@ -128,3 +128,38 @@ export function toSegment(p, a, b) {
   const s = Math.min(Math.max(p.reduce((sum, v, i) => sum + (v - a[i]) * ab[i], 0) / ab.reduce((sum, v) => sum + v * v, 0), 0), 1);
   return Math.hypot(...p.map((v, i) => v - (a[i] + s * ab[i])));
 }
+
+/**
+ * Holds the page's clock still: Playwright's (`page.clock.install()` before the page loads),
+ * which stands in for `performance.now`, `Date`, the timers and the animation frames. From then
+ * on the page's time moves only when the test moves it (`nextFrame`, `page.clock.runFor`), so
+ * the frames a test counts come at the times it chose, however loaded the machine: the worker
+ * keeps its own clock, and a frame's steps take what they take there.
+ */
+export async function holdClock(page) {
+  for (;;) {
+    // A moment just ahead of the page's clock, which runs on until it is held.
+    const at = await page.evaluate(() => Date.now() + 100);
+    try {
+      await page.clock.pauseAt(at);
+      return;
+    } catch (e) {
+      if (!/past/.test(e.message)) throw e;
+    }
+  }
+}
+
+/**
+ * Moves the held page clock on by `ms` (`runFor`: every animation frame and timer due on the way,
+ * as a display's; `jump`: `fastForward`, one animation frame at the end, as on a machine whose
+ * frames come as fast as they are drawn), then waits until the player has drawn a frame more:
+ * the frame its loop began in that time. The player is the playground's (`window.windfield`),
+ * or the `<wind-field>` that `selector` finds. Returns its stats.
+ */
+export async function nextFrame(page, ms, { jump = false, selector = null } = {}) {
+  const stats = () => page.evaluate((sel) => (sel ? document.querySelector(sel) : window.windfield).stats(), selector);
+  const before = (await stats()).frames;
+  await (jump ? page.clock.fastForward(ms) : page.clock.runFor(ms));
+  await expect.poll(async () => (await stats()).frames).toBeGreaterThan(before);
+  return stats();
+}
