@@ -88,7 +88,7 @@ test('a worker that quits without a word: the request times out with a message a
   await open(page, await linkTo(smallPlume, '?view=points&timeout=3'));
   await page.evaluate(async () => { window.windfield.pause(); await window.windfield.step(10); });
   await page.workers().at(-1).evaluate(() => setTimeout(() => self.close()));
-  await holdClock(page);
+  await holdClock(page, { idle: false });
   await page.evaluate(() => {
     window.outcome = window.windfield.step(1).then(() => 'answered', (e) => e.message);
   });

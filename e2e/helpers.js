@@ -134,26 +134,41 @@ export function toSegment(p, a, b) {
  * which stands in for `performance.now`, `Date`, the timers and the animation frames. From then
  * on the page's time moves only when the test moves it (`nextFrame`, `page.clock.runFor`), so
  * the frames a test counts come at the times it chose, however loaded the machine: the worker
- * keeps its own clock, and a frame's steps take what they take there.
+ * keeps its own clock, and a frame's steps take what they take there. Unless `idle` is false,
+ * returns once no frame of the player (as `nextFrame`'s) is in flight: a `step(0)` takes its
+ * turn after the frame in flight, and no frame begins while a call waits for its turn.
  */
-export async function holdClock(page) {
+export async function holdClock(page, { idle = true, selector = null } = {}) {
   for (;;) {
     // A moment just ahead of the page's clock, which runs on until it is held.
     const at = await page.evaluate(() => Date.now() + 100);
     try {
       await page.clock.pauseAt(at);
-      return;
+      break;
     } catch (e) {
       if (!/past/.test(e.message)) throw e;
     }
+  }
+  if (!idle) return;
+  await page.evaluate((sel) => {
+    window.heldClockTurn = null;
+    (sel ? document.querySelector(sel) : window.windfield).step(0)
+      .then(() => { window.heldClockTurn = 'taken'; }, (e) => { window.heldClockTurn = e.message; });
+  }, selector);
+  // The turn waits on the page's timers (naps of 5 ms) while a frame is in flight.
+  for (;;) {
+    const turn = await page.evaluate(() => window.heldClockTurn);
+    if (turn === 'taken') return;
+    if (turn !== null) throw new Error(`holdClock: step(0) failed: ${turn}`);
+    await page.clock.runFor(5);
   }
 }
 
 /**
  * Moves the held page clock on by `ms` (`runFor`: every animation frame and timer due on the way,
  * as a display's; `jump`: `fastForward`, one animation frame at the end, as on a machine whose
- * frames come as fast as they are drawn), then waits until the player has drawn a frame more:
- * the frame its loop began in that time. The player is the playground's (`window.windfield`),
+ * frames come as fast as they are drawn, so that at most one frame begins), then waits until
+ * the player has drawn a frame more: the frame its loop began in that time. The player is the playground's (`window.windfield`),
  * or the `<wind-field>` that `selector` finds. Returns its stats.
  */
 export async function nextFrame(page, ms, { jump = false, selector = null } = {}) {

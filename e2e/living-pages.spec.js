@@ -58,7 +58,7 @@ test('a removed player rejects every pending call at once with an AbortError, an
     ).then((r) => { window.settled.push(r.name); return r; }));
     await new Promise((r) => setTimeout(r, 50));
   });
-  await holdClock(page);
+  await holdClock(page, { idle: false });
   await page.evaluate(() => {
     window.removed = performance.now();
     document.querySelector('wind-field').remove();
