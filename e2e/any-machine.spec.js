@@ -1,9 +1,11 @@
 // Good on any machine: these tests run where the browser draws WebGL in software (SwiftShader),
 // as on GPU-blocked laptops, virtual machines and remote desktops, and check what a visitor
-// there gets: the lighter version and its notice, frames that keep coming and simulated time
-// that keeps up, input handled at once, scenes that show gas within seconds, stirring at any
-// frame rate, an honest status line, a phone's layout, a clean console, reduced motion and
-// hidden tabs. Most use Playwright's own `test` (no full-version fixture: see helpers.js).
+// there gets: the lighter version and its notice, frames that keep coming with as many steps as
+// their time allows, input handled while the worker steps, every scene's gas after its click,
+// stirring at any frame rate, an honest status line, a phone's layout, a clean console, reduced
+// motion and hidden tabs. Frames and their times are counted on Playwright's clock, not timed
+// (helpers.js): `npm run bench` measures the rates and delays (docs/BENCHMARKS.md, "The page's
+// pace"). Most use Playwright's own `test` (no full-version fixture: see helpers.js).
 import { test } from '@playwright/test';
 import { readFileSync } from 'node:fs';
 import { expect, test as fullTest, collectErrors, holdClock, nextFrame, presetFile, toSegment, worldAt } from './helpers.js';
@@ -19,7 +21,12 @@ async function open(page, url = './') {
   await page.evaluate(() => window.windfield.ready);
 }
 
-/** The small plume of the unit tests as a playground link (`query` first): a scene whose steps cost little anywhere. */
+/**
+ * The small plume of the unit tests as a playground link (`query` first). Its steps take about
+ * 0.1 ms each in the worker here, a hundredth of what the budget of a frame 250 ms long on the
+ * page's clock allows them (0.8 of its time, over its 15 steps): what a frame takes depends on
+ * the frame's time alone, on any machine.
+ */
 const smallPlumeLink = async (query) => `./${query}#${await encodeScene(smallPlume)}`;
 
 test('in software, the default scene gets the lighter version, says so, and its frames keep coming with the steps in them', async ({ page }) => {
