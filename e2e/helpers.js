@@ -1,5 +1,5 @@
-// Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics and the
-// panel's folders.
+// Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics, the
+// panel's folders, and the page's clock held so that tests count frames instead of timing them.
 
 import { readFileSync } from 'node:fs';
 import { test as base, expect as baseExpect } from '@playwright/test';
