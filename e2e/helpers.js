@@ -135,10 +135,10 @@ export function toSegment(p, a, b) {
  * on the page's time moves only when the test moves it (`nextFrame`, `page.clock.runFor`), so
  * the frames a test counts come at the times it chose, however loaded the machine: the worker
  * keeps its own clock, and a frame's steps take what they take there. Unless `idle` is false,
- * returns once no frame of the player (as `nextFrame`'s) is in flight: a `step(0)` takes its
- * turn after the frame in flight, and no frame begins while a call waits for its turn.
+ * returns once no frame of the playground's player is in flight: a `step(0)` takes its turn
+ * after the frame in flight, and no frame begins while a call waits for its turn.
  */
-export async function holdClock(page, { idle = true, selector = null } = {}) {
+export async function holdClock(page, { idle = true } = {}) {
   for (;;) {
     // A moment just ahead of the page's clock, which runs on until it is held.
     const at = await page.evaluate(() => Date.now() + 100);
@@ -150,11 +150,10 @@ export async function holdClock(page, { idle = true, selector = null } = {}) {
     }
   }
   if (!idle) return;
-  await page.evaluate((sel) => {
+  await page.evaluate(() => {
     window.heldClockTurn = null;
-    (sel ? document.querySelector(sel) : window.windfield).step(0)
-      .then(() => { window.heldClockTurn = 'taken'; }, (e) => { window.heldClockTurn = e.message; });
-  }, selector);
+    window.windfield.step(0).then(() => { window.heldClockTurn = 'taken'; }, (e) => { window.heldClockTurn = e.message; });
+  });
   // The turn waits on the page's timers (naps of 5 ms) while a frame is in flight.
   for (;;) {
     const turn = await page.evaluate(() => window.heldClockTurn);
@@ -166,15 +165,16 @@ export async function holdClock(page, { idle = true, selector = null } = {}) {
 
 /**
  * Moves the held page clock on by `ms` (`runFor`: every animation frame and timer due on the way,
- * as a display's; `jump`: `fastForward`, one animation frame at the end, as on a machine whose
- * frames come as fast as they are drawn, so that at most one frame begins), then waits until
- * the player has drawn a frame more: the frame its loop began in that time. The player is the playground's (`window.windfield`),
- * or the `<wind-field>` that `selector` finds. Returns its stats.
+ * as a display's; `jump`: `fastForward`, as on a machine whose animation frames come as fast as
+ * the frames are drawn, one at the end of each half second at most, so that no turn of the
+ * player's loop counts more time than it does, half a second), then waits until the playground's
+ * player has drawn a frame more: the frame its loop began in that time. Returns its stats.
  */
-export async function nextFrame(page, ms, { jump = false, selector = null } = {}) {
-  const stats = () => page.evaluate((sel) => (sel ? document.querySelector(sel) : window.windfield).stats(), selector);
+export async function nextFrame(page, ms, { jump = false } = {}) {
+  const stats = () => page.evaluate(() => window.windfield.stats());
   const before = (await stats()).frames;
-  await (jump ? page.clock.fastForward(ms) : page.clock.runFor(ms));
+  if (!jump) await page.clock.runFor(ms);
+  for (let left = jump ? ms : 0; left > 0; left -= 500) await page.clock.fastForward(Math.min(left, 500));
   await expect.poll(async () => (await stats()).frames).toBeGreaterThan(before);
   return stats();
 }
