@@ -69,7 +69,7 @@ test('a lazy player 5,000 px below the fold fetches only the loader until scroll
   expect(errors).toEqual([]);
 });
 
-test('off-screen players wait; players share one import of the player code', { tag: '@timing' }, async ({ page }) => {
+test('off-screen players wait; players share one import of the player code', async ({ page }) => {
   const errors = collectErrors(page);
   const fetched = recordCode(page);
   await bare(page, 'two', `<wind-field id="near" preset="default" autoplay style="width: 320px"></wind-field>

@@ -25,10 +25,7 @@ test('the slice changes as time runs', async ({ page }) => {
   const grab = () => page.evaluate(() => document.querySelector('#canvas').toDataURL());
   const before = await grab();
   await page.evaluate(() => window.windfield.play());
-  await page.waitForTimeout(1500);
-  await page.evaluate(() => window.windfield.pause());
-  await page.waitForTimeout(200);
-  expect(await grab()).not.toEqual(before);
+  await expect.poll(grab).not.toEqual(before);
 });
 
 test('the field in the page is the WASM synthesis, sampled exactly at nodes', async ({ page }) => {

@@ -1,5 +1,5 @@
-// Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics and the
-// panel's folders.
+// Shared e2e helpers: the test fixture, console-error capture, canvas pixel statistics, the
+// panel's folders, and the page's clock held so that tests count frames instead of timing them.
 
 import { readFileSync } from 'node:fs';
 import { test as base, expect as baseExpect } from '@playwright/test';
@@ -127,4 +127,54 @@ export function toSegment(p, a, b) {
   const ab = b.map((v, i) => v - a[i]);
   const s = Math.min(Math.max(p.reduce((sum, v, i) => sum + (v - a[i]) * ab[i], 0) / ab.reduce((sum, v) => sum + v * v, 0), 0), 1);
   return Math.hypot(...p.map((v, i) => v - (a[i] + s * ab[i])));
+}
+
+/**
+ * Holds the page's clock still: Playwright's (`page.clock.install()` before the page loads),
+ * which stands in for `performance.now`, `Date`, the timers and the animation frames. From then
+ * on the page's time moves only when the test moves it (`nextFrame`, `page.clock.runFor`), so
+ * the frames a test counts come at the times it chose, however loaded the machine: the worker
+ * keeps its own clock, and a frame's steps take what they take there. Unless `idle` is false,
+ * returns once no frame of the playground's player is in flight: a `step(0)` takes its turn
+ * after the frame in flight, and no frame begins while a call waits for its turn.
+ */
+export async function holdClock(page, { idle = true } = {}) {
+  for (;;) {
+    // A moment just ahead of the page's clock, which runs on until it is held.
+    const at = await page.evaluate(() => Date.now() + 100);
+    try {
+      await page.clock.pauseAt(at);
+      break;
+    } catch (e) {
+      if (!/past/.test(e.message)) throw e;
+    }
+  }
+  if (!idle) return;
+  await page.evaluate(() => {
+    window.heldClockTurn = null;
+    window.windfield.step(0).then(() => { window.heldClockTurn = 'taken'; }, (e) => { window.heldClockTurn = e.message; });
+  });
+  // The turn waits on the page's timers (naps of 5 ms) while a frame is in flight.
+  for (;;) {
+    const turn = await page.evaluate(() => window.heldClockTurn);
+    if (turn === 'taken') return;
+    if (turn !== null) throw new Error(`holdClock: step(0) failed: ${turn}`);
+    await page.clock.runFor(5);
+  }
+}
+
+/**
+ * Moves the held page clock on by `ms` (`runFor`: every animation frame and timer due on the way,
+ * as a display's; `jump`: `fastForward`, as on a machine whose animation frames come as fast as
+ * the frames are drawn, one at the end of each half second at most, so that no turn of the
+ * player's loop counts more time than it does, half a second), then waits until the playground's
+ * player has drawn a frame more: the frame its loop began in that time. Returns its stats.
+ */
+export async function nextFrame(page, ms, { jump = false } = {}) {
+  const stats = () => page.evaluate(() => window.windfield.stats());
+  const before = (await stats()).frames;
+  if (!jump) await page.clock.runFor(ms);
+  for (let left = jump ? ms : 0; left > 0; left -= 500) await page.clock.fastForward(Math.min(left, 500));
+  await expect.poll(async () => (await stats()).frames).toBeGreaterThan(before);
+  return stats();
 }

@@ -1,6 +1,9 @@
 // Playwright: Debian's chromium (never a downloaded browser) with WebGL2 through SwiftShader,
-// against the built site (dist/) served by `vite preview`, one page at a time. The tests tagged
-// @timing time the page (frame rates, delays, deadlines): `--grep @timing` picks them out.
+// against the built site (dist/) served by `vite preview`, one page at a time. No test times the
+// page: a test that needs the page's time runs it on Playwright's clock (`holdClock` and
+// `nextFrame` in helpers.js), and `npm run bench` measures the frame rates and delays
+// (scripts/bench-browser.mjs; their targets in docs/BENCHMARKS.md). The timeouts here guard
+// against hangs only.
 import { defineConfig } from '@playwright/test';
 
 const chromium = process.env.CHROMIUM_PATH || '/usr/bin/chromium';

@@ -2,12 +2,15 @@
 // navigation to first frame; the worker's step, packing and frame size at 100,000 and 1,000,000
 // blobs against one GPU step of the same gas and its sorting by σ class; the real-time view's
 // frame at 10,000, 100,000 and 1,000,000 blobs of one plume (640×360) against the points view's,
-// and at 1,000,000 the frame of the GPU-stepped gas against the worker's. SwiftShader runs shaders on the CPU: compare the ratios, not the
-// times. Prints {name, value, unit} objects.
+// and at 1,000,000 the frame of the GPU-stepped gas against the worker's; then the lighter
+// version a visitor gets in software (`benchLighter`) and the pace the page keeps in real time,
+// whose behaviour the end-to-end tests check on Playwright's clock (`benchPace`). SwiftShader
+// runs shaders on the CPU: compare the ratios, not the times. Prints {name, value, unit} objects.
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
 import { plumeSpheres } from './plume-spheres.js';
 import { root, withSite } from './site.mjs';
+import { encodeScene } from '../web/src/state/url-codec.js';
 
 /**
  * Gzipped size (KiB) of the files under `dir` whose names match `pattern`, less the folders
@@ -154,6 +157,7 @@ export async function benchBrowser() {
     emit('points_frame_640x360_1m_over_100k', points[1000] / points[100], 'ratio');
   });
   for (const r of await benchLighter()) results.push(r);
+  for (const r of await benchPace()) results.push(r);
   return results;
 }
 
@@ -182,16 +186,23 @@ export async function benchLighter() {
     const delays = (await page.evaluate(() => window.pointerDelays)).sort((x, y) => x - y);
     emit('light_pointer_delay_median_ms', delays[Math.floor(delays.length / 2)], 'ms');
     emit('light_pointer_delay_most_ms', delays.at(-1), 'ms');
+    let slowest = 0;
     for (const { name } of presets) {
+      const { seed } = JSON.parse(readFileSync(`${root}public/scenes/${name}.json`, 'utf8'));
       const before = await page.evaluate(() => window.windfield.stats().frames);
       const t0 = Date.now();
       await page.locator(`#picker [data-preset="${name}"]`).click();
-      await page.waitForFunction(({ frames, preset }) => {
+      // The first frame with the new scene's own gas (its seed: not the scene before's).
+      await page.waitForFunction(({ frames, preset, seed }) => {
         const s = window.windfield.stats();
-        return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset) && s.frames > frames && s.blobs > 0;
-      }, { frames: before, preset: name }, { timeout: 120_000, polling: 50 });
-      emit(`light_click_to_gas_${name}_ms`, Date.now() - t0, 'ms');
+        return new URLSearchParams(location.search).get('preset') === (preset === 'default' ? null : preset)
+          && window.windfield.getScene()?.seed === seed && s.frames > frames && s.blobs > 0;
+      }, { frames: before, preset: name, seed }, { timeout: 120_000, polling: 50 });
+      const ms = Date.now() - t0;
+      slowest = Math.max(slowest, ms);
+      emit(`light_click_to_gas_${name}_ms`, ms, 'ms');
     }
+    emit('preset_first_gas_ms_max', slowest, 'ms');
     for (const { name } of presets) {
       await open(`?preset=${name}`);
       await page.evaluate(() => window.windfield.ready);
@@ -204,5 +215,105 @@ export async function benchLighter() {
       emit(`light_simulated_${name}`, (b.time - a.time) / seconds, 's/s');
     }
   }, { lighter: true });
+  return results;
+}
+
+/** A second tab in `page`'s browser that keeps one core busy (a heavy page beside the playground). */
+async function busyTab(page) {
+  const busy = await page.context().browser().newPage();
+  await busy.setContent(`<script>
+    (function spin() {
+      const end = performance.now() + 45;
+      while (performance.now() < end) Math.sqrt(Math.random());
+      setTimeout(spin, 5);
+    })();
+  </script>`);
+  return busy;
+}
+
+/**
+ * The pace the page keeps in real time, at the playground's size in the end-to-end tests (900 ×
+ * 580), whose behaviour those tests check on Playwright's clock: the lighter version beside a
+ * busy second tab (frames and simulated seconds a second over the 3 s that end 10 s after the
+ * load began); the status line at a cap of 0.2 frames a second (11 s after the load); in the
+ * full version, the status line's frames a second over the frames counted in its 5 s; the time
+ * from a player's removal to the last of its pending calls rejected; and the page's timers at a
+ * 1 × 1 window (the most a 100 ms timeout came late, of 10). Prints {name, value, unit} objects.
+ */
+export async function benchPace() {
+  const results = [];
+  const emit = (name, value, unit) => results.push({ name, value: Math.round(value * 1000) / 1000, unit });
+  const size = { width: 900, height: 580 };
+  await withSite('', async (page, open) => {
+    await page.setViewportSize(size);
+    const busy = await busyTab(page);
+    const loadedAt = Date.now();
+    await open('');
+    await page.evaluate(() => window.windfield.ready);
+    await page.waitForTimeout(Math.max(0, loadedAt + 7000 - Date.now()));
+    const a = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+    await page.waitForTimeout(3000);
+    const b = await page.evaluate(() => ({ ...window.windfield.stats(), now: performance.now() }));
+    await busy.close();
+    const seconds = (b.now - a.now) / 1000;
+    emit('lighter_fps_busy_tab', (b.frames - a.frames) / seconds, 'frames/s');
+    emit('lighter_simulated_per_second_busy_tab', (b.time - a.time) / seconds, 's/s');
+    await open('?fps=0.2');
+    await page.evaluate(() => window.windfield.ready);
+    await page.waitForTimeout(11_000);
+    emit('status_fps_at_cap_0_2', await page.evaluate(() => window.windfield.stats().fps), 'frames/s');
+  }, { lighter: true });
+  await withSite('?view=points', async (page, open) => {
+    await page.setViewportSize(size);
+    await page.evaluate(() => window.windfield.ready);
+    const agree = await page.evaluate(async () => {
+      const w = window.windfield;
+      w.play();
+      await new Promise((r) => setTimeout(r, 1000));
+      const a = w.stats();
+      const t0 = performance.now();
+      await new Promise((r) => setTimeout(r, 5000));
+      const b = w.stats();
+      return { counted: (b.frames - a.frames) / ((performance.now() - t0) / 1000), reported: b.fps };
+    });
+    emit('status_fps_over_counted', agree.reported / agree.counted, 'ratio');
+
+    const smallPlume = readFileSync(`${root}tests/fixtures/small-plume.json`, 'utf8');
+    await page.route('**/tiny.json', (route) => route.fulfill({ contentType: 'application/json', body: smallPlume }));
+    await page.route('**/mounts.html', (route) => route.fulfill({
+      contentType: 'text/html',
+      body: '<!doctype html><html lang="en"><meta charset="utf-8"><title>mounts</title><script type="module" src="./embed.js"></script><body></body></html>',
+    }));
+    await page.goto(new URL('mounts.html', page.url()).href);
+    await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
+    const abortMs = await page.evaluate(async () => {
+      const el = document.createElement('wind-field');
+      for (const [k, v] of Object.entries({ loading: 'eager', view: 'points', src: './tiny.json', 'poster-time': '0' })) el.setAttribute(k, v);
+      document.body.append(el);
+      await el.ready;
+      el.pause();
+      const calls = [el.step(300_000), el.setScene(el.getScene()), el.editScene(el.getScene()), el.setStepper('cpu')];
+      await new Promise((r) => setTimeout(r, 50));
+      const removed = performance.now();
+      el.remove();
+      const settled = await Promise.all(calls.map((p) => p.then(() => performance.now(), () => performance.now())));
+      return Math.max(...settled) - removed;
+    });
+    emit('removed_player_abort_ms', abortMs, 'ms');
+
+    await open(`?view=raymarch#${await encodeScene(JSON.parse(smallPlume))}`);
+    await page.evaluate(() => window.windfield.ready);
+    await page.setViewportSize({ width: 1, height: 1 });
+    const lags = await page.evaluate(async () => {
+      const out = [];
+      for (let i = 0; i < 10; i++) {
+        const t0 = performance.now();
+        await new Promise((r) => setTimeout(r, 100));
+        out.push(performance.now() - t0 - 100);
+      }
+      return out;
+    });
+    emit('tiny_window_timer_lag_ms_max', Math.max(...lags), 'ms');
+  });
   return results;
 }

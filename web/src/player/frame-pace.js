@@ -103,12 +103,6 @@ export class FramePace {
     return this.resolution.observe(end, this.#pace);
   }
 
-  /** Forgets the frames counted so far (a new scene, or play after a pause). */
-  restart() {
-    this.#times = [];
-    this.#since = null;
-  }
-
   /**
    * `stats().fps` at `now` (ms): the frames begun in the last five seconds over the time their
    * intervals span, and the open one since the last frame beyond `LATE` intervals. With a
