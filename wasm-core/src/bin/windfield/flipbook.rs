@@ -4,7 +4,7 @@
 
 use super::atomic::{write_together, Output};
 use super::failure::Failure;
-use super::formats::image_format;
+use super::formats::{image_format, IMAGES};
 use super::frames::FrameRange;
 use super::input::read_scene;
 use super::summary::wall;
@@ -105,6 +105,7 @@ pub fn run(args: FlipbookArgs) -> Result<(), Failure> {
         .ok_or_else(|| Failure::Input("--out: must name a file".into()))?;
     let format = image_format(Path::new(&name))?;
     let scene = read_scene(&args.scene)?;
+    IMAGES.check(Path::new(&name))?;
     let period = scene.field.time_period;
     let bad = |e: ParamError| Failure::Input(format!("{}: {e}", args.scene.display()));
     let job = FlipbookJob::new(scene, None, spec, format, None, &FLAGS).map_err(bad)?;

@@ -3,6 +3,10 @@
 //! name of another (PNG under `.jpg`, OpenVDB under `.txt`). A name without an extension takes
 //! the command's own format; so does a frame pattern whose last dot comes before its frame
 //! number (`seq/frame.%03d`).
+//!
+//! The extension of another image format (`.jpg`, …) is refused with the flags
+//! ([`image_format`]); any other extension a command does not write, once its input is read and
+//! before the work starts ([`Writes::check`]), so that a missing or bad input is told first.
 
 use super::failure::Failure;
 use std::path::Path;
@@ -42,13 +46,18 @@ impl Writes {
     /// Refuses an `out` whose extension names a format other than these.
     pub fn check(&self, out: &Path) -> Result<(), Failure> {
         match extension(out) {
-            Some(e) if !self.extensions.contains(&e.as_str()) => Err(Failure::Input(format!(
-                "--out: windfield writes {}, not .{e} (name the file {})",
-                self.formats,
-                self.names()
-            ))),
+            Some(e) if !self.extensions.contains(&e.as_str()) => Err(self.refusal(&e)),
             _ => Ok(()),
         }
+    }
+
+    /// The refusal of an `--out` ending in `.extension`.
+    fn refusal(&self, extension: &str) -> Failure {
+        Failure::Input(format!(
+            "--out: windfield writes {}, not .{extension} (name the file {})",
+            self.formats,
+            self.names()
+        ))
     }
 
     /// The extensions as a person lists them: `.png or .exr`, `.npy, .vdb or .rgb32f`.
@@ -70,11 +79,20 @@ pub fn extension(out: &Path) -> Option<String> {
         .filter(|e| !e.contains('%'))
 }
 
-/// The image format an `--out` names: `.exr` OpenEXR, `.png` or no extension PNG; any other
-/// extension (`.jpg`, `.txt`, …) is refused.
+/// Extensions of image formats windfield does not write: an `--out` naming one is refused
+/// with the flags, rather than given PNG bytes under that name.
+const OTHER_IMAGE_FORMATS: [&str; 10] = [
+    "jpg", "jpeg", "webp", "gif", "bmp", "tif", "tiff", "avif", "heic", "tga",
+];
+
+/// The image format an `--out` names: `.exr` OpenEXR, anything else PNG, but another image
+/// format's extension (`.jpg`, …) is an error; [`IMAGES`] refuses the rest once the input is
+/// read.
 pub fn image_format(out: &Path) -> Result<StillFormat, Failure> {
-    IMAGES.check(out)?;
-    Ok(StillFormat::of_name(&out.to_string_lossy()))
+    match extension(out) {
+        Some(e) if OTHER_IMAGE_FORMATS.contains(&e.as_str()) => Err(IMAGES.refusal(&e)),
+        _ => Ok(StillFormat::of_name(&out.to_string_lossy())),
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! `render.time`), or a blob list as given, the moment it shows told by `--time`.
 
 use super::failure::Failure;
-use super::input::{read_input, Input};
+use super::input::Input;
 use std::path::Path;
 use windfield::error::number;
 use windfield::gas::blob_list::{Background, BlobList};
@@ -47,18 +47,19 @@ pub fn simulated(
     Ok(sim)
 }
 
-/// The blob list `input` shows and, for a scene, the time it was simulated to: a scene at
-/// `seconds` (default its `render.time`), or a blob list at `time`; `what` a scene makes
-/// (`still`, `volume`) names it in the refusal of `--time`. With `transparent` the list's
-/// background is `transparent`.
+/// The blob list `input` (read from `path`) shows and, for a scene, the time it was simulated
+/// to: a scene at `seconds` (default its `render.time`), or a blob list at `time`; `what` a
+/// scene makes (`still`, `volume`) names it in the refusal of `--time`. With `transparent` the
+/// list's background is `transparent`.
 pub fn blob_list_at(
-    input: &Path,
+    input: Input,
+    path: &Path,
     seconds: Option<f64>,
     time: Option<f64>,
     what: &str,
     transparent: bool,
 ) -> Result<(BlobList, Option<f64>), Failure> {
-    match read_input(input)? {
+    match input {
         Input::Scene(_) if time.is_some() => Err(Failure::Input(format!(
             "--time: applies to blob lists; a scene's {what} records the time it is simulated to (--seconds)"
         ))),
@@ -67,7 +68,7 @@ pub fn blob_list_at(
                 scene.render.background = Background::Transparent;
             }
             let seconds = seconds.unwrap_or(scene.render.still_time());
-            let bad = |e: ParamError| Failure::Input(format!("{}: {e}", input.display()));
+            let bad = |e: ParamError| Failure::Input(format!("{}: {e}", path.display()));
             let sim = simulated(*scene, seconds, bad)?;
             Ok((sim.blob_list(), Some(sim.time())))
         }

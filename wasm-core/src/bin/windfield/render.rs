@@ -4,7 +4,7 @@
 
 use super::atomic::write_atomically;
 use super::failure::Failure;
-use super::formats::image_format;
+use super::formats::{image_format, IMAGES};
 use super::input::{read_input, Input};
 use super::moment::{blob_list_at, check_seconds};
 use super::sequence::{Frame, Sequence, SequenceArgs, SequenceWords};
@@ -87,7 +87,9 @@ fn render_sequence(args: &RenderArgs, frames: &str, start: Instant) -> Result<()
     };
     let format = image_format(out)?;
     let job = Sequence::parse(frames, &args.sequence, out, Frame::Image { size, format })?;
-    match read_input(&args.input)? {
+    let input = read_input(&args.input)?;
+    IMAGES.check(out)?;
+    match input {
         Input::Scene(mut scene) => {
             if args.alpha {
                 scene.render.background = Background::Transparent;
@@ -110,16 +112,19 @@ pub fn run(args: RenderArgs) -> Result<(), Failure> {
         pixels("--width", args.width)?,
         pixels("--height", args.height)?,
     );
-    if let Some(seconds) = args.sequence.seconds {
-        check_seconds(seconds)?;
-    }
     // One still without --out: the input's name with .png, in the current folder.
     let out = args.out.clone().unwrap_or_else(|| {
         let stem = args.input.file_stem().unwrap_or_default();
         PathBuf::from(stem).with_extension("png")
     });
     let format = image_format(&out)?;
+    if let Some(seconds) = args.sequence.seconds {
+        check_seconds(seconds)?;
+    }
+    let input = read_input(&args.input)?;
+    IMAGES.check(&out)?;
     let (list, time) = blob_list_at(
+        input,
         &args.input,
         args.sequence.seconds,
         args.time,

@@ -28,8 +28,8 @@ pub struct SimulateArgs {
 pub fn run(args: SimulateArgs) -> Result<(), Failure> {
     let start = Instant::now();
     check_seconds(args.seconds)?;
-    BLOB_LISTS.check(&args.out)?;
     let scene = read_scene(&args.scene)?;
+    BLOB_LISTS.check(&args.out)?;
     let sim = simulated(scene, args.seconds, |e| Failure::Input(e.to_string()))?;
     let list = sim.blob_list();
     let text = serde_json::to_string(&list).expect("blob lists serialise");

@@ -60,14 +60,12 @@ pub fn run(args: VolumeArgs) -> Result<(), Failure> {
             args.voxel
         )));
     }
-    if let Some(seconds) = args.sequence.seconds {
-        check_seconds(seconds)?;
-    }
-    VOLUMES.check(&args.out)?;
     if let Some(frames) = &args.sequence.frames {
         let voxel = args.voxel;
         let job = Sequence::parse(frames, &args.sequence, &args.out, Frame::Volume { voxel })?;
-        return match read_input(&args.input)? {
+        let given = read_input(&args.input)?;
+        VOLUMES.check(&args.out)?;
+        return match given {
             Input::Scene(scene) => job.run(*scene, &args.input, start),
             Input::List(_) => Err(Failure::Input(format!(
                 "--frames: needs a scene to simulate; {} is a blob list",
@@ -75,8 +73,20 @@ pub fn run(args: VolumeArgs) -> Result<(), Failure> {
             ))),
         };
     }
+    if let Some(seconds) = args.sequence.seconds {
+        check_seconds(seconds)?;
+    }
     let path = &args.input;
-    let (list, time) = blob_list_at(path, args.sequence.seconds, args.time, "volume", false)?;
+    let given = read_input(path)?;
+    VOLUMES.check(&args.out)?;
+    let (list, time) = blob_list_at(
+        given,
+        path,
+        args.sequence.seconds,
+        args.time,
+        "volume",
+        false,
+    )?;
     let build = VolumeBuild::new(&list, args.voxel, "--voxel").map_err(input)?;
     let volume: GasVolume = build.finish();
     let bytes = volume.to_vdb(time);
