@@ -4,7 +4,8 @@
 //! budgets that refuse a hostile scene before it allocates (under an address-space limit, where
 //! an allocation failure would abort), scene files bounded by size and by list length as they
 //! are read, `.npy` files refused by their declared lengths before they are read, no silent NaN,
-//! a field and its parameters written together, and sequences whose shards never share a
+//! a field and its parameters written together, an `--out` naming a format its command does
+//! not write refused before the work, and sequences whose shards never share a
 //! temporary name, whose manifests keep two runs' frames apart whatever the pattern's spelling
 //! (claimed under a folder lock, so two runs started at once never both pass), and whose shard
 //! arithmetic does not wrap.

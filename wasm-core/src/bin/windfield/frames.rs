@@ -1,6 +1,6 @@
 //! How the frames of a sequence are numbered and named (docs/SEQUENCES.md): the range `A..B`
 //! of `--frames`, the pattern of `--out` with its one `%0Nd`, the shard `I/N` of `--shard`,
-//! and the file names a pattern gives in its folder, which manifests claim ([`super::claim`]).
+//! and the file names a pattern gives in its folder (what a manifest claims: `claim`).
 
 use std::path::{Path, PathBuf};
 

@@ -13,11 +13,11 @@
 //! flag or the JSON path and what is allowed (exit status 2; a failed read or write, a folder
 //! given as an input file included, 1), and begins `windfield: error:`, the argument parser's
 //! too (`messages`). An `--out` whose extension names a format the command does not write is
-//! refused (`formats`). On
-//! success `simulate` and `render` end with one line on stderr: what was written, the blobs,
-//! the simulated time and the wall time (`wrote still.png (640×480): 41,203 blobs at t =
-//! 3.00 s, 2.4 s`). Numeric flags take negative numbers as values (`--seconds -1`), so that
-//! the range check, not the argument parser, answers them.
+//! refused before the work starts (`formats`). On success `simulate` and `render` end with one
+//! line on stderr: what was written, the blobs, the simulated time and the wall time (`wrote
+//! still.png (640×480): 41,203 blobs at t = 3.00 s, 2.4 s`). Numeric flags take negative
+//! numbers as values (`--seconds -1`), so that the range check, not the argument parser,
+//! answers them.
 //!
 //! This file holds the grammar of the subcommands and hands each to its own file; what they
 //! share: `failure` (exit statuses), `atomic` (every write), `input` (scenes and blob lists),

@@ -54,22 +54,17 @@ pub trait SequenceWords {
 
 /// The sequence flags: one moment (`--seconds`) or the frames of a sequence (`--frames` with
 /// `--fps`, and `--shard`, `--force`), each checked when the sequence is read
-/// ([`Sequence::parse`]).
+/// ([`Sequence::parse`]); `W` gives their help.
 #[derive(Args)]
 pub struct SequenceArgs<W: SequenceWords> {
-    // For a scene: seconds to simulate (default its render.time), or --frames.
     #[arg(long, conflicts_with = "frames", allow_hyphen_values = true, help = W::SECONDS)]
     pub seconds: Option<f64>,
-    // For a scene: a sequence, frames k in the half-open range A..B.
     #[arg(long, allow_hyphen_values = true, help = W::FRAMES)]
     pub frames: Option<String>,
-    // Frames per second of the sequence.
     #[arg(long, requires = "frames", allow_hyphen_values = true, help = W::FPS)]
     pub fps: Option<f64>,
-    // Only the frames with k mod N = I.
     #[arg(long, requires = "frames", allow_hyphen_values = true, help = W::SHARD)]
     pub shard: Option<String>,
-    // Complete frames again, and over another run's.
     #[arg(long, requires = "frames", help = W::FORCE)]
     pub force: bool,
     #[arg(skip)]
