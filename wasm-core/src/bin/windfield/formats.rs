@@ -14,8 +14,8 @@ use windfield::export::still::StillFormat;
 
 /// The formats a command writes, in words and by their extensions (lower case).
 pub struct Writes {
-    pub formats: &'static str,
-    pub extensions: &'static [&'static str],
+    formats: &'static str,
+    extensions: &'static [&'static str],
 }
 
 /// `render` and `flipbook`: PNG, or OpenEXR for a name ending in `.exr`.
