@@ -204,7 +204,12 @@ fn named(source: &Source) -> Vec<(usize, Option<Vec<String>>)> {
                     })
                 }
             };
-            for segments in tree(&rest[..rest.len().min(4000)]) {
+            // A `use` tree is read from at most its first 4,000 bytes (cut on a character).
+            let mut end = rest.len().min(4000);
+            while !rest.is_char_boundary(end) {
+                end -= 1;
+            }
+            for segments in tree(&rest[..end]) {
                 let target = base.as_ref().map(|b| {
                     let mut t = b.clone();
                     t.extend(segments.into_iter().filter(|s| s != "self"));

@@ -4,7 +4,8 @@
 //! budgets that refuse a hostile scene before it allocates (under an address-space limit, where
 //! an allocation failure would abort), scene files bounded by size and by list length as they
 //! are read, `.npy` files refused by their declared lengths before they are read, no silent NaN,
-//! a field and its parameters written together, and sequences whose shards never share a
+//! a field and its parameters written together, an `--out` naming a format its command does
+//! not write refused before the work, and sequences whose shards never share a
 //! temporary name, whose manifests keep two runs' frames apart whatever the pattern's spelling
 //! (claimed under a folder lock, so two runs started at once never both pass), and whose shard
 //! arithmetic does not wrap.
@@ -1234,4 +1235,119 @@ fn a_still_without_out_is_written_beside_as_the_scenes_name_and_a_sequence_needs
         message.contains("--out: a sequence needs a pattern"),
         "{message}"
     );
+}
+
+#[test]
+fn an_out_naming_a_format_its_command_does_not_write_is_refused_before_any_work() {
+    let dir = scratch("other-formats");
+    let out = |name: &str| s(&dir.join(name)).to_string();
+    let inputs = scratch("other-formats-inputs");
+    let a = tiny_scene(&inputs, "a.json", 1);
+    let [gas, gas_frames, still, frames, sheet, blobs, field, wind] = [
+        "gas.txt",
+        "vdb/gas.%04d.JSON",
+        "still.txt",
+        "f%02d.npy",
+        "sheet.vdb",
+        "blobs.png",
+        "field.txt",
+        "wind.txt",
+    ]
+    .map(out);
+    let images = "--out: windfield writes PNG or OpenEXR images";
+    let cases: Vec<(Vec<&str>, String)> = vec![
+        (
+            vec!["volume", &a, "--voxel", "0.05", "--out", &gas],
+            "--out: windfield writes OpenVDB volumes, not .txt (name the file .vdb)".into(),
+        ),
+        (
+            vec![
+                "volume",
+                &a,
+                "--frames",
+                "0..2",
+                "--fps",
+                "24",
+                "--voxel",
+                "0.05",
+                "--out",
+                &gas_frames,
+            ],
+            "--out: windfield writes OpenVDB volumes, not .json (name the file .vdb)".into(),
+        ),
+        (
+            vec!["render", &a, "--out", &still],
+            format!("{images}, not .txt (name the file .png or .exr)"),
+        ),
+        (
+            vec![
+                "render", &a, "--frames", "0..2", "--fps", "24", "--out", &frames,
+            ],
+            format!("{images}, not .npy (name the file .png or .exr)"),
+        ),
+        (
+            vec![
+                "flipbook", &a, "--frames", "0..4", "--fps", "10", "--grid", "2x2", "--tile",
+                "8x8", "--out", &sheet,
+            ],
+            format!("{images}, not .vdb (name the file .png or .exr)"),
+        ),
+        (
+            vec!["simulate", &a, "--seconds", "1", "--out", &blobs],
+            "--out: windfield writes blob lists as JSON, not .png (name the file .json)".into(),
+        ),
+        (
+            vec!["generate", "--size", "4", "--out", &field],
+            "--out: windfield writes fields as NumPy .npy and the wind as OpenVDB or RGB32F, \
+             not .txt (name the file .npy, .vdb or .rgb32f)"
+                .into(),
+        ),
+        (
+            vec![
+                "wind",
+                &a,
+                "--seconds",
+                "1",
+                "--box",
+                "0,0,0,1,1,1",
+                "--n",
+                "2,2,2",
+                "--out",
+                &wind,
+            ],
+            "--out: must end in .json, .npy or .vdb".into(),
+        ),
+    ];
+    for (args, want) in &cases {
+        let e = refused(args);
+        assert!(
+            e.starts_with(&format!("windfield: error: {want}")),
+            "{args:?}: {e}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing written"
+    );
+    // A missing input is told first (a failed read, exit 1).
+    let missing = out("missing.json");
+    let o = run(&["volume", &missing, "--voxel", "0.05", "--out", &gas]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    // The formats each command writes, and names without an extension, are written as before.
+    for (args, file) in [
+        (
+            vec!["volume", &a, "--seconds", "0.1", "--voxel", "0.05", "--out"],
+            "gas.VDB",
+        ),
+        (vec!["simulate", &a, "--seconds", "0.1", "--out"], "blobs"),
+        (
+            vec!["render", &a, "--width", "8", "--height", "6", "--out"],
+            "still",
+        ),
+    ] {
+        let path = out(file);
+        ok(&[&args[..], &[path.as_str()]].concat());
+        assert!(dir.join(file).exists(), "{file}");
+    }
 }

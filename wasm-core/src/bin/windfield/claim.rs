@@ -25,8 +25,9 @@
 //! the same host once the holder's process is gone; otherwise a run waits up to
 //! [`LOCK_WAIT`] and then stops, saying which run holds the lock.
 
-use super::sequence::{FrameRange, Pattern};
-use super::{write_atomically, Failure};
+use super::atomic::write_atomically;
+use super::failure::Failure;
+use super::frames::{FrameRange, Names};
 use serde::{Deserialize, Serialize};
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
@@ -43,61 +44,6 @@ pub const LOCK_NAME: &str = ".windfield.lock";
 
 /// How long a run waits for another run's claim to finish before it stops.
 pub const LOCK_WAIT: Duration = Duration::from_secs(60);
-
-/// Frame file names in one folder: `prefix`, the frame number zero-padded to `width` digits,
-/// `suffix` (the file-name part of a pattern).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Names {
-    pub prefix: String,
-    pub width: usize,
-    pub suffix: String,
-}
-
-impl Names {
-    /// The file name of frame `k`.
-    pub fn name(&self, k: u64) -> String {
-        format!("{}{k:0w$}{}", self.prefix, self.suffix, w = self.width)
-    }
-
-    /// The frame whose file this name is, if it is one: the name read back exactly.
-    pub fn number(&self, name: &str) -> Option<u64> {
-        let digits = name
-            .strip_prefix(&self.prefix)?
-            .strip_suffix(&self.suffix)?;
-        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-            return None;
-        }
-        let k: u64 = digits.parse().ok()?;
-        (format!("{k:0w$}", w = self.width) == digits).then_some(k)
-    }
-
-    /// The pattern spelled as `--out` takes it (`f%04d.png`, a literal `%` as `%%`).
-    pub fn spelling(&self) -> String {
-        let number = match self.width {
-            1 => "%d".to_string(),
-            w => format!("%0{w}d"),
-        };
-        let escape = |s: &str| s.replace('%', "%%");
-        format!("{}{number}{}", escape(&self.prefix), escape(&self.suffix))
-    }
-
-    /// The pattern as a name (`f%04d.png`, a `%` written once): its manifest's name without
-    /// the suffix.
-    pub fn display(&self) -> String {
-        let number = match self.width {
-            1 => "%d".to_string(),
-            w => format!("%0{w}d"),
-        };
-        format!("{}{number}{}", self.prefix, self.suffix)
-    }
-
-    /// Reads a spelling back (a manifest's `pattern`).
-    fn parse(spelling: &str) -> Option<Self> {
-        let pattern = Pattern::parse(spelling).ok()?;
-        let (folder, names) = pattern.folder_and_names();
-        (folder == Path::new(".")).then_some(names)
-    }
-}
 
 fn is_zero(v: &u32) -> bool {
     *v == 0
@@ -642,37 +588,7 @@ fn alive(pid: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_read_back_only_their_own_spelling() {
-        let padded = Names {
-            prefix: "f".into(),
-            width: 3,
-            suffix: ".png".into(),
-        };
-        let plain = Names {
-            prefix: "f".into(),
-            width: 1,
-            suffix: ".png".into(),
-        };
-        assert_eq!(padded.name(7), "f007.png");
-        assert_eq!(padded.number("f007.png"), Some(7));
-        assert_eq!(padded.number("f7.png"), None);
-        assert_eq!(padded.number("f1234.png"), Some(1234));
-        assert_eq!(plain.number("f007.png"), None);
-        assert_eq!(plain.number("f100.png"), Some(100));
-        assert_eq!(padded.number("f100.png"), Some(100));
-        for bad in ["f.png", "g007.png", "f007.jpg", "f0x7.png", "f+07.png"] {
-            assert_eq!(padded.number(bad), None, "{bad}");
-        }
-        let percent = Names {
-            prefix: "50%".into(),
-            width: 2,
-            suffix: "".into(),
-        };
-        assert_eq!(percent.spelling(), "50%%%02d");
-        assert_eq!(Names::parse(&percent.spelling()), Some(percent));
-    }
+    use crate::frames::Pattern;
 
     #[test]
     fn a_lock_is_taken_over_by_its_own_run_or_from_a_process_that_is_gone() {
@@ -722,5 +638,34 @@ mod tests {
         m.remove(&[10, 12, 24, 35]);
         assert_eq!(m.frames, vec![[11, 12], [13, 24], [30, 35], [36, 40]]);
         assert!(m.holds(13) && !m.holds(12) && !m.holds(40));
+    }
+
+    #[test]
+    fn the_manifest_lies_beside_the_frames_and_fingerprints_differ() {
+        let manifest = |p: &str| {
+            let (folder, names) = Pattern::parse(p).unwrap().folder_and_names();
+            manifest_path(&folder, &names)
+        };
+        assert_eq!(
+            manifest("seq/frame.%03d"),
+            PathBuf::from("seq/frame.%03d.windfield.json")
+        );
+        assert_eq!(
+            manifest("100%%/f%d.png"),
+            PathBuf::from("100%/f%d.png.windfield.json")
+        );
+        assert_ne!(fingerprint(b"{\"seed\": 1}"), fingerprint(b"{\"seed\": 2}"));
+        assert_eq!(fingerprint(b""), "6c62272e07bb014262b821756295c58d");
+        let (folder, names) = Pattern::parse("a/b/f%04d.png").unwrap().folder_and_names();
+        assert_eq!(
+            (folder, names.spelling()),
+            (PathBuf::from("a/b/"), "f%04d.png".into())
+        );
+        let (folder, names) = Pattern::parse("x%d").unwrap().folder_and_names();
+        assert_eq!(folder, PathBuf::from("."));
+        assert_eq!(names.name(3), "x3");
+        assert!(Pattern::parse("frames%d/f.png")
+            .unwrap_err()
+            .contains("not a folder's"));
     }
 }

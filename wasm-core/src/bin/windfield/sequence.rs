@@ -19,12 +19,21 @@
 //! any spelling of the pattern, is refused unless `--force`, so frames of two runs never mix;
 //! the claim is made under a folder lock, so two runs started at once cannot both pass
 //! ([`super::claim`]). Every argument is checked before anything is written.
+//!
+//! The flags that ask for a sequence, `--seconds` (one still instead), `--frames`, `--fps`,
+//! `--shard` and `--force`, are one set ([`SequenceArgs`]), flattened into `render` and
+//! `volume`; each command gives them its own words in `--help` ([`SequenceWords`]).
 
-use super::claim::{self, Manifest, Names};
-use super::{create_parent, grouped, wall, write_atomically, Failure};
+use super::atomic::{create_parent, write_atomically};
+use super::claim::{self, Manifest};
+use super::failure::Failure;
+use super::frames::{FrameRange, Pattern, Shard};
+use super::summary::{grouped, wall};
+use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::marker::PhantomData;
+use std::path::Path;
 use std::time::Instant;
 use windfield::export::exr::{self, ExrInfo};
 use windfield::export::still::{self, StillFormat};
@@ -33,190 +42,33 @@ use windfield::export::volume::GasVolume;
 use windfield::render::{RenderOptions, Renderer};
 use windfield::{Scene, Simulation};
 
-/// Most frames one range may hold (at 24 fps, eleven and a half hours).
-pub const MAX_FRAMES: u64 = 1_000_000;
-
-/// The frames A..B (half-open, A < B, at most [`MAX_FRAMES`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrameRange {
-    pub start: u64,
-    pub end: u64,
+/// What `--help` says of each sequence flag, in one command's words (`render` renders
+/// frames, `volume` writes them).
+pub trait SequenceWords {
+    const SECONDS: &'static str;
+    const FRAMES: &'static str;
+    const FPS: &'static str;
+    const SHARD: &'static str;
+    const FORCE: &'static str;
 }
 
-impl FrameRange {
-    /// Parses `A..B`.
-    pub fn parse(text: &str) -> Result<Self, String> {
-        let bad = |why: &str| {
-            format!("--frames: expected A..B, whole frame numbers with A < B ({why}; got {text:?})")
-        };
-        let (a, b) = text.split_once("..").ok_or_else(|| bad("no '..'"))?;
-        let number = |s: &str| {
-            s.trim()
-                .parse::<u64>()
-                .map_err(|_| bad("not a whole number"))
-        };
-        let (start, end) = (number(a)?, number(b)?);
-        if start >= end {
-            return Err(bad("the range is empty"));
-        }
-        if end - start > MAX_FRAMES {
-            return Err(bad(&format!("at most {MAX_FRAMES} frames in one range")));
-        }
-        Ok(Self { start, end })
-    }
-}
-
-/// An output pattern: a path with one `%0Nd` (or `%d`) for the frame number; `%%` is a `%`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Pattern {
-    prefix: String,
-    width: usize,
-    suffix: String,
-}
-
-impl Pattern {
-    pub fn parse(text: &str) -> Result<Self, String> {
-        let bad = |why: &str| {
-            format!("--out: a frame pattern needs exactly one %0Nd (N from 1 to 9) or %d for the frame number, as in frames/f%04d.png ({why}; got {text:?})")
-        };
-        let mut prefix = String::new();
-        let mut suffix = String::new();
-        let mut width = None;
-        let mut chars = text.chars().peekable();
-        while let Some(c) = chars.next() {
-            let out = if width.is_some() {
-                &mut suffix
-            } else {
-                &mut prefix
-            };
-            if c != '%' {
-                out.push(c);
-                continue;
-            }
-            match chars.next() {
-                Some('%') => out.push('%'),
-                Some('d') if width.is_none() => width = Some(1),
-                Some('0') if width.is_none() => {
-                    let n = chars
-                        .next()
-                        .and_then(|d| d.to_digit(10))
-                        .filter(|&d| (1..=9).contains(&d))
-                        .ok_or_else(|| bad("a width must be one digit from 1 to 9"))?;
-                    if chars.next() != Some('d') {
-                        return Err(bad("the width must be followed by d"));
-                    }
-                    width = Some(n as usize);
-                }
-                Some('d' | '0') => return Err(bad("more than one frame number")),
-                _ => return Err(bad("a % that is neither %0Nd, %d nor %%")),
-            }
-        }
-        let width = width.ok_or_else(|| bad("no frame number"))?;
-        if prefix.is_empty() && suffix.is_empty() {
-            return Err(bad("no file name around it"));
-        }
-        if suffix.contains(std::path::is_separator) {
-            return Err(bad(
-                "the frame number must be in the file's name, not a folder's",
-            ));
-        }
-        Ok(Self {
-            prefix,
-            width,
-            suffix,
-        })
-    }
-
-    /// The path of frame `k`.
-    pub fn path(&self, k: u64) -> PathBuf {
-        PathBuf::from(format!(
-            "{}{k:0w$}{}",
-            self.prefix,
-            self.suffix,
-            w = self.width
-        ))
-    }
-
-    /// The pattern as a name, its frame number written `%0Nd` (`%d`), a `%%` as `%`.
-    pub fn name(&self) -> String {
-        let number = match self.width {
-            1 => "%d".to_string(),
-            w => format!("%0{w}d"),
-        };
-        format!("{}{number}{}", self.prefix, self.suffix)
-    }
-
-    /// The folder the frames lie in (`.` for none) and their file names there.
-    pub fn folder_and_names(&self) -> (PathBuf, Names) {
-        let split = self
-            .prefix
-            .rfind(std::path::is_separator)
-            .map_or(0, |i| i + 1);
-        let folder = match &self.prefix[..split] {
-            "" => PathBuf::from("."),
-            dir => PathBuf::from(dir),
-        };
-        let names = Names {
-            prefix: self.prefix[split..].to_string(),
-            width: self.width,
-            suffix: self.suffix.clone(),
-        };
-        (folder, names)
-    }
-}
-
-/// Shard I of N: the frames with k mod N = I. Any N a 128-bit integer holds (N above 2^63,
-/// or above every frame number, included); k mod N is taken without overflow.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shard {
-    pub index: u128,
-    pub count: u128,
-}
-
-impl Shard {
-    /// Parses `I/N` with 0 ≤ I < N.
-    pub fn parse(text: &str) -> Result<Self, String> {
-        let bad = |why: &str| format!("--shard: expected I/N with 0 ≤ I < N ({why}; got {text:?})");
-        let (i, n) = text.split_once('/').ok_or_else(|| bad("no '/'"))?;
-        let number = |s: &str| {
-            s.trim()
-                .parse::<u128>()
-                .map_err(|_| bad("not a whole number below 2^128"))
-        };
-        let (index, count) = (number(i)?, number(n)?);
-        if count == 0 || index >= count {
-            return Err(bad("I must be below N"));
-        }
-        Ok(Self { index, count })
-    }
-
-    /// The whole run as one shard.
-    pub const ALL: Shard = Shard { index: 0, count: 1 };
-
-    /// This shard's frames of `range`, in order: the first k ≥ A with k mod N = I, then every
-    /// N-th, while below B.
-    pub fn frames(self, range: FrameRange) -> impl Iterator<Item = u64> {
-        let (start, end, n) = (range.start as u128, range.end as u128, self.count);
-        let r = start % n;
-        // The distance from A to the next k with k mod N = I, in [0, N).
-        let ahead = if self.index >= r {
-            self.index - r
-        } else {
-            n - (r - self.index)
-        };
-        let below_end = move |k: &u128| *k < end;
-        let first = start.checked_add(ahead).filter(below_end);
-        std::iter::successors(first, move |&k| k.checked_add(n).filter(below_end)).map(|k| k as u64)
-    }
-
-    /// " of shard I/N", or nothing for the whole run.
-    fn label(self) -> String {
-        if self == Self::ALL {
-            String::new()
-        } else {
-            format!(" of shard {}/{}", self.index, self.count)
-        }
-    }
+/// The sequence flags: one moment (`--seconds`) or the frames of a sequence (`--frames` with
+/// `--fps`, and `--shard`, `--force`), each checked when the sequence is read
+/// ([`Sequence::parse`]); `W` gives their help.
+#[derive(Args)]
+pub struct SequenceArgs<W: SequenceWords> {
+    #[arg(long, conflicts_with = "frames", allow_hyphen_values = true, help = W::SECONDS)]
+    pub seconds: Option<f64>,
+    #[arg(long, allow_hyphen_values = true, help = W::FRAMES)]
+    pub frames: Option<String>,
+    #[arg(long, requires = "frames", allow_hyphen_values = true, help = W::FPS)]
+    pub fps: Option<f64>,
+    #[arg(long, requires = "frames", allow_hyphen_values = true, help = W::SHARD)]
+    pub shard: Option<String>,
+    #[arg(long, requires = "frames", help = W::FORCE)]
+    pub force: bool,
+    #[arg(skip)]
+    words: PhantomData<W>,
 }
 
 /// The fingerprint of a sequence's scene: FNV-1a (128 bits) of the normalised scene's JSON,
@@ -232,7 +84,7 @@ pub fn scene_fingerprint(scene: &Scene, width: u32, height: u32) -> String {
 
 /// What each frame of a sequence is.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Output {
+pub enum Frame {
     /// A still of `size`, width and height (each default the scene's), PNG or OpenEXR.
     Image {
         size: [Option<u32>; 2],
@@ -249,22 +101,20 @@ pub struct Sequence {
     pub pattern: Pattern,
     pub shard: Shard,
     pub force: bool,
-    pub output: Output,
+    pub frame: Frame,
 }
 
 impl Sequence {
-    /// Checks the flags; `frames` and `out` as given.
-    pub fn parse(
+    /// Checks the sequence flags of `args` (`frames` its `--frames`) and the pattern `out`.
+    pub fn parse<W: SequenceWords>(
         frames: &str,
-        fps: Option<f64>,
+        args: &SequenceArgs<W>,
         out: &Path,
-        shard: Option<&str>,
-        force: bool,
-        output: Output,
+        frame: Frame,
     ) -> Result<Self, Failure> {
         let input = Failure::Input;
         let range = FrameRange::parse(frames).map_err(input)?;
-        let fps = fps.ok_or_else(|| {
+        let fps = args.fps.ok_or_else(|| {
             input("--fps: required with --frames (frames per second of the sequence)".into())
         })?;
         if !(fps.is_finite() && fps > 0.0 && fps <= 1e4) {
@@ -277,7 +127,9 @@ impl Sequence {
             .to_str()
             .ok_or_else(|| input("--out: the pattern must be valid UTF-8".into()))?;
         let pattern = Pattern::parse(text).map_err(input)?;
-        let shard = shard
+        let shard = args
+            .shard
+            .as_deref()
             .map(Shard::parse)
             .transpose()
             .map_err(input)?
@@ -287,8 +139,8 @@ impl Sequence {
             fps,
             pattern,
             shard,
-            force,
-            output,
+            force: args.force,
+            frame,
         })
     }
 
@@ -303,23 +155,23 @@ impl Sequence {
         sim.budgeted_steps(last)
             .map_err(|e| Failure::Input(e.to_string()))?;
         let settings = sim.render_settings();
-        let size = match self.output {
-            Output::Image {
+        let size = match self.frame {
+            Frame::Image {
                 size: [width, height],
                 ..
             } => {
                 let image = &settings.image;
                 Some((width.unwrap_or(image.width), height.unwrap_or(image.height)))
             }
-            Output::Volume { .. } => None,
+            Frame::Volume { .. } => None,
         };
         let frames: Vec<u64> = self.shard.frames(self.range).collect();
         let what = format!(
             "{} ({}; frames {}..{} at {} fps{})",
             self.pattern.name(),
-            match (size, self.output) {
+            match (size, self.frame) {
                 (Some((w, h)), _) => format!("{w}×{h}"),
-                (_, Output::Volume { voxel }) => format!("voxels of {voxel} m"),
+                (_, Frame::Volume { voxel }) => format!("voxels of {voxel} m"),
                 _ => String::new(),
             },
             self.range.start,
@@ -331,9 +183,9 @@ impl Sequence {
             eprintln!("nothing to write: no frame k of {what} has k mod N = I");
             return Ok(());
         }
-        let voxel = match self.output {
-            Output::Volume { voxel } => Some(voxel),
-            Output::Image { .. } => None,
+        let voxel = match self.frame {
+            Frame::Volume { voxel } => Some(voxel),
+            Frame::Image { .. } => None,
         };
         self.claim(&manifest_scene, size.unwrap_or((0, 0)), voxel, input)?;
         let todo: Vec<u64> = frames
@@ -369,8 +221,8 @@ impl Sequence {
             sim.run(sim.steps_for(seconds(k)) - sim.steps());
             let mut list = sim.blob_list();
             blobs = list.blobs.len();
-            let bytes = match self.output {
-                Output::Image { format, .. } => {
+            let bytes = match self.frame {
+                Frame::Image { format, .. } => {
                     if let Some((width, height)) = size {
                         list.image.width = width;
                         list.image.height = height;
@@ -387,7 +239,7 @@ impl Sequence {
                     still::encode(&image, format, list.image.encoding, &info)
                         .map_err(Failure::Io)?
                 }
-                Output::Volume { voxel } => GasVolume::of(&list, voxel, "--voxel")
+                Frame::Volume { voxel } => GasVolume::of(&list, voxel, "--voxel")
                     .map_err(|e| {
                         Failure::Input(format!("frame {k} (t = {:.4} s): {e}", sim.time()))
                     })?
@@ -469,12 +321,12 @@ impl Sequence {
     /// Whether `path` holds a completed frame: a whole still of `size` (PNG or OpenEXR), or a
     /// whole OpenVDB file.
     fn is_complete(&self, path: &Path, size: Option<(u32, u32)>) -> bool {
-        match (self.output, size) {
-            (Output::Volume { .. }, _) => {
+        match (self.frame, size) {
+            (Frame::Volume { .. }, _) => {
                 std::fs::read(path).is_ok_and(|bytes| vdb::is_complete(&bytes))
             }
             (
-                Output::Image {
+                Frame::Image {
                     format: StillFormat::Exr,
                     ..
                 },
@@ -502,143 +354,4 @@ pub fn is_complete(path: &Path, width: u32, height: u32) -> bool {
     }
     let mut buf = vec![0; reader.output_buffer_size().unwrap_or(0)];
     reader.next_frame(&mut buf).is_ok()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ranges_patterns_and_shards_parse_or_say_why_not() {
-        assert_eq!(
-            FrameRange::parse("3..10"),
-            Ok(FrameRange { start: 3, end: 10 })
-        );
-        for bad in ["10..3", "4..4", "a..b", "3-10", "-1..2", "1.5..3"] {
-            assert!(
-                FrameRange::parse(bad).unwrap_err().starts_with("--frames:"),
-                "{bad}"
-            );
-        }
-        let p = Pattern::parse("out/f%04d.png").unwrap();
-        assert_eq!(p.path(7), PathBuf::from("out/f0007.png"));
-        assert_eq!(p.path(12345), PathBuf::from("out/f12345.png"));
-        assert_eq!(
-            Pattern::parse("f%d.png").unwrap().path(42),
-            PathBuf::from("f42.png")
-        );
-        assert_eq!(
-            Pattern::parse("100%%/f%03d.png").unwrap().path(5),
-            PathBuf::from("100%/f005.png")
-        );
-        for bad in [
-            "f.png",
-            "f%04d%04d.png",
-            "f%4d.png",
-            "f%010d.png",
-            "f%s.png",
-            "%d",
-            "f%04x.png",
-            "f%",
-        ] {
-            assert!(
-                Pattern::parse(bad).unwrap_err().starts_with("--out:"),
-                "{bad}"
-            );
-        }
-        assert_eq!(Shard::parse("2/4"), Ok(Shard { index: 2, count: 4 }));
-        for bad in ["4/4", "1/0", "x/2", "2", "-1/3"] {
-            assert!(
-                Shard::parse(bad).unwrap_err().starts_with("--shard:"),
-                "{bad}"
-            );
-        }
-    }
-
-    #[test]
-    fn the_shards_of_a_range_are_its_frames_once_each() {
-        let range = FrameRange { start: 5, end: 23 };
-        let mut all: Vec<u64> = (0..4)
-            .flat_map(|i| Shard { index: i, count: 4 }.frames(range))
-            .collect();
-        for i in 0..4 {
-            assert!(Shard { index: i, count: 4 }
-                .frames(range)
-                .all(|k| k as u128 % 4 == i));
-        }
-        all.sort_unstable();
-        assert_eq!(all, (5..23).collect::<Vec<_>>());
-        assert_eq!(Shard::ALL.frames(range).count(), 18);
-    }
-
-    #[test]
-    fn shard_counts_beyond_2_to_the_63_neither_wrap_nor_skip() {
-        let max = u64::MAX as u128;
-        for (text, range, want) in [
-            // I + N overflowed 64 bits: shard 5 of 2^64 − 1 took frame 4.
-            (format!("5/{max}"), (0, 12), vec![5]),
-            (format!("{}/{max}", max - 1), (0, 12), vec![]),
-            (format!("3/{}", 1u128 << 64), (0, 12), vec![3]),
-            (format!("0/{}", (1u128 << 63) + 1), (1, 12), vec![]),
-            (
-                format!("{}/{}", u64::MAX - 1, max),
-                (u64::MAX - 3, u64::MAX),
-                vec![u64::MAX - 1],
-            ),
-            (format!("1/{}", u128::MAX), (0, 3), vec![1]),
-            (
-                "2/3".to_string(),
-                (u64::MAX - 5, u64::MAX),
-                vec![u64::MAX - 4, u64::MAX - 1],
-            ),
-        ] {
-            let shard = Shard::parse(&text).unwrap();
-            let range = FrameRange {
-                start: range.0,
-                end: range.1,
-            };
-            assert_eq!(shard.frames(range).collect::<Vec<_>>(), want, "{text}");
-        }
-        assert!(Shard::parse(&format!("0/{}", u128::MAX as f64 * 2.0)).is_err());
-    }
-
-    #[test]
-    fn a_range_holds_at_most_a_million_frames() {
-        assert!(FrameRange::parse("0..1000000").is_ok());
-        let e = FrameRange::parse("5..1000006").unwrap_err();
-        assert!(e.contains("at most 1000000 frames"), "{e}");
-        assert!(FrameRange::parse(&format!("0..{}", u64::MAX)).is_err());
-    }
-
-    #[test]
-    fn the_manifest_lies_beside_the_frames_and_fingerprints_differ() {
-        let manifest = |p: &str| {
-            let (folder, names) = Pattern::parse(p).unwrap().folder_and_names();
-            claim::manifest_path(&folder, &names)
-        };
-        assert_eq!(
-            manifest("seq/frame.%03d"),
-            PathBuf::from("seq/frame.%03d.windfield.json")
-        );
-        assert_eq!(
-            manifest("100%%/f%d.png"),
-            PathBuf::from("100%/f%d.png.windfield.json")
-        );
-        assert_ne!(
-            claim::fingerprint(b"{\"seed\": 1}"),
-            claim::fingerprint(b"{\"seed\": 2}")
-        );
-        assert_eq!(claim::fingerprint(b""), "6c62272e07bb014262b821756295c58d");
-        let (folder, names) = Pattern::parse("a/b/f%04d.png").unwrap().folder_and_names();
-        assert_eq!(
-            (folder, names.spelling()),
-            (PathBuf::from("a/b/"), "f%04d.png".into())
-        );
-        let (folder, names) = Pattern::parse("x%d").unwrap().folder_and_names();
-        assert_eq!(folder, PathBuf::from("."));
-        assert_eq!(names.name(3), "x3");
-        assert!(Pattern::parse("frames%d/f.png")
-            .unwrap_err()
-            .contains("not a folder's"));
-    }
 }

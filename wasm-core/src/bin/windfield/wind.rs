@@ -2,7 +2,11 @@
 //! make of it included, carried eddies traced back) at one time, at given points or over a box
 //! of cells, for other programs (docs/FORMATS.md, the command line).
 
-use super::{check_seconds, read_scene, read_text, wall, write_atomically, Failure};
+use super::atomic::write_atomically;
+use super::failure::Failure;
+use super::input::{read_scene, read_text};
+use super::moment::check_seconds;
+use super::summary::{grouped, wall};
 use clap::Args;
 use glam::Vec3;
 use std::io::Write;
@@ -285,7 +289,7 @@ pub fn run(args: WindArgs) -> Result<(), Failure> {
     }
     let what = match &cells {
         Some(CellBox { n: [x, y, z], .. }) => format!("{x}×{y}×{z} cells"),
-        None => format!("{} points", super::grouped(points.len())),
+        None => format!("{} points", grouped(points.len())),
     };
     eprintln!(
         "wrote {}: the wind at {what} at t = {:.2} s, {}",

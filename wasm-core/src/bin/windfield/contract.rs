@@ -1,0 +1,9 @@
+//! `windfield contract`: the JavaScript module of the constants the core shares with the
+//! page's code on stdout (`web/src/generated/contract.js`).
+
+use super::failure::Failure;
+
+pub fn run() -> Result<(), Failure> {
+    print!("{}", windfield::contract::javascript());
+    Ok(())
+}
