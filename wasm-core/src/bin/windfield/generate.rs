@@ -14,7 +14,7 @@ use windfield::error::number;
 use windfield::export::vector_grid::VectorGrid;
 use windfield::field::npy;
 use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
-use windfield::scene::limits::MAX_SECONDS;
+use windfield::scene::limits::{MAX_SECONDS, WORLD_MAPPING};
 
 #[derive(Args)]
 pub struct GenerateArgs {
@@ -176,7 +176,8 @@ fn check_wind_mapping(args: &GenerateArgs) -> Result<Option<([f64; 3], f64, f64,
         Some(text) => {
             let bad = || {
                 Failure::Input(format!(
-                    "--period: expected L or LX,LY,LZ, metres from 0.001 to 10000 (got {text:?})"
+                    "--period: expected L or LX,LY,LZ, metres from {} to {} (got {text:?})",
+                    WORLD_MAPPING.period[0], WORLD_MAPPING.period[1]
                 ))
             };
             let v: Vec<f64> = text
@@ -188,22 +189,25 @@ fn check_wind_mapping(args: &GenerateArgs) -> Result<Option<([f64; 3], f64, f64,
                 [x, y, z] => [*x, *y, *z],
                 _ => return Err(bad()),
             };
-            if !p.iter().all(|l| (0.001..=1e4).contains(l)) {
+            let [lo, hi] = WORLD_MAPPING.period;
+            if !p.iter().all(|l| (lo..=hi).contains(l)) {
                 return Err(bad());
             }
             p
         }
     };
     let time_period = args.time_period.unwrap_or(8.0);
-    if !(0.001..=1e6).contains(&time_period) {
+    let [lo, hi] = WORLD_MAPPING.time_period;
+    if !(lo..=hi).contains(&time_period) {
         return Err(Failure::Input(format!(
-            "--time-period: must be seconds from 0.001 to 1000000 (got {time_period})"
+            "--time-period: must be seconds from {lo} to {hi} (got {time_period})"
         )));
     }
     let amplitude = args.amplitude.unwrap_or(1.0);
-    if !(0.0..=1000.0).contains(&amplitude) {
+    let [lo, hi] = WORLD_MAPPING.amplitude;
+    if !(lo..=hi).contains(&amplitude) {
         return Err(Failure::Input(format!(
-            "--amplitude: must be a number from 0 to 1000 (got {amplitude})"
+            "--amplitude: must be a number from {lo} to {hi} (got {amplitude})"
         )));
     }
     let time = args.time.unwrap_or(0.0);
