@@ -54,7 +54,22 @@ struct Source {
 
 /// Every `.rs` file of the library (the command line in `bin/` is a crate of its own).
 fn sources() -> Vec<Source> {
-    fn walk(dir: &Path, module: &[String], out: &mut Vec<Source>) {
+    let out = crate_sources("src", "lib");
+    assert!(out.len() > 30, "read {} files", out.len());
+    out
+}
+
+/// Every `.rs` file of the command line's crate (`src/bin/windfield/`, its root `main.rs`).
+fn cli_sources() -> Vec<Source> {
+    let out = crate_sources("src/bin/windfield", "main");
+    assert!(out.len() > 10, "read {} files", out.len());
+    out
+}
+
+/// Every `.rs` file of the crate whose root file `root` (`lib`, `main`) lies in `dir` (below the
+/// manifest's folder), with its module path from that root; the library leaves out `bin/`.
+fn crate_sources(dir: &str, root: &str) -> Vec<Source> {
+    fn walk(dir: &Path, module: &[String], root: &str, out: &mut Vec<Source>) {
         let mut entries: Vec<_> = fs::read_dir(dir)
             .expect("src is readable")
             .map(|e| e.expect("a directory entry").path())
@@ -68,16 +83,16 @@ fn sources() -> Vec<Source> {
                     continue;
                 }
                 inner.push(name);
-                walk(&path, &inner, out);
+                walk(&path, &inner, root, out);
             } else if path.extension().is_some_and(|e| e == "rs") {
-                if !(name == "mod" || (module.is_empty() && name == "lib")) {
+                if !(name == "mod" || (module.is_empty() && name == root)) {
                     inner.push(name);
                 }
                 let text = fs::read_to_string(&path).expect("a source file");
                 let (code, depth) = code_lines(&text);
-                let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+                let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
                 out.push(Source {
-                    path: path.strip_prefix(&root).unwrap().display().to_string(),
+                    path: path.strip_prefix(&src).unwrap().display().to_string(),
                     module: inner,
                     code,
                     depth,
@@ -86,12 +101,8 @@ fn sources() -> Vec<Source> {
         }
     }
     let mut out = Vec::new();
-    walk(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
-        &[],
-        &mut out,
-    );
-    assert!(out.len() > 30, "read {} files", out.len());
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+    walk(&dir, &[], root, &mut out);
     out
 }
 
@@ -278,14 +289,23 @@ fn render_and_scene_never_see_the_wind() {
 
 #[test]
 fn no_file_imports_itself_through_others() {
-    let sources = sources();
+    no_import_cycle(&sources());
+}
+
+#[test]
+fn no_file_of_the_command_line_imports_itself_through_others() {
+    no_import_cycle(&cli_sources());
+}
+
+/// Fails on two files of one crate that import each other, or any longer cycle of imports.
+fn no_import_cycle(sources: &[Source]) {
     let files: BTreeMap<Vec<String>, String> = sources
         .iter()
         .map(|s| (s.module.clone(), s.path.clone()))
         .collect();
     // The files each file names (other than itself), in order.
     let mut imports: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
-    for source in &sources {
+    for source in sources {
         let mut to: Vec<&str> = named(source)
             .into_iter()
             .filter_map(|(_, t)| t.and_then(|t| file_of(&t, &files).map(String::as_str)))
