@@ -5,6 +5,8 @@
 //! (`windfield contract`), which the page imports instead of writing its own copies.
 //! `tests/contract.rs` fails while the shipped file differs from what the core writes now.
 
+use crate::export::flipbook::MAX_SHEET_SIDE;
+use crate::export::volume::MAX_VOXEL;
 use crate::field::lattice::{MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
 use crate::frame::gpu_steps::BLOB_FLOATS;
 use crate::frame::light_volume::{NEAR_COLUMN_STEPS, NEAR_COLUMN_VOXELS, VIEW_LIGHTS};
@@ -15,9 +17,12 @@ use crate::frame::packed::{
 use crate::frame::shadow_grid::SHADOW_GRID_HEADER;
 use crate::frame::views::SPHERE_FLOATS;
 use crate::frame::volume::{BLUR_NARROW, BLUR_REACH, DIRECT_LIMIT, MAX_BLUR_RADIUS};
+use crate::gas::simulation::MAX_STIR_RADIUS;
 use crate::render::{STEP_FRACTION, TRUNCATION};
 use crate::scene::blob_list::DEFAULT_RENDER_TIME;
-use crate::scene::limits::{MAX_IMAGE_SIDE, MAX_STEPS};
+use crate::scene::limits::{
+    MAX_ALBEDO, MAX_COORD, MAX_EMITTERS, MAX_FPS, MAX_IMAGE_SIDE, MAX_SECONDS, MAX_STEPS,
+};
 use crate::wind::solid_grid::SOLID_GRID_HEADER;
 use crate::wind::wall_set::EDGE_STEPS;
 use crate::wind::walls::{
@@ -145,6 +150,20 @@ pub fn sections() -> Vec<Section> {
         shared!(MAX_IMAGE_SIDE in "scene::limits":
             "Widest and tallest image (pixels) a still, a capture or an export may be."),
         shared!(MAX_STEPS in "scene::limits": "Most fixed steps one run may take (a step call, a recording)."),
+        shared!(MAX_SECONDS in "scene::limits":
+            "Longest simulated time (s) a scene's render.time or a blob list's time may give."),
+        shared!(MAX_COORD in "scene::limits": "Largest coordinate magnitude (m) a scene or a blob list may hold."),
+        shared!(MAX_EMITTERS in "scene::limits": "Most emitters a scene may hold."),
+        shared!(MAX_ALBEDO in "scene::limits":
+            "Largest albedo of a channel (the medium's, an emitter's, a blob's), from 0."),
+    ];
+    let browser_api = vec![
+        shared!(MAX_FPS in "scene::limits":
+            "Highest frame rate (frames a second) a sequence of frames or a flipbook may be asked for, greater than 0."),
+        shared!(MAX_SHEET_SIDE in "export::flipbook": "Most pixels along either side of a flipbook's sheet."),
+        shared!(MAX_VOXEL in "export::volume": "Largest voxel side (m) of a volume export, greater than 0."),
+        shared!(MAX_STIR_RADIUS in "gas::simulation":
+            "Widest reach (m) of a stir (the pointer's wind), greater than 0."),
     ];
     vec![
         Section {
@@ -166,6 +185,10 @@ pub fn sections() -> Vec<Section> {
         Section {
             heading: "The scene format",
             constants: scene_format,
+        },
+        Section {
+            heading: "Exports and stirs (the browser API's arguments the core checks)",
+            constants: browser_api,
         },
     ]
 }

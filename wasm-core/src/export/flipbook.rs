@@ -24,7 +24,7 @@ use crate::field::TurbulentField;
 use crate::gas::Simulation;
 use crate::render::{encode_png_rgba, BandedRender, LinearImage, RenderOptions, Renderer};
 use crate::scene::blob_list::{Background, Camera, Encoding};
-use crate::scene::limits::MAX_IMAGE_SIDE;
+use crate::scene::limits::{MAX_FPS, MAX_IMAGE_SIDE};
 use crate::scene::Scene;
 use half::f16;
 use serde::Serialize;
@@ -116,11 +116,11 @@ impl FlipbookSpec {
                 ),
             ));
         }
-        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 1e4) {
+        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= MAX_FPS) {
             return Err(ParamError::new(
                 names.fps,
                 format!(
-                    "must be a number greater than 0 and at most 10000 (got {})",
+                    "must be a number greater than 0 and at most {MAX_FPS} (got {})",
                     self.fps
                 ),
             ));

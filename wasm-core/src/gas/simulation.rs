@@ -7,6 +7,7 @@ use crate::gas::blob_gas::Gas;
 use crate::gas::blobs::{Blob, Blobs};
 use crate::gas::slots::SlotTable;
 use crate::scene::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
+use crate::scene::limits::MAX_COORD;
 use crate::scene::scene_format::{Primitive, Scene};
 use crate::scene::shapes::Shape;
 use crate::wind::wall_set::WallSet;
@@ -15,6 +16,11 @@ use crate::wind::{Wind, WindFrame};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::sync::Arc;
+
+/// Widest reach (m) of a stir ([`Simulation::stir_at`]'s radius, greater than 0).
+pub const MAX_STIR_RADIUS: f32 = 1e3;
+/// Fastest wind (m/s) a stir may give, along each axis.
+pub const MAX_STIR_VELOCITY: f32 = 1e3;
 
 #[derive(Debug, Clone)]
 pub struct Simulation {
@@ -169,8 +175,9 @@ impl Simulation {
 
     /// Stirs the gas from the next step on with a wind of `velocity` (m/s) at `position` (m),
     /// falling off as exp(−distance/`radius`) (a uniform primitive with decay, paper Eq. 3's
-    /// u_l), until the next stir; `radius` 0 stops it. Refused unless `radius` is in (0, 1000]
-    /// m (or 0), the velocity's components at most 1000 m/s and the position's 10⁶ m.
+    /// u_l), until the next stir; `radius` 0 stops it. Refused unless `radius` is 0 or greater
+    /// than 0 and at most [`MAX_STIR_RADIUS`] m, the velocity's components at most
+    /// [`MAX_STIR_VELOCITY`] m/s and the position's [`MAX_COORD`] m.
     pub fn stir_at(
         &mut self,
         position: [f32; 3],
@@ -191,15 +198,15 @@ impl Simulation {
                 ))
             }
         };
-        if !(radius.is_finite() && radius > 0.0 && radius <= 1e3) {
+        if !(radius.is_finite() && radius > 0.0 && radius <= MAX_STIR_RADIUS) {
             return Err(ParamError::new(
                 "stir",
-                "radius must be between 0 and 1000 m",
+                format!("radius must be between 0 and {MAX_STIR_RADIUS} m"),
             ));
         }
         self.stir(Some(Primitive::Uniform {
-            velocity: vector(velocity, "velocity", 1e3)?,
-            position: vector(position, "position", 1e6)?,
+            velocity: vector(velocity, "velocity", MAX_STIR_VELOCITY)?,
+            position: vector(position, "position", MAX_COORD as f32)?,
             decay: Some(radius),
             enabled: true,
         }));

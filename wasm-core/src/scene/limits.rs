@@ -75,6 +75,9 @@ pub const MAX_PATH_KEYS: usize = 10_000;
 pub const MAX_SECONDS: f64 = 1e6;
 /// Most fixed steps one run may take (docs/FORMATS.md, the command line): more is refused before it starts.
 pub const MAX_STEPS: u64 = 1_000_000;
+/// Highest frame rate (frames a second) a sequence of frames or a flipbook may be asked for;
+/// it is greater than 0.
+pub const MAX_FPS: f64 = 1e4;
 
 /// Largest image side in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 8192;

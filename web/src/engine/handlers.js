@@ -8,7 +8,7 @@
 // (`frame::packed` in the core), their description and the moving spheres or the shadow grid;
 // nothing per blob is an object or a string. Scenes cross as JSON text both ways.
 
-import { BLOBS_PER_ROW, SHADOW_GRID_HEADER, WORDS_PER_BLOB } from '../generated/contract.js';
+import { BLOBS_PER_ROW, MAX_COORD, MAX_STIR_RADIUS, SHADOW_GRID_HEADER, WORDS_PER_BLOB } from '../generated/contract.js';
 import { Session } from './session.js';
 import { binBlobs, padRows } from './tiles.js';
 
@@ -191,14 +191,16 @@ export function createHandlers(core, progress, memory = () => 0) {
     },
     stir: ({ position, displacement, radius }) => {
       // The pointer moved by `displacement` (m) to `position` with a reach of `radius` (m): the
-      // motion adds up until steps use it.
+      // motion adds up until steps use it. The bounds are the core's stir's, in its words.
       const vector = (v, name) => {
-        if (!(Array.isArray(v) && v.length === 3 && v.every((c) => Number.isFinite(c) && Math.abs(c) <= 1e6))) {
-          throw new Error(`stir: ${name} must be 3 finite numbers of at most 1e6`);
+        if (!(Array.isArray(v) && v.length === 3 && v.every((c) => Number.isFinite(c) && Math.abs(c) <= MAX_COORD))) {
+          throw new Error(`stir: ${name} must be 3 finite numbers of at most ${MAX_COORD}`);
         }
         return v;
       };
-      if (!(Number.isFinite(radius) && radius > 0 && radius <= 1e3)) throw new Error(`stir: radius must be between 0 and 1000 m (got ${radius})`);
+      if (!(Number.isFinite(radius) && radius > 0 && radius <= MAX_STIR_RADIUS)) {
+        throw new Error(`stir: radius must be between 0 and ${MAX_STIR_RADIUS} m (got ${radius})`);
+      }
       sim();
       const d = vector(displacement, 'displacement');
       const end = vector(position, 'position');

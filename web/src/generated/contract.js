@@ -136,3 +136,29 @@ export const MAX_IMAGE_SIDE = 8192;
 
 /** Most fixed steps one run may take (a step call, a recording). (`scene::limits::MAX_STEPS`) */
 export const MAX_STEPS = 1000000;
+
+/** Longest simulated time (s) a scene's render.time or a blob list's time may give. (`scene::limits::MAX_SECONDS`) */
+export const MAX_SECONDS = 1000000;
+
+/** Largest coordinate magnitude (m) a scene or a blob list may hold. (`scene::limits::MAX_COORD`) */
+export const MAX_COORD = 1000000;
+
+/** Most emitters a scene may hold. (`scene::limits::MAX_EMITTERS`) */
+export const MAX_EMITTERS = 256;
+
+/** Largest albedo of a channel (the medium's, an emitter's, a blob's), from 0. (`scene::limits::MAX_ALBEDO`) */
+export const MAX_ALBEDO = 1;
+
+// Exports and stirs (the browser API's arguments the core checks)
+
+/** Highest frame rate (frames a second) a sequence of frames or a flipbook may be asked for, greater than 0. (`scene::limits::MAX_FPS`) */
+export const MAX_FPS = 10000;
+
+/** Most pixels along either side of a flipbook's sheet. (`export::flipbook::MAX_SHEET_SIDE`) */
+export const MAX_SHEET_SIDE = 16384;
+
+/** Largest voxel side (m) of a volume export, greater than 0. (`export::volume::MAX_VOXEL`) */
+export const MAX_VOXEL = 10000;
+
+/** Widest reach (m) of a stir (the pointer's wind), greater than 0. (`gas::simulation::MAX_STIR_RADIUS`) */
+export const MAX_STIR_RADIUS = 1000;

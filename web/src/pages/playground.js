@@ -12,7 +12,7 @@ import { sceneEditor } from './scene-editor.js';
 import { presetCatalog, PRESET_NAME, scenePicker } from './scene-picker.js';
 import { drawSliceLegend } from './slice-legend.js';
 import { statusText } from './status-line.js';
-import { DEFAULT_RENDER_TIME } from '../generated/contract.js';
+import { DEFAULT_RENDER_TIME, MAX_IMAGE_SIDE } from '../generated/contract.js';
 
 const $ = (selector) => document.querySelector(selector);
 const reduceMotion = window.matchMedia?.('(prefers-reduced-motion: reduce)').matches ?? false;
@@ -428,8 +428,8 @@ function pipelineFolder(parent) {
   const f = parent.addFolder('Export for pipelines').close();
   f.add(o, 'stillFormat', ['png', 'exr']).name('still format');
   f.add(o, 'alpha').name('transparent background');
-  f.add(o, 'width', 1, 8192, 1).name('still width');
-  f.add(o, 'height', 1, 8192, 1).name('still height');
+  f.add(o, 'width', 1, MAX_IMAGE_SIDE, 1).name('still width');
+  f.add(o, 'height', 1, MAX_IMAGE_SIDE, 1).name('still height');
   f.add(o, 'still').name('export still (CPU renderer)');
   f.add(o, 'fromFrame', 0, 100000, 1).name('flipbook from frame');
   f.add(o, 'toFrame', 1, 100000, 1).name('flipbook to frame (excl.)');

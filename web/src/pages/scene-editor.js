@@ -1,7 +1,10 @@
 // The playground's scene editor: lil-gui folders for every list in the scene (wind primitives,
 // emitters, lights, objects) with add, remove, edit and on/off, plus the world mapping and the
 // medium. Every change goes through `apply(draft)`, which validates and loads the edited copy;
-// the folders are then rebuilt from the scene that loaded (or the last good one).
+// the folders are then rebuilt from the scene that loaded (or the last good one). A slider
+// whose range is a rule of the format takes it from the core (the contract).
+
+import { MAX_ALBEDO } from '../generated/contract.js';
 
 /** New items, one per kind: valid as they stand (docs/FORMATS.md: the scene format, the blob list). */
 export const TEMPLATES = {
@@ -40,7 +43,10 @@ const SWITCH_ON = { decay: 1, albedo: [0.9, 0.9, 0.9], emission: [1, 0.8, 0.5], 
 const SKIP = new Set(['type', 'path', 'enabled']);
 const COLOUR = new Set(['color', 'albedo', 'emission']);
 const CHOICES = { shape: ['point', 'disk', 'sphere', 'box'], model: ['mug', 'teapot'] };
-/** Lattice extents offered (any even number from 4 to 256 is valid; powers of two are the fastest). */
+/**
+ * Lattice extents offered (any even number from MIN_EXTENT to MAX_EXTENT is valid; powers of
+ * two are the fastest).
+ */
 const LATTICE = [8, 12, 16, 24, 32, 48, 64];
 /**
  * The offered extents that hold wave numbers up to `kInertial` (a spatial extent n has modes up
@@ -157,7 +163,7 @@ function medium(root, draft, changed) {
   const f = root.addFolder('Medium (§5)');
   if (!Array.isArray(m.extinction)) m.extinction = [m.extinction, m.extinction, m.extinction];
   m.extinction.forEach((_, a) => f.add(m.extinction, a).name(`extinction ${'rgb'[a]}`).onFinishChange(changed));
-  m.albedo.forEach((_, a) => f.add(m.albedo, a, 0, 1, 0.01).name(`albedo ${'rgb'[a]}`).onFinishChange(changed));
+  m.albedo.forEach((_, a) => f.add(m.albedo, a, 0, MAX_ALBEDO, 0.01).name(`albedo ${'rgb'[a]}`).onFinishChange(changed));
   const phase = { type: m.phase.type, g: m.phase.g ?? 0.3 };
   const setPhase = () => {
     m.phase = phase.type === 'isotropic' ? { type: 'isotropic' } : { type: 'henyey-greenstein', g: phase.g };

@@ -2,10 +2,11 @@
 // `exportFlipbook` and `exportVolume` check their arguments here, by name and range, then ask
 // the engine worker, which makes the files with the same core code as the command line
 // (`windfield render LIST`, `flipbook`, `volume LIST`); only the bytes cross. The running scene
-// is only read: a failed or cancelled export leaves it as it was.
+// is only read: a failed or cancelled export leaves it as it was. The bounds are the core's
+// (the contract's).
 
-/** The largest image side (pixels), as the core's `gas::limits::MAX_IMAGE_SIDE`. */
-const MAX_SIDE = 8192;
+import { MAX_FPS, MAX_IMAGE_SIDE, MAX_SHEET_SIDE, MAX_VOXEL } from '../generated/contract.js';
+
 /** MIME types of the files. */
 const TYPES = { png: 'image/png', exr: 'image/x-exr', vdb: 'application/x-vdb' };
 
@@ -42,23 +43,24 @@ export function stillRequest(options, size) {
   return {
     format: format(m, o.format),
     alpha: flag(m, 'alpha', o.alpha),
-    width: whole(m, 'width', o.width, 1, MAX_SIDE),
-    height: whole(m, 'height', o.height, 1, MAX_SIDE),
+    width: whole(m, 'width', o.width, 1, MAX_IMAGE_SIDE),
+    height: whole(m, 'height', o.height, 1, MAX_IMAGE_SIDE),
   };
 }
 
 /**
  * The worker request of `exportFlipbook(options)`: frames [A, B], fps, grid [C, R], tile [W, H],
  * loop (false, true for a quarter of the frames, or the frames to blend), format. The core
- * checks what spans several (the grid holds the frames, the sheet is at most 16384 a side).
+ * checks what spans several (the grid holds the frames, the sheet is at most MAX_SHEET_SIDE a
+ * side).
  */
 export function flipbookRequest(options, camera) {
   const m = 'exportFlipbook';
   const o = { fps: 24, grid: [8, 8], tile: [256, 256], loop: false, format: 'png', ...options };
   const frames = pair(m, 'frames', o.frames ?? [0, 64], 0, Number.MAX_SAFE_INTEGER);
   if (frames[1] <= frames[0]) throw new Error(`${m}: frames must be [A, B] with A < B (got ${JSON.stringify(o.frames)})`);
-  if (!(typeof o.fps === 'number' && o.fps > 0 && o.fps <= 1e4)) {
-    throw new Error(`${m}: fps must be a number greater than 0 and at most 10000 (got ${JSON.stringify(o.fps)})`);
+  if (!(typeof o.fps === 'number' && o.fps > 0 && o.fps <= MAX_FPS)) {
+    throw new Error(`${m}: fps must be a number greater than 0 and at most ${MAX_FPS} (got ${JSON.stringify(o.fps)})`);
   }
   const count = frames[1] - frames[0];
   let fade = 0;
@@ -68,8 +70,8 @@ export function flipbookRequest(options, camera) {
     request: {
       frames,
       fps: o.fps,
-      grid: pair(m, 'grid', o.grid, 1, 16384),
-      tile: pair(m, 'tile', o.tile, 1, MAX_SIDE),
+      grid: pair(m, 'grid', o.grid, 1, MAX_SHEET_SIDE),
+      tile: pair(m, 'tile', o.tile, 1, MAX_IMAGE_SIDE),
       fade,
       format: format(m, o.format),
       camera,
@@ -85,8 +87,8 @@ export function volumeRequest(options) {
   if (options?.format !== undefined && options.format !== 'vdb') {
     throw new Error(`exportVolume: format must be 'vdb' (got ${JSON.stringify(options.format)})`);
   }
-  if (!(typeof voxel === 'number' && Number.isFinite(voxel) && voxel > 0 && voxel <= 1e4)) {
-    throw new Error(`exportVolume: voxel must be a side in metres, greater than 0 and at most 10000 (got ${JSON.stringify(voxel)})`);
+  if (!(typeof voxel === 'number' && Number.isFinite(voxel) && voxel > 0 && voxel <= MAX_VOXEL)) {
+    throw new Error(`exportVolume: voxel must be a side in metres, greater than 0 and at most ${MAX_VOXEL} (got ${JSON.stringify(voxel)})`);
   }
   return { voxel };
 }

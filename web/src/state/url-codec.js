@@ -5,15 +5,18 @@
 // program writes one by hand; the page's own links are compressed.
 //
 // Links are opened by strangers: a link longer than `MAX_LINK_CHARS`, or one that inflates past
-// `MAX_SCENE_BYTES`, is refused before more of it is read. Errors say what is wrong with the
+// `MAX_LINK_SCENE_BYTES`, is refused before more of it is read. Errors say what is wrong with the
 // link in a reader's words.
 
 export const HASH_KEY = 'scene';
 const CODEC_VERSION = '1';
 /** Longest encoded scene a link may carry (characters of base64url): 1 MiB. */
 const MAX_LINK_CHARS = 1 << 20;
-/** Largest scene a link may inflate to (bytes of JSON): 4 MiB, far more than any scene needs. */
-const MAX_SCENE_BYTES = 4 << 20;
+/**
+ * Largest scene a link may inflate to (bytes of JSON): 4 MiB, far more than any scene needs. The
+ * link's own bound, below the core's for any scene text (`scene::limits::MAX_SCENE_BYTES`).
+ */
+const MAX_LINK_SCENE_BYTES = 4 << 20;
 
 const DAMAGED = 'the link is damaged or cut short';
 
@@ -92,7 +95,7 @@ export async function decodeScene(hash) {
   }
   let text;
   try {
-    text = new TextDecoder('utf-8', { fatal: true }).decode(await inflate(bytes, MAX_SCENE_BYTES));
+    text = new TextDecoder('utf-8', { fatal: true }).decode(await inflate(bytes, MAX_LINK_SCENE_BYTES));
   } catch (err) {
     throw err.message.startsWith("the link's scene is larger") ? err : new Error(DAMAGED);
   }

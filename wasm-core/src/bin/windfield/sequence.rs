@@ -40,6 +40,7 @@ use windfield::export::still::{self, StillFormat};
 use windfield::export::vdb;
 use windfield::export::volume::GasVolume;
 use windfield::render::{RenderOptions, Renderer};
+use windfield::scene::limits::MAX_FPS;
 use windfield::{Scene, Simulation};
 
 /// What `--help` says of each sequence flag, in one command's words (`render` renders
@@ -117,9 +118,9 @@ impl Sequence {
         let fps = args.fps.ok_or_else(|| {
             input("--fps: required with --frames (frames per second of the sequence)".into())
         })?;
-        if !(fps.is_finite() && fps > 0.0 && fps <= 1e4) {
+        if !(fps.is_finite() && fps > 0.0 && fps <= MAX_FPS) {
             return Err(input(format!(
-                "--fps: must be a number greater than 0 and at most 10000 (got {})",
+                "--fps: must be a number greater than 0 and at most {MAX_FPS} (got {})",
                 windfield::error::number(fps)
             )));
         }
