@@ -4,7 +4,7 @@
 import GUI from 'lil-gui';
 import { Engine } from '../engine/client.js';
 import { SliceView } from '../views/slice-view.js';
-import { DEFAULT_FIELD, fieldScene, LAWS, maxInertial, validateField } from './field-params.js';
+import { DEFAULT_FIELD, fieldScene, LAWS, maxInertial } from './field-params.js';
 import { showMessage, showProgress } from './page-ui.js';
 
 /** Samples per side of the displayed slice. */
@@ -12,7 +12,7 @@ const SLICE_RES = 64;
 /** Seconds of animation per temporal period of the field (at speed 1). */
 const SECONDS_PER_PERIOD = 8;
 
-/** Lattices offered: any even extent from 4 to 256 works (powers of two are the fastest). */
+/** Lattices offered: any even extent from the contract's MIN_EXTENT to MAX_EXTENT works (powers of two are the fastest). */
 const LATTICES = {
   '16⁴': [16, 16, 16, 16],
   '24⁴': [24, 24, 24, 24],
@@ -60,15 +60,14 @@ function describe(report) {
   $('#status').textContent = lines.join('\n');
 }
 
-/** Generates the field for `state.field`; resolves once it is shown. */
-function regenerate() {
-  const errors = validateField(state.field);
-  if (errors.length) {
-    showMessage(errors.join('\n'));
-    return generation;
-  }
+/**
+ * Generates the field for `state.field`: resolves once it is shown, or rejects with the core's
+ * refusal of its parameters (the engine checks them; the page writes none of their ranges),
+ * which the page shows too.
+ */
+function generate() {
   const params = structuredClone(state.field);
-  generation = generation
+  const run = generation
     .catch(() => {})
     .then(async () => {
       const loaded = await engine.request('load', { scene: fieldScene(params) }, { onProgress: (p) => showProgress(p.progress, `Generating field: ${p.stage}`) });
@@ -79,11 +78,17 @@ function regenerate() {
       speedScale = 2.5 * report.rms_speed / Math.sqrt(3);
       describe(report);
       await drawSlice();
-    })
-    .catch((err) => {
-      showProgress(1, 'failed');
-      showMessage(err.message);
     });
+  generation = run.catch((err) => {
+    showProgress(1, 'failed');
+    showMessage(err.message);
+  });
+  return run;
+}
+
+/** Generates the field for `state.field`; resolves once it is shown or refused. */
+function regenerate() {
+  generate().catch(() => {});
   return generation;
 }
 
@@ -161,10 +166,14 @@ window.windfield = {
   ready,
   getField: () => structuredClone(state.field),
   setField: (field) => {
-    const errors = validateField(field);
-    if (errors.length) return Promise.reject(new Error(errors.join('\n')));
-    state.field = structuredClone(field);
-    return regenerate();
+    // A refused field leaves the last good one in place, here as in the engine.
+    const previous = state.field;
+    const asked = structuredClone(field);
+    state.field = asked;
+    return generate().catch((err) => {
+      if (state.field === asked) state.field = previous;
+      throw err;
+    });
   },
   pause: () => { state.playing = false; },
   play: () => { state.playing = true; },
