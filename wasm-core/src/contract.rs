@@ -7,7 +7,9 @@
 
 use crate::export::flipbook::MAX_SHEET_SIDE;
 use crate::export::volume::MAX_VOXEL;
-use crate::field::lattice::{MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
+use crate::field::lattice::{DEFAULT_EXTENT, MAX_EXTENT, MAX_POINTS, MIN_EXTENT};
+use crate::field::spectrum::{DEFAULT_EPSILON, DEFAULT_K_INERTIAL, DEFAULT_SIGMA};
+use crate::field::turbulent_field::DEFAULT_SEED;
 use crate::frame::gpu_steps::BLOB_FLOATS;
 use crate::frame::light_volume::{NEAR_COLUMN_STEPS, NEAR_COLUMN_VOXELS, VIEW_LIGHTS};
 use crate::frame::packed::{
@@ -145,6 +147,13 @@ pub fn sections() -> Vec<Section> {
         shared!(MAX_EXTENT in "field::lattice":
             "Largest lattice extent along any axis (field.size[i])."),
         shared!(MAX_POINTS in "field::lattice": "Most lattice points in all (nx · ny · nz · nt)."),
+        shared!(DEFAULT_EXTENT in "field::lattice":
+            "The lattice's extent along every axis where none is named (field.size)."),
+        shared!(DEFAULT_EPSILON in "field::spectrum": "ε where none is named (field.spectrum.epsilon)."),
+        shared!(DEFAULT_K_INERTIAL in "field::spectrum":
+            "k_inertial where none is named (field.spectrum.k_inertial)."),
+        shared!(DEFAULT_SIGMA in "field::spectrum": "σ where none is named (field.spectrum.sigma)."),
+        shared!(DEFAULT_SEED in "field::turbulent_field": "The seed where none is named."),
         shared!(DEFAULT_RENDER_TIME in "scene::blob_list":
             "The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one."),
         shared!(MAX_IMAGE_SIDE in "scene::limits":

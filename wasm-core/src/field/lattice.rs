@@ -10,6 +10,8 @@ use crate::error::ParamError;
 pub const MIN_EXTENT: usize = 4;
 /// Largest allowed extent along any axis.
 pub const MAX_EXTENT: usize = 256;
+/// The extent along every axis where none is named: a 32⁴ lattice (the paper's §6).
+pub const DEFAULT_EXTENT: usize = 32;
 /// Memory guard: at most 2^24 lattice points (64^4). Synthesis works in place in the field's
 /// own 12 bytes per point (three f32 components), so a field of 2^24 points needs 192 MiB.
 pub const MAX_POINTS: usize = 1 << 24;

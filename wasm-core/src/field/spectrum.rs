@@ -75,12 +75,19 @@ impl Default for SpectrumParams {
     fn default() -> Self {
         Self {
             law: SpectrumLaw::Kolmogorov,
-            epsilon: 1.0,
-            k_inertial: 4.0,
-            sigma: 1.0,
+            epsilon: DEFAULT_EPSILON,
+            k_inertial: DEFAULT_K_INERTIAL,
+            sigma: DEFAULT_SIGMA,
         }
     }
 }
+
+/// ε where none is named (the paper's statistics, §6).
+pub const DEFAULT_EPSILON: f64 = 1.0;
+/// k_inertial where none is named (the paper's statistics, §6).
+pub const DEFAULT_K_INERTIAL: f64 = 4.0;
+/// σ where none is named (the paper's statistics, §6).
+pub const DEFAULT_SIGMA: f64 = 1.0;
 
 /// Largest ε accepted.
 pub const MAX_EPSILON: f64 = 1.0e6;

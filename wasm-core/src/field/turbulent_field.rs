@@ -8,13 +8,15 @@
 
 use crate::check;
 use crate::error::ParamError;
-use crate::field::lattice::Lattice;
+use crate::field::lattice::{Lattice, DEFAULT_EXTENT};
 use crate::field::spectrum::SpectrumParams;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
 /// Largest seed accepted: integers up to 2^53 survive a round trip through JSON and JavaScript.
 pub const MAX_SEED: u64 = 1 << 53;
+/// The seed where none is named.
+pub const DEFAULT_SEED: u64 = 1;
 
 /// Everything that determines a field: lattice extents, spectrum, seed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -31,9 +33,9 @@ pub struct FieldParams {
 impl Default for FieldParams {
     fn default() -> Self {
         Self {
-            size: [32; 4],
+            size: [DEFAULT_EXTENT; 4],
             spectrum: SpectrumParams::default(),
-            seed: 1,
+            seed: DEFAULT_SEED,
         }
     }
 }

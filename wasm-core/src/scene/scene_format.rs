@@ -8,8 +8,9 @@
 //! number between 4 and 256`). Every section and most keys have defaults; `version` is required.
 
 use crate::error::ParamError;
-use crate::field::lattice::{MAX_EXTENT, MIN_EXTENT};
+use crate::field::lattice::{DEFAULT_EXTENT, MAX_EXTENT, MIN_EXTENT};
 use crate::field::spectrum::SpectrumParams;
+use crate::field::turbulent_field::DEFAULT_SEED;
 use crate::field::{FieldParams, MAX_SEED};
 use crate::scene::blob_list::RenderSettings;
 use crate::scene::limits::{
@@ -23,8 +24,8 @@ use serde::{Deserialize, Serialize};
 /// The scene format version this build writes. Older versions are migrated on load.
 pub const SCENE_VERSION: u32 = 1;
 
-fn one() -> u64 {
-    1
+fn default_seed() -> u64 {
+    DEFAULT_SEED
 }
 fn yes() -> bool {
     true
@@ -39,7 +40,7 @@ pub struct Scene {
     #[serde(deserialize_with = "crate::whole::number")]
     pub version: u32,
     /// Seeds the field's white noise, the emitters and the splitting.
-    #[serde(default = "one", deserialize_with = "crate::whole::number")]
+    #[serde(default = "default_seed", deserialize_with = "crate::whole::number")]
     #[schemars(range(max = MAX_SEED))]
     pub seed: u64,
     #[serde(default)]
@@ -67,7 +68,7 @@ impl Default for Scene {
     fn default() -> Self {
         Self {
             version: SCENE_VERSION,
-            seed: 1,
+            seed: DEFAULT_SEED,
             field: FieldSettings::default(),
             wind: Vec::new(),
             emitters: Vec::new(),
@@ -145,7 +146,7 @@ pub const DEFAULT_BOUNDARY_WIDTH: f64 = 0.1;
 impl Default for FieldSettings {
     fn default() -> Self {
         Self {
-            size: [32; 4],
+            size: [DEFAULT_EXTENT; 4],
             spectrum: SpectrumParams::default(),
             period: [4.0; 3],
             time_period: 8.0,

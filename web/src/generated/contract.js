@@ -128,6 +128,21 @@ export const MAX_EXTENT = 256;
 /** Most lattice points in all (nx · ny · nz · nt). (`field::lattice::MAX_POINTS`) */
 export const MAX_POINTS = 16777216;
 
+/** The lattice's extent along every axis where none is named (field.size). (`field::lattice::DEFAULT_EXTENT`) */
+export const DEFAULT_EXTENT = 32;
+
+/** ε where none is named (field.spectrum.epsilon). (`field::spectrum::DEFAULT_EPSILON`) */
+export const DEFAULT_EPSILON = 1;
+
+/** k_inertial where none is named (field.spectrum.k_inertial). (`field::spectrum::DEFAULT_K_INERTIAL`) */
+export const DEFAULT_K_INERTIAL = 4;
+
+/** σ where none is named (field.spectrum.sigma). (`field::spectrum::DEFAULT_SIGMA`) */
+export const DEFAULT_SIGMA = 1;
+
+/** The seed where none is named. (`field::turbulent_field::DEFAULT_SEED`) */
+export const DEFAULT_SEED = 1;
+
 /** The moment (s) a still or a poster shows when neither the scene's render.time nor the caller names one. (`scene::blob_list::DEFAULT_RENDER_TIME`) */
 export const DEFAULT_RENDER_TIME = 3;
 

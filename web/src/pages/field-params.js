@@ -1,13 +1,15 @@
 // Field parameters as the core takes them (docs/FORMATS.md: the field and the scene format): lattice size, spectrum, seed.
 // Pure functions, shared by the field explorer, the classroom and the unit tests. The core
 // checks the parameters (the engine refuses a field's scene in the core's words): the page
-// writes none of their ranges.
+// writes none of their ranges, and takes their defaults from the core (the contract).
 
-/** The paper's statistics (§6): ε = 1, k_inertial = 4, σ = 1, on a 32⁴ lattice. */
+import { DEFAULT_EPSILON, DEFAULT_EXTENT, DEFAULT_K_INERTIAL, DEFAULT_SEED, DEFAULT_SIGMA } from '../generated/contract.js';
+
+/** The core's defaults for a field: the paper's statistics (§6). */
 export const DEFAULT_FIELD = Object.freeze({
-  size: [32, 32, 32, 32],
-  spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 },
-  seed: 1,
+  size: [DEFAULT_EXTENT, DEFAULT_EXTENT, DEFAULT_EXTENT, DEFAULT_EXTENT],
+  spectrum: { law: 'kolmogorov', epsilon: DEFAULT_EPSILON, k_inertial: DEFAULT_K_INERTIAL, sigma: DEFAULT_SIGMA },
+  seed: DEFAULT_SEED,
 });
 
 /** The spectrum laws (`field.spectrum.law`). */

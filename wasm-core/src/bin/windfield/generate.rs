@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use windfield::error::number;
 use windfield::export::vector_grid::VectorGrid;
+use windfield::field::lattice::{DEFAULT_EXTENT, MAX_EXTENT, MIN_EXTENT};
 use windfield::field::npy;
+use windfield::field::turbulent_field::DEFAULT_SEED;
 use windfield::field::{FieldParams, TurbulentField, MAX_SEED};
 use windfield::scene::limits::{MAX_SECONDS, WORLD_MAPPING};
 
@@ -20,12 +22,12 @@ use windfield::scene::limits::{MAX_SECONDS, WORLD_MAPPING};
 pub struct GenerateArgs {
     /// Lattice size: N (for N,N,N,N) or NX,NY,NZ,NT; each an even number from 4 to 256 (powers
     /// of two are the fastest), at most 2^24 points in all.
-    #[arg(long, default_value = "32", allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DEFAULT_EXTENT.to_string(), allow_hyphen_values = true)]
     size: String,
     #[command(flatten)]
     spectrum: SpectrumArgs,
     /// Random seed (0 to 2^53).
-    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = DEFAULT_SEED as i64, allow_hyphen_values = true)]
     seed: i64,
     /// Output file: .npy (the lattice, lattice units), or one time slice of the world's wind
     /// (m/s): .vdb (a Vec3SGrid "wind") or .rgb32f (a raw 3-D texture, JSON beside it).
@@ -50,7 +52,7 @@ fn parse_size(text: &str) -> Result<[usize; 4], Failure> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     let bad = || {
         Failure::Input(format!(
-            "--size: expected N or NX,NY,NZ,NT with each an even number between 4 and 256 (got {text:?})"
+            "--size: expected N or NX,NY,NZ,NT with each an even number between {MIN_EXTENT} and {MAX_EXTENT} (got {text:?})"
         ))
     };
     let nums = parts
