@@ -25,7 +25,8 @@
 //! classroom/              the paper's Figure 1 (Eq. 12 on a grid beside the blobs) and the flow
 //!                         past a sphere beside the potential flow
 //! contract                the numbers shared with the page's code, written to JavaScript
-//! api         (wasm32)    the one door to JavaScript: conversions and errors only
+//! api/        (wasm32)    the one door to JavaScript: conversions and errors only; a first
+//!                         module for the player and the full one (`--features full`)
 //! ```
 //!
 //! `render/` reads the scene's formats alone: it draws a blob list and knows nothing of the
