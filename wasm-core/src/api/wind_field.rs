@@ -146,7 +146,6 @@ impl WindField {
 }
 
 #[cfg(feature = "full")]
-
 impl WindField {
     /// The checked slice behind `windGrid` and `windGridDescription`.
     fn wind_slice(
