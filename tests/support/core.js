@@ -8,15 +8,17 @@ export const cliPath = `${root}wasm-core/target/release/windfield`;
 const pkg = `${root}web/pkg/`;
 
 /**
- * Initialises the WASM core (built by `npm run build:wasm`); returns its JS bindings plus
- * `memory`, the instance's linear memory.
+ * Initialises the WASM core (built by `npm run build:wasm`): the full module (every binding),
+ * or with `player` the first module a player fetches (web/pkg/windfield.js). Returns its JS
+ * bindings plus `memory`, the instance's linear memory.
  */
-export async function loadCore() {
-  if (!existsSync(`${pkg}windfield_bg.wasm`)) {
+export async function loadCore({ player = false } = {}) {
+  const name = player ? 'windfield' : 'windfield_full';
+  if (!existsSync(`${pkg}${name}_bg.wasm`)) {
     throw new Error('web/pkg is missing: run `npm run build:wasm` first');
   }
-  const core = await import(`${pkg}windfield.js`);
-  const exports = core.initSync({ module: readFileSync(`${pkg}windfield_bg.wasm`) });
+  const core = await import(`${pkg}${name}.js`);
+  const exports = core.initSync({ module: readFileSync(`${pkg}${name}_bg.wasm`) });
   return { ...core, memory: exports.memory };
 }
 

@@ -2,6 +2,12 @@
 // field, the simulation and its scene), step the simulation and hand out frames, render
 // reference stills. The worker (`worker.js`) wires them to messages; tests call them directly.
 //
+// The requests of the core's full module (reference stills, exports, the field's wind grid and
+// statistics) wait for it (`full()`); what they need crosses in the formats that exist: the blob
+// list and the scene as JSON text, the field as its lattice, handed over once per field
+// (`Session.fullField`). Each takes what it reads of the running scene before it waits, so a
+// step answered meanwhile does not change what it exports.
+//
 // Each handler takes the request ({ id, type, ...args }) and returns { result, transfer }:
 // typed arrays in results are listed in `transfer`, never copied through JSON. A frame is whole
 // buffers only, made by the core in one call (`packFrame`, `marchFrame`): the packed blobs
@@ -102,15 +108,18 @@ const EXPORT_ROWS = 8;
 const EXPORT_BLOBS = 2000;
 
 /**
- * Runs an export job (`StillExport`, `FlipbookExport` or `VolumeExport` of the core) stage by
- * stage: `step(n)` until it returns false, reporting progress under `id` and yielding to the
- * event loop between stages so that a `cancelExport` request is heard; a cancelled export
+ * Runs the export job `make()` resolves to (`StillExport`, `FlipbookExport` or `VolumeExport` of
+ * the core's full module, which may have to be fetched first) stage by stage: `step(n)` until it
+ * returns false, reporting progress under `id` and yielding to the event loop between stages so
+ * that a `cancelExport` request is heard, also while the module is fetched; a cancelled export
  * throws "cancelled: …" and leaves nothing behind (the job is freed either way).
  */
-async function runExport(job, { id, stage, chunk, progress, exports }) {
+async function runExport(make, { id, stage, chunk, progress, exports }) {
   const token = { cancelled: false };
   exports.add(token);
+  let job = null;
   try {
+    job = await make();
     progress(id, 0, stage);
     for (;;) {
       if (token.cancelled) throw new Error(`cancelled: the ${stage.toLowerCase()} was cancelled`);
@@ -121,7 +130,7 @@ async function runExport(job, { id, stage, chunk, progress, exports }) {
     if (token.cancelled) throw new Error(`cancelled: the ${stage.toLowerCase()} was cancelled`);
     progress(id, 1, stage);
   } catch (err) {
-    job.free();
+    job?.free();
     throw err;
   } finally {
     exports.delete(token);
@@ -131,10 +140,12 @@ async function runExport(job, { id, stage, chunk, progress, exports }) {
 
 /**
  * The request handlers over `core` (the WASM module's exports, initialised); `progress(id,
- * value, stage)` reports a request's progress; `memory()` is the core's linear memory (bytes).
+ * value, stage)` reports a request's progress; `memory()` is the core's linear memory (bytes);
+ * `full()` resolves to the core's full module, initialised (none: `core` is the full module).
  */
-export function createHandlers(core, progress, memory = () => 0) {
-  const session = new Session(core, progress);
+export function createHandlers(core, progress, memory = () => 0, full = null) {
+  const session = new Session(core, progress, full);
+  const fullCore = full ?? (async () => core);
   const sim = () => session.requireSim();
   /**
    * The pointer's motion not yet given to the gas: {start and position (m: where that motion
@@ -268,8 +279,9 @@ export function createHandlers(core, progress, memory = () => 0) {
     blobList: ({ camera, image }) => ({ result: session.blobList(camera, image) }),
     // The reference still of the current state from `camera` at `width × height`: the blob list
     // stays in the worker, only the PNG crosses.
-    reference: ({ id, camera, width, height }) => {
-      const png = referenceStill(core, session.blobList(camera, { width, height }), width, height, id, progress);
+    reference: async ({ id, camera, width, height }) => {
+      const list = session.blobList(camera, { width, height });
+      const png = referenceStill(await fullCore(), list, width, height, id, progress);
       return { result: { png, width, height }, transfer: [png.buffer] };
     },
     // Exports for pipelines (docs/FORMATS.md, exports), from the current state and the
@@ -278,7 +290,9 @@ export function createHandlers(core, progress, memory = () => 0) {
     exportStill: async ({ id, camera, width, height, format, alpha }) => {
       const list = session.blobList(camera, { width, height });
       if (alpha) list.background = 'transparent';
-      const job = await runExport(new core.StillExport(JSON.stringify(list), format, sim().time()), {
+      const time = sim().time();
+      const make = async () => new (await fullCore()).StillExport(JSON.stringify(list), format, time);
+      const job = await runExport(make, {
         id, stage: 'Rendering still', chunk: EXPORT_ROWS, progress, exports,
       });
       try {
@@ -290,7 +304,9 @@ export function createHandlers(core, progress, memory = () => 0) {
     },
     exportVolume: async ({ id, voxel }) => {
       const list = session.blobList();
-      const job = await runExport(new core.VolumeExport(JSON.stringify(list), voxel, sim().time()), {
+      const time = sim().time();
+      const make = async () => new (await fullCore()).VolumeExport(JSON.stringify(list), voxel, time);
+      const job = await runExport(make, {
         id, stage: 'Building volume', chunk: EXPORT_BLOBS, progress, exports,
       });
       try {
@@ -304,10 +320,12 @@ export function createHandlers(core, progress, memory = () => 0) {
       // A simulation of its own from t = 0, on the running field when it is the scene's.
       const { json, key } = session.current;
       const text = JSON.stringify(request);
-      const job = key && session.field && session.fieldKey === key
-        ? core.FlipbookExport.withField(json, text, session.field)
-        : new core.FlipbookExport(json, text);
-      await runExport(job, { id, stage: 'Rendering flipbook', chunk: EXPORT_ROWS, progress, exports });
+      const own = key && session.field && session.fieldKey === key ? session.fullField() : null;
+      const make = async () => {
+        const { FlipbookExport } = await fullCore();
+        return own ? FlipbookExport.withField(json, text, await own) : new FlipbookExport(json, text);
+      };
+      const job = await runExport(make, { id, stage: 'Rendering flipbook', chunk: EXPORT_ROWS, progress, exports });
       try {
         const { sheet, description } = job.finish(name);
         return { result: { bytes: sheet, description: JSON.parse(description) }, transfer: [sheet.buffer] };
@@ -340,16 +358,16 @@ export function createHandlers(core, progress, memory = () => 0) {
     sample: ({ x, y, z, t }) => ({ result: Array.from(session.requireField().sample(x, y, z, t)) }),
     // The field as the world's wind at time `t` (s), mapped by the scene's `field` (period,
     // time period, amplitude): an OpenVDB Vec3SGrid or a raw RGB32F texture with its description.
-    windGrid: ({ format, t = 0 }) => {
-      const field = session.requireField();
-      const f = session.current.scene.field;
+    windGrid: async ({ format, t = 0 }) => {
+      const f = session.current?.scene.field;
+      const field = await session.fullField();
       const bytes = field.windGrid(new Float64Array(f.period), f.time_period, f.amplitude, t, format);
       const description = format === 'rgb32f'
         ? JSON.parse(field.windGridDescription(new Float64Array(f.period), f.time_period, f.amplitude, t))
         : null;
       return { result: { bytes, description }, transfer: [bytes.buffer] };
     },
-    fieldStats: ({ spectrum }) => ({ result: JSON.parse(session.requireField().stats(spectrum ? JSON.stringify(spectrum) : '')) }),
+    fieldStats: async ({ spectrum }) => ({ result: JSON.parse((await session.fullField()).stats(spectrum ? JSON.stringify(spectrum) : '')) }),
   };
 }
 

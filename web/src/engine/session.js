@@ -79,14 +79,19 @@ export class Session {
   #latestLoad = 0;
   /** The synthesis in flight: its parameters and its promise, or null. */
   #synthesis = null;
+  /** The full module's copy of the current field: {of (the field), promise (of the copy)}, or null. */
+  #fullField = null;
 
   /**
    * @param {object} core the WASM module's exports, initialised
    * @param {(id: number, value: number, stage: string) => void} progress reports a request's progress
+   * @param {(() => Promise<object>) | null} full resolves to the core's full module, initialised
+   *   (null: `core` is the full module)
    */
-  constructor(core, progress) {
+  constructor(core, progress, full = null) {
     this.core = core;
     this.progress = progress;
+    this.full = full;
   }
 
   /** The running simulation, or a clear Error before a scene is loaded. */
@@ -99,6 +104,36 @@ export class Session {
   requireField() {
     if (!this.field) throw new Error('this scene has no small-scale field');
     return this.field;
+  }
+
+  /**
+   * The current field as the core's full module holds it (a `WindField` of that module): its
+   * lattice and ψ, read now, copied over once per field (`WindField.fromLattice`), never
+   * synthesised again. The field itself where `core` is the full module.
+   */
+  fullField() {
+    const field = this.requireField();
+    if (!this.full) return Promise.resolve(field);
+    if (this.#fullField?.of !== field) {
+      this.#dropFullField();
+      const key = this.fieldKey;
+      const data = field.data();
+      const potential = field.potential();
+      const promise = this.full().then((full) => full.WindField.fromLattice(key, data, potential));
+      const entry = { of: field, promise };
+      this.#fullField = entry;
+      promise.catch(() => {
+        if (this.#fullField === entry) this.#fullField = null;
+      });
+    }
+    return this.#fullField.promise;
+  }
+
+  /** Frees the full module's copy of a field that is no longer current. */
+  #dropFullField() {
+    const entry = this.#fullField;
+    this.#fullField = null;
+    entry?.promise.then((copy) => copy.free(), () => {});
   }
 
   /**
@@ -162,6 +197,7 @@ export class Session {
         wanted();
       }
       const next = run.finish();
+      this.#dropFullField();
       this.field?.free();
       this.field = next;
       this.fieldKey = key;

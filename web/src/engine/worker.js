@@ -12,6 +12,11 @@
 // between its stages, so requests keep being answered meanwhile (on the current scene), and a
 // newer valid `load` supersedes one in flight, which then rejects with "cancelled: ...".
 // The requests themselves are `handlers.js`; typed arrays in results are transferred.
+//
+// The worker starts on the core's first module (web/pkg/windfield.js: the field, the scene and
+// its simulation, the frames). The full module (windfield_full.js: the exports, the reference
+// renderer, the field's statistics and wind grid) is fetched the first time a request needs it,
+// and only then; a failure to fetch it refuses that request and leaves the player running.
 
 import init, * as core from '../../pkg/windfield.js';
 import { createHandlers } from './handlers.js';
@@ -29,9 +34,22 @@ const ready = init().then((wasm) => { memory = wasm.memory; }, (err) => {
   throw err;
 });
 
+/** The full module, initialised: fetched on the first request that needs it, then kept. */
+let full = null;
+const fullCore = () => {
+  full ??= import('../../pkg/windfield_full.js').then(async (module) => {
+    await module.default();
+    return module;
+  }).catch((err) => {
+    full = null;
+    throw new Error(`could not start the WASM core's full module: ${err?.message ?? err}`);
+  });
+  return full;
+};
+
 const handlers = createHandlers(core, (id, value, stage) => {
   self.postMessage({ id, type: 'progress', progress: value, stage });
-}, memoryBytes);
+}, memoryBytes, fullCore);
 
 self.onmessage = async (event) => {
   const msg = event.data;

@@ -7,7 +7,7 @@
 // which load as they near the viewport, running their variants).
 
 import '../embed.js';
-import init, { Figure1Demo, sphereFlow } from '../../pkg/windfield.js';
+import init, { Figure1Demo, sphereFlow } from '../../pkg/windfield_full.js';
 import { viridis } from '../charts/colormap.js';
 import { ColourBar } from '../charts/colour-bar.js';
 import { CHART, drawChart, linearAxis, logAxis } from '../charts/plot-axes.js';
