@@ -10,7 +10,6 @@ import { waitForGpu } from '../views/gpu-sync.js';
 import { VOLUME_QUALITY } from '../views/volume/volume-layer.js';
 import { atLeast, boolean, number, oneOf, wholeNumber } from './arguments.js';
 import { exportBlob, flipbookRequest, stillRequest, volumeRequest } from './exports.js';
-import { recordWebM } from './recorder.js';
 import { QUALITIES } from './view-settings.js';
 
 /** What a load or an edit may not do while a video is recorded. */
@@ -260,10 +259,13 @@ export class Captures {
     try {
       // One step a frame: the run budget (docs/FORMATS.md, the command line) holds before anything is recorded.
       await this.#engine.request('checkSteps', { steps: frames });
+      // The encoder and the muxer are fetched with the first recording (webm-muxer is not part
+      // of the player's first load).
+      const { recordWebM: record } = await import('./recorder.js');
       // One scene, one size: the scene may not change while the video is made.
       this.#recording = true;
       try {
-        return await this.#offscreen({ mode, width, height }, () => recordWebM({
+        return await this.#offscreen({ mode, width, height }, () => record({
           canvas: this.#view.canvas,
           frames,
           fps,

@@ -1,0 +1,62 @@
+// What a player fetches: its first load brings the core's first module only (the field, the
+// scene, the simulation and the frames: web/pkg/windfield.js), and the full module
+// (windfield_full.js: the exports, the reference renderer, the statistics) comes with the first
+// request that needs it, once. Counted from the page's network responses.
+import { gzipSync } from 'node:zlib';
+import { expect, test, collectErrors } from './helpers.js';
+
+/** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
+async function bare(page, name, body) {
+  await page.route(`**/${name}.html`, (route) => route.fulfill({
+    contentType: 'text/html',
+    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
+      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
+  }));
+  await page.goto(`./${name}.html`);
+  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
+}
+
+/** Records every script and WASM response, the worker's too: {path, gzip (bytes gzipped)}. */
+function recordCode(page) {
+  const fetched = [];
+  page.context().on('response', async (response) => {
+    const url = response.url();
+    if (!/^https?:/.test(url) || !/\.(m?js|wasm)(\?|$)/.test(url)) return;
+    const body = await response.body().catch(() => Buffer.alloc(0));
+    fetched.push({ path: new URL(url).pathname, gzip: gzipSync(body, { level: 9 }).length });
+  });
+  return fetched;
+}
+
+const firstModule = /^\/wind-field\/windfield_bg-[^/]*\.wasm$/;
+const fullModule = /^\/wind-field\/windfield_full_bg-[^/]*\.wasm$/;
+
+test('a player\'s first load fetches the core\'s first module only; its first export fetches the full one, once', async ({ page }) => {
+  const errors = collectErrors(page);
+  const fetched = recordCode(page);
+  await bare(page, 'first-load', '<wind-field id="p" preset="default" autoplay style="width: 320px"></wind-field>');
+  await page.evaluate(() => document.querySelector('#p').ready);
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().blobs)).toBeGreaterThan(0);
+  await page.waitForLoadState('networkidle');
+  const first = fetched.map((f) => ({ ...f }));
+  const kib = first.reduce((sum, f) => sum + f.gzip, 0) / 1024;
+  test.info().annotations.push({ type: 'first load', description: `${kib.toFixed(1)} KiB gzipped: ${first.map((f) => f.path.split('/').pop()).join(', ')}` });
+  expect(first.filter((f) => firstModule.test(f.path))).toHaveLength(1);
+  expect(first.filter((f) => /windfield_full/.test(f.path))).toEqual([]);
+
+  const sizes = await page.evaluate(async () => {
+    const p = document.querySelector('#p');
+    await p.pause();
+    const still = await p.exportStill({ width: 32, height: 24, format: 'png' });
+    const again = await p.exportStill({ width: 32, height: 24, format: 'png' });
+    return [still.size, again.size];
+  });
+  expect(sizes[0]).toBeGreaterThan(0);
+  expect(sizes[1]).toBe(sizes[0]);
+  await page.waitForLoadState('networkidle');
+  const full = fetched.filter((f) => fullModule.test(f.path));
+  test.info().annotations.push({ type: 'on the first export', description: `${(full.reduce((s, f) => s + f.gzip, 0) / 1024).toFixed(1)} KiB gzipped (the full module)` });
+  expect(full).toHaveLength(1);
+  expect(fetched.filter((f) => firstModule.test(f.path))).toHaveLength(1);
+  expect(errors).toEqual([]);
+});
