@@ -97,3 +97,24 @@ test('the full module\'s requests made from the first module give the full modul
   for (const key of Object.keys(b)) assert.deepEqual(a[key], b[key], key);
   assert.ok(fetches >= 1);
 });
+
+test('the field handed over and its wind grid are refused in the core\'s words', () => {
+  const key = full.sceneFieldParams(full.validateScene(scene));
+  const synthesis = new full.FieldSynthesis(key);
+  while (synthesis.step());
+  const field = synthesis.finish();
+  synthesis.free();
+  try {
+    const period = new Float64Array([2, 2, 2]);
+    assert.throws(() => field.windGrid(new Float64Array([2, 2]), 8, 1, 0, 'vdb'), /^Error: period: must be three lengths in metres \(got 2\)$/);
+    assert.throws(() => field.windGrid(new Float64Array([2, 0, 2]), 8, 1, 0, 'vdb'), /^Error: period\[1\]: must be a finite number between 0\.001 and 10000 \(got 0\)$/);
+    assert.throws(() => field.windGrid(period, 8, 1, 2e6, 'vdb'), /^Error: t: must be a finite number between 0 and 1000000 /);
+    assert.throws(() => field.windGrid(period, 8, 1, 0, 'npy'), /^Error: format: must be 'vdb' or 'rgb32f' \(got "npy"\)$/);
+    assert.ok(field.windGrid(period, 8, 1, 1e6, 'vdb').length > 0, 't up to 10⁶ s, as `windfield generate --time` takes');
+    const data = field.data();
+    assert.throws(() => full.WindField.fromLattice(key, data, new Float32Array(3)), /^Error: potential: expected \d+ values for the lattice, got 3$/);
+    assert.throws(() => full.WindField.fromLattice(key, data.subarray(3), new Float32Array(0)), /^Error: field: expected \d+ values for the lattice, got \d+$/);
+  } finally {
+    field.free();
+  }
+});

@@ -8,7 +8,8 @@ use std::sync::Arc;
 use wasm_bindgen::prelude::*;
 #[cfg(feature = "full")]
 use {
-    crate::export::vector_grid::VectorGrid, crate::field::spectrum::SpectrumParams,
+    crate::export::vector_grid::{GridFormat, SliceMapping, VectorGrid},
+    crate::field::spectrum::SpectrumParams,
     crate::field::statistics,
 };
 
@@ -75,17 +76,8 @@ impl WindField {
         }
         let params: FieldParams =
             serde_json::from_value(value).map_err(|e| JsError::new(&format!("field: {e}")))?;
-        let mut field = TurbulentField::from_data(params, data).map_err(js_error)?;
-        if !potential.is_empty() {
-            if potential.len() != field.data.len() {
-                return Err(JsError::new(&format!(
-                    "potential: expected {} values for the lattice, got {}",
-                    field.data.len(),
-                    potential.len()
-                )));
-            }
-            field.potential = Some(potential);
-        }
+        let potential = (!potential.is_empty()).then_some(potential);
+        let field = TurbulentField::from_lattice(params, data, potential).map_err(js_error)?;
         Ok(Self {
             inner: Arc::new(field),
         })
@@ -105,14 +97,9 @@ impl WindField {
         t: f64,
         format: &str,
     ) -> Result<Vec<u8>, JsError> {
+        let format = GridFormat::parse(format, "format").map_err(js_error)?;
         let grid = self.wind_slice(&period, time_period, amplitude, t)?;
-        match format {
-            "vdb" => Ok(grid.to_vdb()),
-            "rgb32f" => Ok(grid.to_rgb32f()),
-            _ => Err(JsError::new(&format!(
-                "format: must be 'vdb' or 'rgb32f' (got {format:?})"
-            ))),
-        }
+        Ok(grid.to_file(format))
     }
 
     /// The JSON description of `windGrid`'s raw texture for the same arguments.
@@ -147,7 +134,8 @@ impl WindField {
 
 #[cfg(feature = "full")]
 impl WindField {
-    /// The checked slice behind `windGrid` and `windGridDescription`.
+    /// The slice behind `windGrid` and `windGridDescription`, its mapping checked by the core
+    /// (`SliceMapping`).
     fn wind_slice(
         &self,
         period: &[f64],
@@ -155,24 +143,13 @@ impl WindField {
         amplitude: f64,
         t: f64,
     ) -> Result<VectorGrid, JsError> {
-        let period: [f64; 3] = period
-            .try_into()
-            .map_err(|_| JsError::new("period: must be three lengths in metres"))?;
-        let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
-        if !period.iter().all(|&l| ok(l, 1e-3, 1e4)) {
-            return Err(JsError::new("period: each must be from 0.001 to 10000 m"));
-        }
-        if !ok(time_period, 1e-3, 1e6) || !ok(amplitude, 0.0, 1e3) || !ok(t, 0.0, 1e5) {
-            return Err(JsError::new(
-                "time_period (0.001 to 10⁶ s), amplitude (0 to 1000) and t (0 to 10⁵ s) must be in range",
-            ));
-        }
+        let m = SliceMapping::new(period, time_period, amplitude, t).map_err(js_error)?;
         Ok(VectorGrid::field_slice(
             &self.inner,
-            period,
-            time_period,
-            amplitude,
-            t,
+            m.period,
+            m.time_period,
+            m.amplitude,
+            m.t,
         ))
     }
 }

@@ -17,14 +17,80 @@
 //! ([`VectorGrid::scene_wind`], for `windfield wind --box`).
 
 use super::vdb::{self, AnyGrid, Grid, GridClass, Leaves, Meta, MetaMap, Transform};
+use crate::check;
 use crate::error::ParamError;
 use crate::field::TurbulentField;
 use crate::gas::Simulation;
+use crate::scene::limits::{MAX_SECONDS, WORLD_MAPPING};
 use glam::Vec3;
 use serde::Serialize;
 
 /// Most cells one grid may hold (2^28).
 pub const MAX_CELLS: u64 = 1 << 28;
+
+/// The two files a grid is written as: an OpenVDB Vec3SGrid or a raw RGB32F texture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GridFormat {
+    Vdb,
+    Rgb32f,
+}
+
+impl GridFormat {
+    /// `vdb` or `rgb32f`, as the browser API names them; refused at `what`.
+    pub fn parse(name: &str, what: &str) -> Result<Self, ParamError> {
+        match name {
+            "vdb" => Ok(Self::Vdb),
+            "rgb32f" => Ok(Self::Rgb32f),
+            _ => Err(ParamError::new(
+                what,
+                format!("must be 'vdb' or 'rgb32f' (got {name:?})"),
+            )),
+        }
+    }
+}
+
+/// The world mapping of one time slice of a field ([`VectorGrid::field_slice`]'s arguments):
+/// `period` L (m, three), `time_period` T (s), `amplitude` A and the time `t` (s), each checked
+/// against the ranges a scene's `field` has ([`WORLD_MAPPING`]) and `t` from 0 to
+/// [`MAX_SECONDS`]; refusals name the argument (`period[1]`, `time_period`, `amplitude`, `t`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliceMapping {
+    pub period: [f64; 3],
+    pub time_period: f64,
+    pub amplitude: f64,
+    pub t: f64,
+}
+
+impl SliceMapping {
+    pub fn new(
+        period: &[f64],
+        time_period: f64,
+        amplitude: f64,
+        t: f64,
+    ) -> Result<Self, ParamError> {
+        let period: [f64; 3] = period.try_into().map_err(|_| {
+            ParamError::new(
+                "period",
+                format!("must be three lengths in metres (got {})", period.len()),
+            )
+        })?;
+        let [lo, hi] = WORLD_MAPPING.period;
+        for (i, &l) in period.iter().enumerate() {
+            check::range(&format!("period[{i}]"), l, lo, hi)?;
+        }
+        let [lo, hi] = WORLD_MAPPING.time_period;
+        check::range("time_period", time_period, lo, hi)?;
+        let [lo, hi] = WORLD_MAPPING.amplitude;
+        check::range("amplitude", amplitude, lo, hi)?;
+        check::range("t", t, 0.0, MAX_SECONDS)?;
+        Ok(Self {
+            period,
+            time_period,
+            amplitude,
+            t,
+        })
+    }
+}
 
 /// Velocities on a regular box of cells.
 #[derive(Debug, Clone, PartialEq)]
@@ -198,6 +264,14 @@ impl VectorGrid {
         ([0, 1, 2].map(|a| lo[a] + 0.5 * cell[a]), cell)
     }
 
+    /// The grid's file in `format`: [`Self::to_vdb`] or [`Self::to_rgb32f`].
+    pub fn to_file(&self, format: GridFormat) -> Vec<u8> {
+        match format {
+            GridFormat::Vdb => self.to_vdb(),
+            GridFormat::Rgb32f => self.to_rgb32f(),
+        }
+    }
+
     /// The raw texture: little-endian RGB32F, x fastest (see the module's comment).
     pub fn to_rgb32f(&self) -> Vec<u8> {
         self.values
@@ -267,5 +341,48 @@ impl VectorGrid {
         let mut file_meta = MetaMap::new();
         file_meta.insert("creator".into(), Meta::String(super::creator()));
         vdb::write(&[AnyGrid::Vec3(grid)], &file_meta)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_slice_mapping_is_refused_by_its_argument_in_the_scene_ranges() {
+        let ok = SliceMapping::new(&[2.0, 2.0, 2.0], 8.0, 1.0, 1e6).expect("in range");
+        assert_eq!(ok.period, [2.0; 3]);
+        let refused = |p: &[f64], tp: f64, a: f64, t: f64| {
+            SliceMapping::new(p, tp, a, t)
+                .expect_err("out of range")
+                .to_string()
+        };
+        assert_eq!(
+            refused(&[2.0, 2.0], 8.0, 1.0, 0.0),
+            "period: must be three lengths in metres (got 2)"
+        );
+        assert_eq!(
+            refused(&[2.0, 0.0, 2.0], 8.0, 1.0, 0.0),
+            "period[1]: must be a finite number between 0.001 and 10000 (got 0)"
+        );
+        assert!(refused(&[2.0; 3], 0.0, 1.0, 0.0).starts_with("time_period: "));
+        assert!(refused(&[2.0; 3], 8.0, -1.0, 0.0).starts_with("amplitude: "));
+        assert!(refused(&[2.0; 3], 8.0, 1.0, f64::NAN).starts_with("t: "));
+        assert!(refused(&[2.0; 3], 8.0, 1.0, 2e6).starts_with("t: "));
+    }
+
+    #[test]
+    fn a_grid_format_is_vdb_or_rgb32f() {
+        assert_eq!(GridFormat::parse("vdb", "format"), Ok(GridFormat::Vdb));
+        assert_eq!(
+            GridFormat::parse("rgb32f", "format"),
+            Ok(GridFormat::Rgb32f)
+        );
+        assert_eq!(
+            GridFormat::parse("npy", "format")
+                .expect_err("refused")
+                .to_string(),
+            "format: must be 'vdb' or 'rgb32f' (got \"npy\")"
+        );
     }
 }

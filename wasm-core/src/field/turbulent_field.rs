@@ -78,6 +78,31 @@ impl TurbulentField {
         Ok(field)
     }
 
+    /// [`Self::from_data`] with the field's vector potential ψ (stored as `data`; none for a
+    /// field without it), e.g. a field another WASM instance synthesised; ψ of another length
+    /// is refused (path `potential`).
+    pub fn from_lattice(
+        params: FieldParams,
+        data: Vec<f32>,
+        potential: Option<Vec<f32>>,
+    ) -> Result<Self, ParamError> {
+        let mut field = Self::from_data(params, data)?;
+        if let Some(psi) = &potential {
+            if psi.len() != field.data.len() {
+                return Err(ParamError::new(
+                    "potential",
+                    format!(
+                        "expected {} values for the lattice, got {}",
+                        field.data.len(),
+                        psi.len()
+                    ),
+                ));
+            }
+        }
+        field.potential = potential;
+        Ok(field)
+    }
+
     /// Ok if every velocity component is finite; else an error (path `field`) naming the
     /// first other value by its flat index and its place (t, z, y, x, component) in the
     /// `(nt, nz, ny, nx, 3)` array.
