@@ -1,9 +1,10 @@
 //! The only door between JavaScript and the core: every `#[wasm_bindgen]` export lives under
 //! `api/`, one file a bound class, and nothing else does; this file holds the conversions they
-//! share and the TypeScript types of the frames. Each export converts its arguments from JavaScript's types to the
-//! core's, calls the core, and converts the result back; errors become thrown `Error`s whose
-//! message names the parameter (`field.size[1]: must be an even number between 4 and 256`).
-//! Nothing panics across the boundary.
+//! share and the TypeScript types of the frames. Each export converts its arguments from
+//! JavaScript's types to the core's, calls the core, and converts the result back; the checks
+//! are the core's, and its errors become thrown `Error`s whose message names the parameter
+//! (`field.size[1]: must be an even number between 4 and 256`). Nothing panics across the
+//! boundary.
 //!
 //! Calls are few and fat: parameters cross as one JSON string, lattice data, slices and frames
 //! as whole typed arrays. A frame crosses as one plain object made in one call
