@@ -3,18 +3,7 @@
 // viewport (once for all of them); without autoplay a player shows its scene at poster-time
 // with a play button; ready/error events; attributes mirrored as properties and live changes.
 import { gzipSync } from 'node:zlib';
-import { expect, test, canvasLuminance, collectErrors } from './helpers.js';
-
-/** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
-async function bare(page, name, body) {
-  await page.route(`**/${name}.html`, (route) => route.fulfill({
-    contentType: 'text/html',
-    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
-      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
-  }));
-  await page.goto(`./${name}.html`);
-  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
-}
+import { expect, test, canvasLuminance, bare, collectErrors } from './helpers.js';
 
 /** Records every script and WASM response: {url, gzip (bytes gzipped)}. */
 function recordCode(page) {

@@ -3,18 +3,7 @@
 // (windfield_full.js: the exports, the reference renderer, the statistics) comes with the first
 // request that needs it, once. Counted from the page's network responses.
 import { gzipSync } from 'node:zlib';
-import { expect, test, collectErrors } from './helpers.js';
-
-/** Serves `body` as ./NAME.html (beside the built embed.js) and opens it. */
-async function bare(page, name, body) {
-  await page.route(`**/${name}.html`, (route) => route.fulfill({
-    contentType: 'text/html',
-    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
-      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
-  }));
-  await page.goto(`./${name}.html`);
-  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
-}
+import { expect, test, bare, collectErrors } from './helpers.js';
 
 /** Records every script and WASM response, the worker's too: {path, gzip (bytes gzipped)}. */
 function recordCode(page) {

@@ -178,3 +178,14 @@ export async function nextFrame(page, ms, { jump = false } = {}) {
   await expect.poll(async () => (await stats()).frames).toBeGreaterThan(before);
   return stats();
 }
+
+/** Serves `body` as ./NAME.html, a bare page beside the built embed.js, and opens it. */
+export async function bare(page, name, body) {
+  await page.route(`**/${name}.html`, (route) => route.fulfill({
+    contentType: 'text/html',
+    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
+      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
+  }));
+  await page.goto(`./${name}.html`);
+  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
+}

@@ -4,20 +4,14 @@
 // in a link cannot stop the playground; recordings do not mix scenes; and every argument of
 // the browser API is checked like a scene's numbers.
 import { readFileSync } from 'node:fs';
-import { expect, test, collectErrors, holdClock, openFolder } from './helpers.js';
+import { expect, test, bare, collectErrors, holdClock, openFolder } from './helpers.js';
 
 const smallPlume = JSON.parse(readFileSync(new URL('../tests/fixtures/small-plume.json', import.meta.url), 'utf8'));
 
-/** Serves `body` as ./NAME.html (beside the built embed.js), and the small plume as ./tiny.json, and opens it. */
-async function bare(page, name, body) {
+/** Serves the small plume as ./tiny.json and `body` as ./NAME.html (`bare` of helpers.js). */
+async function bareWithPlume(page, name, body) {
   await page.route('**/tiny.json', (route) => route.fulfill({ contentType: 'application/json', body: JSON.stringify(smallPlume) }));
-  await page.route(`**/${name}.html`, (route) => route.fulfill({
-    contentType: 'text/html',
-    body: `<!doctype html><html lang="en"><meta charset="utf-8"><title>${name}</title><link rel="icon" href="data:,">
-      <script type="module" src="./embed.js"></script><body style="margin: 0">${body}</body></html>`,
-  }));
-  await page.goto(`./${name}.html`);
-  await page.waitForFunction(() => customElements.get('wind-field') !== undefined);
+  await bare(page, name, body);
 }
 
 async function openPlayground(page, url = './?view=points') {
@@ -32,7 +26,7 @@ test('a removed player rejects every pending call at once with an AbortError, an
   // The page's clock held at the removal: the calls settle on the turn after it (the element
   // waits one task, in case it is put back), with no time on that clock for anything to take.
   await page.clock.install();
-  await bare(page, 'mounts', '<div id="host"></div>');
+  await bareWithPlume(page, 'mounts', '<div id="host"></div>');
   // Calls waiting for the scene, and a long step in flight, when the element goes.
   await page.evaluate(async () => {
     const el = document.createElement('wind-field');
@@ -102,7 +96,7 @@ test('a removed player rejects every pending call at once with an AbortError, an
 for (const view of ['points', 'exact', 'raymarch']) {
   test(`a ready player moved in the page keeps running (${view})`, async ({ page }) => {
     const errors = collectErrors(page);
-    await bare(page, `move-${view}`, `<div id="a"><wind-field loading="eager" view="${view}" src="./tiny.json" poster-time="0" style="width: 160px"></wind-field></div><div id="b"></div>`);
+    await bareWithPlume(page, `move-${view}`, `<div id="a"><wind-field loading="eager" view="${view}" src="./tiny.json" poster-time="0" style="width: 160px"></wind-field></div><div id="b"></div>`);
     const r = await page.evaluate(async () => {
       const el = document.querySelector('wind-field');
       await el.ready;
