@@ -11,6 +11,7 @@ mod contract;
 mod exports;
 mod field_statistics;
 mod figure1;
+mod flow;
 mod fuzz_inputs;
 mod gas_physics;
 mod gpu_steps;

@@ -19,6 +19,7 @@
 pub mod carried;
 pub mod doublets;
 pub mod field_slice;
+pub mod flow;
 pub mod frozen;
 pub mod large;
 pub mod scene_wind;

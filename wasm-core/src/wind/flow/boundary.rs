@@ -1,0 +1,116 @@
+//! The flow's boundary conditions (the paper's Eqs. 1–2 on a bounded box): the solid cells
+//! and the box's faces, as Bridson's fluid notes (§4) set them on a MAC grid.
+//!
+//! - A face of a solid cell (a cell whose centre lies inside a solid) carries the solid's
+//!   normal velocity: (u_p + u_g)·n = v·n, so no flux crosses the solid's surface relative to it.
+//! - An open face of the box is free: the pressure beyond it is 0 (a ghost cell one h out) and
+//!   the velocity's normal derivative is 0 (sampling clamps to the box), so air leaves and
+//!   enters.
+//! - A closed face of the box is a wall: (u_p + u_g)·n = 0.
+//!
+//! A staircase of cubes stands for a curved solid: it loses the surface's slope within a cell
+//! (an error of order h in the velocity next to it) and slips freely along it (no boundary
+//! layer: the coarse grid holds none).
+
+use super::grid::Grid;
+use super::mac::MacField;
+
+/// What the box's six faces do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Faces {
+    /// Air enters and leaves: p = 0 beyond the face, zero normal derivative of u.
+    Open,
+    /// A wall: (u_p + u_g)·n = 0.
+    Closed,
+}
+
+/// The grid's solid cells and each one's velocity (m/s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solids {
+    /// Whether each cell (laid out as [`Grid::cell`]) is solid.
+    pub solid: Vec<bool>,
+    /// Each cell's solid velocity, m/s (read only where `solid`).
+    pub velocity: Vec<[f32; 3]>,
+}
+
+impl Solids {
+    /// No solid cell.
+    pub fn none(grid: &Grid) -> Self {
+        Self {
+            solid: vec![false; grid.cell_count()],
+            velocity: vec![[0.0; 3]; grid.cell_count()],
+        }
+    }
+
+    /// Marks solid, moving at `v` (m/s), every cell whose centre `inside` holds.
+    pub fn add(&mut self, grid: &Grid, v: [f32; 3], inside: impl Fn([f32; 3]) -> bool) {
+        let n = grid.cells;
+        for k in 0..n[2] {
+            for j in 0..n[1] {
+                for i in 0..n[0] {
+                    if inside(grid.centre(i, j, k)) {
+                        let c = grid.cell(i, j, k);
+                        self.solid[c] = true;
+                        self.velocity[c] = v;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Marks solid the cells whose centres lie within `radius` (m) of `centre` (m).
+    pub fn add_sphere(&mut self, grid: &Grid, centre: [f32; 3], radius: f32, v: [f32; 3]) {
+        self.add(grid, v, |x| {
+            let d: f32 = (0..3).map(|a| (x[a] - centre[a]).powi(2)).sum();
+            d <= radius * radius
+        });
+    }
+}
+
+/// The total normal velocity (u_p + u_g)·n, m/s, that face (i, j, k) of component `axis` must
+/// carry, or `None` where the face is free (the projection sets it).
+pub fn fixed_normal(
+    grid: &Grid,
+    solids: &Solids,
+    faces: Faces,
+    axis: usize,
+    idx: [usize; 3],
+) -> Option<f32> {
+    let n = grid.cells[axis];
+    let cell = |m: usize| {
+        let mut c = idx;
+        c[axis] = m;
+        grid.cell(c[0], c[1], c[2])
+    };
+    let solid_v = |c: usize| solids.solid[c].then(|| solids.velocity[c][axis]);
+    let s = idx[axis];
+    if s == 0 || s == n {
+        let inner = cell(if s == 0 { 0 } else { n - 1 });
+        return solid_v(inner).or(match faces {
+            Faces::Open => None,
+            Faces::Closed => Some(0.0),
+        });
+    }
+    match (solid_v(cell(s - 1)), solid_v(cell(s))) {
+        (Some(a), Some(b)) => Some(0.5 * (a + b)),
+        (Some(a), None) | (None, Some(a)) => Some(a),
+        (None, None) => None,
+    }
+}
+
+/// Sets u_g on every fixed face so that u_p + u_g carries its fixed normal velocity there.
+pub fn impose(grid: &Grid, solids: &Solids, faces: Faces, u_p: &MacField, u_g: &mut MacField) {
+    for a in 0..3 {
+        let d = grid.face_dims(a);
+        for k in 0..d[2] {
+            for j in 0..d[1] {
+                for i in 0..d[0] {
+                    if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
+                        let f = grid.face(a, i, j, k);
+                        u_g.u[a][f] = v - u_p.u[a][f];
+                    }
+                }
+            }
+        }
+    }
+}

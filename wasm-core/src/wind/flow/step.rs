@@ -1,0 +1,110 @@
+//! One step of the flow, the paper's Eqs. 1–2 for the grid's velocity u_g (m/s):
+//!
+//!   ∂u_g/∂t + (u_p + u_g)·∇u_g = −∇p/ρ + ν∇²u_g + b + f,   ∇·u_g = 0,
+//!
+//! u_p the primitives' wind (given, sampled on the faces), split into Stam's (1999) fractional
+//! steps: advect u_g by u_p + u_g ([`super::advect`]), diffuse it ([`super::diffuse`]), add the
+//! forces ([`super::forces`]), set the fixed faces so that (u_p + u_g)·n is the solid's v·n
+//! (0 on closed walls, [`super::boundary`]) and project ([`super::project`]). Each split loses
+//! its own share (the advection's numerical viscosity, the splitting's first-order error in
+//! dt); nothing in it limits dt for stability, but an accurate step keeps |u|·dt within a
+//! cell or two. No threads and no hashing: the same inputs give the same bytes.
+
+use super::advect::advect_velocity;
+use super::boundary::{impose, Faces, Solids};
+use super::diffuse::diffuse;
+use super::forces::{add_buoyancy, add_splat, Splat};
+use super::grid::Grid;
+use super::mac::MacField;
+use super::project::{project, Projection};
+
+/// Air's kinematic viscosity, m²/s.
+pub const AIR_VISCOSITY: f32 = 1.5e-5;
+/// An ideal gas's expansion coefficient at room temperature, 1/K.
+pub const AIR_EXPANSION: f32 = 1.0 / 293.15;
+/// The projection's relative residual by default.
+pub const TOLERANCE: f64 = 1e-5;
+
+/// The flow on its grid: the laws' constants, the solids, the faces and u_g.
+#[derive(Debug, Clone)]
+pub struct Flow {
+    /// The MAC grid.
+    pub grid: Grid,
+    /// Its solid cells.
+    pub solids: Solids,
+    /// The box's faces.
+    pub faces: Faces,
+    /// ν, m²/s.
+    pub viscosity: f32,
+    /// β, 1/K.
+    pub buoyancy: f32,
+    /// g, m/s².
+    pub gravity: [f32; 3],
+    /// The projection's relative residual.
+    pub tolerance: f64,
+    /// The most CG iterations of one projection.
+    pub max_iterations: usize,
+    /// The grid's velocity u_g, m/s.
+    pub u_g: MacField,
+    /// The last projection's potential φ = p·dt/ρ, m²/s, per cell.
+    pub phi: Vec<f64>,
+}
+
+impl Flow {
+    /// A flow at rest on `grid` with no solids, air's ν and β and Earth's g.
+    pub fn new(grid: Grid, faces: Faces) -> Self {
+        let iterations = 20 * grid.cells.iter().copied().max().unwrap_or(1) + 100;
+        Self {
+            solids: Solids::none(&grid),
+            u_g: MacField::zeros(&grid),
+            phi: Vec::new(),
+            faces,
+            viscosity: AIR_VISCOSITY,
+            buoyancy: AIR_EXPANSION,
+            gravity: [0.0, -9.81, 0.0],
+            tolerance: TOLERANCE,
+            max_iterations: iterations,
+            grid,
+        }
+    }
+
+    /// One step of `dt` (s) with the primitives' wind `u_p` on the faces (m/s), the
+    /// temperature excess on the cells (K; `None`: no heat) and the force splats.
+    pub fn step(
+        &mut self,
+        dt: f32,
+        u_p: &MacField,
+        temperature: Option<&[f32]>,
+        splats: &[Splat],
+    ) -> Projection {
+        let g = &self.grid;
+        let carrier = u_p.plus(&self.u_g);
+        let mut u = advect_velocity(g, &self.u_g, &carrier, dt);
+        diffuse(g, &self.solids, self.faces, &mut u, self.viscosity, dt);
+        if let Some(t) = temperature {
+            add_buoyancy(g, &mut u, t, self.buoyancy, self.gravity, dt);
+        }
+        for s in splats {
+            add_splat(g, &mut u, s, dt);
+        }
+        impose(g, &self.solids, self.faces, u_p, &mut u);
+        let report = project(
+            g,
+            &self.solids,
+            self.faces,
+            &mut u,
+            self.tolerance,
+            self.max_iterations,
+            &mut self.phi,
+        );
+        self.u_g = u;
+        report
+    }
+
+    /// The wind u_p + u_g at `x` (m), m/s, u_p given on the faces.
+    pub fn velocity_at(&self, u_p: &MacField, x: [f32; 3]) -> [f32; 3] {
+        let p = u_p.at(&self.grid, x);
+        let q = self.u_g.at(&self.grid, x);
+        std::array::from_fn(|a| p[a] + q[a])
+    }
+}
