@@ -17,7 +17,7 @@
 //! - [`project`]: the pressure projection.
 //! - [`step`]: one step of them all ([`Flow`]).
 //!
-//! A step at 32³ costs, per cell, the advection's ~42 trilinear interpolations, a diffusion
+//! A step at 32³ costs, per cell, the advection's ~33 trilinear interpolations, a diffusion
 //! substep and a projection of tens of CG iterations; the flow's tests print the measured time.
 
 pub mod advect;

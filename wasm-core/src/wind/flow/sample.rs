@@ -14,10 +14,12 @@ fn locate(
 ) -> ([usize; 3], [f32; 3]) {
     let mut base = [0; 3];
     let mut frac = [0.0; 3];
+    let inv_h = 1.0 / h;
     for a in 0..3 {
         let top = (dims[a] - 1) as f32;
-        let p = ((x[a] - origin[a]) / h - offset[a]).clamp(0.0, top);
-        let i = (p.floor() as usize).min(dims[a].saturating_sub(2));
+        let p = ((x[a] - origin[a]) * inv_h - offset[a]).clamp(0.0, top);
+        // p ≥ 0, so truncation is the floor (without a call to libm's floorf).
+        let i = (p as usize).min(dims[a].saturating_sub(2));
         base[a] = i;
         frac[a] = if dims[a] > 1 { p - i as f32 } else { 0.0 };
     }
