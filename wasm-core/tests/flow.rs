@@ -107,6 +107,18 @@ fn rest_stays_rest() {
     let rest = flow.u_g.max_abs();
     assert!(rest <= 1e-6, "still air moves at {rest} m/s");
 
+    // Heat spread evenly in a closed box: the buoyancy is a gradient the pressure holds
+    // (hydrostatic), so the air stays still.
+    let mut flow = Flow::new(grid.clone(), Faces::Closed);
+    flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
+    let warm = vec![10.0; grid.cell_count()];
+    for _ in 0..250 {
+        flow.step(0.02, &still, Some(&warm), &[]);
+    }
+    let held = flow.u_g.max_abs();
+    println!("still air, and evenly warm air in a closed box, after 1,000 and 250 steps: {rest:.1e} and {held:.1e} m/s");
+    assert!(held <= 1e-6, "evenly warm air moves at {held} m/s");
+
     let wind = 2.0;
     let mut flow = Flow::new(grid.clone(), Faces::Open);
     let u_p = uniform(&grid, [wind, 0.0, 0.0]);
@@ -114,6 +126,9 @@ fn rest_stays_rest() {
         flow.step(0.02, &u_p, None, &[]);
     }
     let response = flow.u_g.max_abs();
+    println!(
+        "a uniform wind of {wind} m/s in an open box, after 100 steps: |u_g| ≤ {response:.1e} m/s"
+    );
     assert!(
         response <= 1e-3 * wind,
         "a uniform wind stirs u_g to {response} m/s"
