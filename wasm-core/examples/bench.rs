@@ -8,10 +8,28 @@ use windfield::field::{FieldParams, TurbulentField};
 use windfield::frame::PackedFrame;
 use windfield::gas::Blob;
 use windfield::render::{RenderOptions, Renderer};
+use windfield::wind::flow::{Faces, Flow, Grid, MacField};
 use windfield::{Scene, Simulation};
 
 /// The blob-step benchmark scene: a 32^4 field plus uniform, vortex and source primitives.
 pub const BLOB_STEP_SCENE: &str = include_str!("blob-step-scene.json");
+
+/// The coarse-grid flow's step (`wind::flow`) on `n`³ cells of an open 1.6 m box around one
+/// solid sphere in a 1 m/s wind: advection, viscosity, the projection (its CG iterations
+/// printed beside).
+fn flow_step(n: usize, runs: usize) {
+    let h = 1.6 / n as f32;
+    let grid = Grid::new([0.0; 3], [n; 3], h);
+    let mut flow = Flow::new(grid.clone(), Faces::Open);
+    flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
+    let u_p = MacField::from_fn(&grid, |_| [1.0, 0.0, 0.0]);
+    let mut iterations = 0;
+    let ms = median_ms(runs, || {
+        iterations = flow.step(0.02, &u_p, None, &[]).iterations
+    });
+    eprintln!("flow step at {n}³: {iterations} CG iterations");
+    emit(&format!("flow_step_{n}_native_ms"), ms, "ms");
+}
 
 /// `n` blobs spread over a 4 m box by a fixed low-discrepancy sequence (the same in
 /// `scripts/bench.mjs`).
@@ -75,6 +93,8 @@ fn main() {
     worker_plume();
     solid_objects();
     field_generate_with_potential(32, 5);
+    flow_step(32, 7);
+    flow_step(64, 3);
 
     // The reference renderer: a simulated plume of 10,000 blobs, one point light, shadows.
     let plume = Scene::from_json(include_str!("render-plume-scene.json")).expect("valid");

@@ -315,25 +315,3 @@ fn the_same_inputs_give_the_same_bytes() {
         assert_eq!(bytes(faces), bytes(faces));
     }
 }
-
-#[test]
-fn the_cost_of_a_step_at_32_cubed() {
-    // Printed, never asserted: a benchmark, not a check.
-    let grid = Grid::new([0.0; 3], [32; 3], 0.05);
-    let mut flow = Flow::new(grid.clone(), Faces::Open);
-    flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
-    let u_p = uniform(&grid, [1.0, 0.0, 0.0]);
-    flow.step(0.02, &u_p, None, &[]);
-    let start = std::time::Instant::now();
-    let steps = 10;
-    let mut iterations = 0;
-    for _ in 0..steps {
-        iterations += flow.step(0.02, &u_p, None, &[]).iterations;
-    }
-    let ms = start.elapsed().as_secs_f64() * 1e3 / steps as f64;
-    println!(
-        "a step at 32³ with a sphere: {ms:.2} ms, {:.0} ns a cell, {} CG iterations a step",
-        ms * 1e6 / grid.cell_count() as f64,
-        iterations / steps
-    );
-}
