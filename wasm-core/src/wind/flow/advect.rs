@@ -14,19 +14,27 @@
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
 use super::grid::Grid;
-use super::mac::MacField;
-use super::sample::{trilinear, trilinear_bounds};
+use super::mac::{FaceSampler, MacField};
+use super::sample::Sampler;
 
 /// The point the flow `velocity` (m/s) carries to `x` (m) over `dt` (s) (a midpoint step;
 /// a negative `dt` traces forward).
 pub fn trace(grid: &Grid, velocity: &MacField, x: [f32; 3], dt: f32) -> [f32; 3] {
-    trace_from(grid, velocity, x, velocity.at(grid, x), dt)
+    let faces = FaceSampler::new(grid);
+    trace_from(&faces, velocity, x, faces.at(velocity, x), dt)
 }
 
 /// [`trace`] with the velocity `v0` (m/s) at `x` already sampled.
-fn trace_from(grid: &Grid, velocity: &MacField, x: [f32; 3], v0: [f32; 3], dt: f32) -> [f32; 3] {
+#[inline]
+fn trace_from(
+    faces: &FaceSampler,
+    velocity: &MacField,
+    x: [f32; 3],
+    v0: [f32; 3],
+    dt: f32,
+) -> [f32; 3] {
     let mid: [f32; 3] = std::array::from_fn(|a| x[a] - 0.5 * dt * v0[a]);
-    let v1 = velocity.at(grid, mid);
+    let v1 = faces.at(velocity, mid);
     std::array::from_fn(|a| x[a] - dt * v1[a])
 }
 
@@ -53,7 +61,8 @@ impl Lattice<'_> {
 pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<f32> {
     let d = q.dims;
     let n = d[0] * d[1] * d[2];
-    let sample = |v: &[f32], x| trilinear(v, grid.origin, grid.h, d, q.offset, x);
+    let faces = FaceSampler::new(grid);
+    let lattice = Sampler::new(grid.origin, grid.h, d, q.offset);
     let mut forward = vec![0.0; n];
     let mut lo = vec![0.0; n];
     let mut hi = vec![0.0; n];
@@ -63,10 +72,9 @@ pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<
             for i in 0..d[0] {
                 let s = i + d[0] * (j + d[1] * k);
                 let x = q.position(grid, i, j, k);
-                here[s] = velocity.at(grid, x);
-                let back = trace_from(grid, velocity, x, here[s], dt);
-                (forward[s], lo[s], hi[s]) =
-                    trilinear_bounds(q.values, grid.origin, grid.h, d, q.offset, back);
+                here[s] = faces.at(velocity, x);
+                let back = trace_from(&faces, velocity, x, here[s], dt);
+                (forward[s], lo[s], hi[s]) = lattice.value_bounds(q.values, back);
             }
         }
     }
@@ -75,8 +83,9 @@ pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<
         for j in 0..d[1] {
             for i in 0..d[0] {
                 let s = i + d[0] * (j + d[1] * k);
-                let ahead = trace_from(grid, velocity, q.position(grid, i, j, k), here[s], -dt);
-                let returned = sample(&forward, ahead);
+                let x = q.position(grid, i, j, k);
+                let ahead = trace_from(&faces, velocity, x, here[s], -dt);
+                let returned = lattice.value(&forward, ahead);
                 let corrected = forward[s] + 0.5 * (q.values[s] - returned);
                 out[s] = corrected.clamp(lo[s], hi[s]);
             }

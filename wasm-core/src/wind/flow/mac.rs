@@ -3,7 +3,7 @@
 //! own lattice, with its discrete divergence and kinetic energy.
 
 use super::grid::Grid;
-use super::sample::trilinear;
+use super::sample::{blend, Axis, Layout};
 
 /// Face velocities, m/s: `u[a]` holds component a on the faces across axis a.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,16 +53,7 @@ impl MacField {
     /// The velocity at `x` (m), m/s: each component interpolated trilinearly on its faces
     /// (clamped to the box: outside it, the nearest faces' values).
     pub fn at(&self, grid: &Grid, x: [f32; 3]) -> [f32; 3] {
-        std::array::from_fn(|a| {
-            trilinear(
-                &self.u[a],
-                grid.origin,
-                grid.h,
-                grid.face_dims(a),
-                Grid::offset(a),
-                x,
-            )
-        })
+        FaceSampler::new(grid).at(self, x)
     }
 
     /// The largest |component| on any face, m/s.
@@ -103,5 +94,54 @@ impl MacField {
                 .flatten()
                 .map(|&x| f64::from(x) * f64::from(x))
                 .sum::<f64>()
+    }
+}
+
+/// Trilinear interpolation of a [`MacField`] made ready for many points: along each axis a
+/// component's faces lie either on the cells' walls (its own axis: 0 cells from the origin,
+/// one more than the cells) or at their centres (the other two: 1/2 cell), so a point is
+/// located once on each of the two per axis and the three components share them.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceSampler {
+    origin: [f32; 3],
+    inv_h: f32,
+    /// Each axis's faces across it (offset 0, cells + 1 samples).
+    walls: [Axis; 3],
+    /// Each axis's faces along it (offset 1/2, cells samples).
+    centres: [Axis; 3],
+    /// Each component's layout.
+    layouts: [Layout; 3],
+}
+
+impl FaceSampler {
+    /// The sampler of the faces of `grid`.
+    pub fn new(grid: &Grid) -> Self {
+        Self {
+            origin: grid.origin,
+            inv_h: 1.0 / grid.h,
+            walls: std::array::from_fn(|a| Axis::new(grid.cells[a] + 1, 0.0)),
+            centres: std::array::from_fn(|a| Axis::new(grid.cells[a], 0.5)),
+            layouts: std::array::from_fn(|a| Layout::new(grid.face_dims(a))),
+        }
+    }
+
+    /// The velocity of `field` at `x` (m), m/s ([`MacField::at`]).
+    #[inline]
+    pub fn at(&self, field: &MacField, x: [f32; 3]) -> [f32; 3] {
+        let mut wall = [(0, 0.0); 3];
+        let mut centre = [(0, 0.0); 3];
+        for a in 0..3 {
+            let t = (x[a] - self.origin[a]) * self.inv_h;
+            wall[a] = self.walls[a].locate(t);
+            centre[a] = self.centres[a].locate(t);
+        }
+        std::array::from_fn(|c| {
+            let at = |a: usize| if a == c { wall[a] } else { centre[a] };
+            let (b0, f0) = at(0);
+            let (b1, f1) = at(1);
+            let (b2, f2) = at(2);
+            let corners = self.layouts[c].corners(&field.u[c], [b0, b1, b2]);
+            blend(&corners, [f0, f1, f2])
+        })
     }
 }

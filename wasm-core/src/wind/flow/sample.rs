@@ -2,61 +2,143 @@
 //! centres), clamped to the lattice: beyond the outermost samples the value is the nearest
 //! one's, a zero normal derivative at the box's faces. 8 samples and 7 lerps per call.
 
-/// The lattice coordinates of world point `x` (m) for samples at `offset` cells
-/// ([`crate::wind::flow::grid::Grid::offset`]), clamped to `dims`: the cell of the lower
-/// corner and the fractions within it.
-fn locate(
-    origin: [f32; 3],
-    h: f32,
-    dims: [usize; 3],
-    offset: [f32; 3],
-    x: [f32; 3],
-) -> ([usize; 3], [f32; 3]) {
-    let mut base = [0; 3];
-    let mut frac = [0.0; 3];
-    let inv_h = 1.0 / h;
-    for a in 0..3 {
-        let top = (dims[a] - 1) as f32;
-        let p = ((x[a] - origin[a]) * inv_h - offset[a]).clamp(0.0, top);
-        // p ≥ 0, so truncation is the floor (without a call to libm's floorf).
-        let i = (p as usize).min(dims[a].saturating_sub(2));
-        base[a] = i;
-        frac[a] = if dims[a] > 1 { p - i as f32 } else { 0.0 };
+/// Where a point falls along one axis of a lattice of samples.
+#[derive(Debug, Clone, Copy)]
+pub struct Axis {
+    /// Where the samples lie, in cells from the origin.
+    offset: f32,
+    /// The last sample's coordinate, in cells from the first.
+    top: f32,
+    /// The last lower corner a point can take.
+    last: usize,
+    /// Whether the axis holds a single sample (its fraction is then 0).
+    single: bool,
+}
+
+impl Axis {
+    /// An axis of `samples` samples at `offset` cells from the origin.
+    pub fn new(samples: usize, offset: f32) -> Self {
+        Self {
+            offset,
+            top: (samples - 1) as f32,
+            last: samples.saturating_sub(2),
+            single: samples <= 1,
+        }
     }
-    (base, frac)
+
+    /// The lower sample and the fraction within its cell of the point `t` cells from the
+    /// origin, clamped to the samples.
+    #[inline]
+    pub fn locate(&self, t: f32) -> (usize, f32) {
+        let p = (t - self.offset).clamp(0.0, self.top);
+        // p ≥ 0, so truncation is the floor (without a call to libm's floorf).
+        let i = (p as usize).min(self.last);
+        (i, if self.single { 0.0 } else { p - i as f32 })
+    }
 }
 
-/// The eight corner values around `x` and the fractions within their cell.
-fn corners(
-    values: &[f32],
-    origin: [f32; 3],
-    h: f32,
-    dims: [usize; 3],
-    offset: [f32; 3],
-    x: [f32; 3],
-) -> ([f32; 8], [f32; 3]) {
-    let (b, f) = locate(origin, h, dims, offset, x);
-    let step = |a: usize| usize::from(dims[a] > 1);
-    let (sx, sy, sz) = (step(0), dims[0] * step(1), dims[0] * dims[1] * step(2));
-    let i0 = b[0] + dims[0] * (b[1] + dims[1] * b[2]);
-    let c = [
-        values[i0],
-        values[i0 + sx],
-        values[i0 + sy],
-        values[i0 + sx + sy],
-        values[i0 + sz],
-        values[i0 + sx + sz],
-        values[i0 + sy + sz],
-        values[i0 + sx + sy + sz],
-    ];
-    (c, f)
+/// How a lattice's samples are laid out in memory: the index of a lower corner and the steps
+/// to its seven other corners (0 along an axis of one sample).
+#[derive(Debug, Clone, Copy)]
+pub struct Layout {
+    /// Samples along x, and along x and y together.
+    row: [usize; 2],
+    /// The steps to the next corner along x, y and z.
+    step: [usize; 3],
 }
 
-fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
+impl Layout {
+    /// The layout of `dims` samples, x fastest.
+    pub fn new(dims: [usize; 3]) -> Self {
+        let step = |a: usize| usize::from(dims[a] > 1);
+        Self {
+            row: [dims[0], dims[0] * dims[1]],
+            step: [step(0), dims[0] * step(1), dims[0] * dims[1] * step(2)],
+        }
+    }
+
+    /// The eight values around lower corner `b`.
+    #[inline]
+    pub fn corners(&self, values: &[f32], b: [usize; 3]) -> [f32; 8] {
+        let i0 = b[0] + self.row[0] * b[1] + self.row[1] * b[2];
+        let [sx, sy, sz] = self.step;
+        let v = &values[i0..=i0 + sx + sy + sz];
+        [
+            v[0],
+            v[sx],
+            v[sy],
+            v[sx + sy],
+            v[sz],
+            v[sx + sz],
+            v[sy + sz],
+            v[sx + sy + sz],
+        ]
+    }
+}
+
+/// Trilinear blending of the eight corners `c` at fractions `f`.
+#[inline]
+pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
     let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
     let y0 = lerp(lerp(c[0], c[1], f[0]), lerp(c[2], c[3], f[0]), f[1]);
     let y1 = lerp(lerp(c[4], c[5], f[0]), lerp(c[6], c[7], f[0]), f[1]);
     lerp(y0, y1, f[2])
+}
+
+/// The least and greatest of eight values.
+#[inline]
+pub fn bounds(c: &[f32; 8]) -> (f32, f32) {
+    let lo = c.iter().copied().fold(f32::INFINITY, f32::min);
+    let hi = c.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    (lo, hi)
+}
+
+/// One lattice of samples made ready for many interpolations: `dims` samples at `offset` cells
+/// from `origin` (m) on a grid of spacing `h` (m).
+#[derive(Debug, Clone, Copy)]
+pub struct Sampler {
+    origin: [f32; 3],
+    inv_h: f32,
+    axes: [Axis; 3],
+    layout: Layout,
+}
+
+impl Sampler {
+    /// The sampler of `dims` samples at `offset` cells from `origin` (m), spacing `h` (m).
+    pub fn new(origin: [f32; 3], h: f32, dims: [usize; 3], offset: [f32; 3]) -> Self {
+        Self {
+            origin,
+            inv_h: 1.0 / h,
+            axes: std::array::from_fn(|a| Axis::new(dims[a], offset[a])),
+            layout: Layout::new(dims),
+        }
+    }
+
+    /// The eight corner values around `x` (m) and the fractions within their cell.
+    #[inline]
+    fn corners(&self, values: &[f32], x: [f32; 3]) -> ([f32; 8], [f32; 3]) {
+        let mut b = [0; 3];
+        let mut f = [0.0; 3];
+        for a in 0..3 {
+            (b[a], f[a]) = self.axes[a].locate((x[a] - self.origin[a]) * self.inv_h);
+        }
+        (self.layout.corners(values, b), f)
+    }
+
+    /// The value of `values` at `x` (m).
+    #[inline]
+    pub fn value(&self, values: &[f32], x: [f32; 3]) -> f32 {
+        let (c, f) = self.corners(values, x);
+        blend(&c, f)
+    }
+
+    /// [`Sampler::value`] with the least and greatest of the eight samples it blends.
+    #[inline]
+    pub fn value_bounds(&self, values: &[f32], x: [f32; 3]) -> (f32, f32, f32) {
+        let (c, f) = self.corners(values, x);
+        let (lo, hi) = bounds(&c);
+        (blend(&c, f), lo, hi)
+    }
 }
 
 /// The value at world point `x` (m) of `values`, laid out on `dims` samples at `offset` cells
@@ -69,8 +151,7 @@ pub fn trilinear(
     offset: [f32; 3],
     x: [f32; 3],
 ) -> f32 {
-    let (c, f) = corners(values, origin, h, dims, offset, x);
-    blend(&c, f)
+    Sampler::new(origin, h, dims, offset).value(values, x)
 }
 
 /// [`trilinear`] with the least and greatest of the eight samples it blends (the bounds
@@ -83,10 +164,7 @@ pub fn trilinear_bounds(
     offset: [f32; 3],
     x: [f32; 3],
 ) -> (f32, f32, f32) {
-    let (c, f) = corners(values, origin, h, dims, offset, x);
-    let lo = c.iter().copied().fold(f32::INFINITY, f32::min);
-    let hi = c.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    (blend(&c, f), lo, hi)
+    Sampler::new(origin, h, dims, offset).value_bounds(values, x)
 }
 
 #[cfg(test)]
