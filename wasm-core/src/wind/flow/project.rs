@@ -44,21 +44,32 @@ pub struct Projection {
 struct System {
     /// Free faces of each cell (0 for a solid cell or a fluid cell with none).
     diag: Vec<f64>,
-    /// Whether the face to the next cell along each axis joins two fluid cells (the matrix's
-    /// entry there is −1).
-    plus: [Vec<bool>; 3],
+    /// Which faces of each cell join it to a fluid neighbour (the matrix's entry there is −1):
+    /// bit a for the next cell along axis a, bit 3 + a for the previous one.
+    links: Vec<u8>,
     /// The strides of the cells along x, y and z.
     stride: [usize; 3],
     /// Whether any fluid cell has an open face of the box (the system is then definite).
     definite: bool,
 }
 
+/// The bit of [`System::links`] for the next cell along `a`.
+const fn plus(a: usize) -> u8 {
+    1 << a
+}
+
+/// The bit of [`System::links`] for the previous cell along `a`.
+const fn minus(a: usize) -> u8 {
+    8 << a
+}
+
 impl System {
     fn new(grid: &Grid, solids: &Solids, faces: Faces) -> Self {
         let n = grid.cells;
         let cells = grid.cell_count();
+        let stride = [1, n[0], n[0] * n[1]];
         let mut diag = vec![0.0; cells];
-        let mut plus: [Vec<bool>; 3] = std::array::from_fn(|_| vec![false; cells]);
+        let mut links = vec![0u8; cells];
         let mut definite = false;
         for k in 0..n[2] {
             for j in 0..n[1] {
@@ -80,7 +91,8 @@ impl System {
                             if !inside {
                                 definite = true;
                             } else if side == 1 {
-                                plus[a][c] = true;
+                                links[c] |= plus(a);
+                                links[c + stride[a]] |= minus(a);
                             }
                         }
                     }
@@ -89,30 +101,35 @@ impl System {
         }
         Self {
             diag,
-            plus,
-            stride: [1, n[0], n[0] * n[1]],
+            links,
+            stride,
             definite,
         }
     }
 
-    /// Whether the face to the previous cell along `a` joins two fluid cells.
-    fn minus(&self, a: usize, c: usize) -> bool {
-        let st = self.stride[a];
-        c >= st && self.plus[a][c - st]
-    }
-
     /// A·s.
     fn apply(&self, s: &[f64], out: &mut [f64]) {
+        let [_, sy, sz] = self.stride;
         for (c, o) in out.iter_mut().enumerate() {
+            let l = self.links[c];
             let mut v = self.diag[c] * s[c];
-            for a in 0..3 {
-                let st = self.stride[a];
-                if self.plus[a][c] {
-                    v -= s[c + st];
-                }
-                if self.minus(a, c) {
-                    v -= s[c - st];
-                }
+            if l & plus(0) != 0 {
+                v -= s[c + 1];
+            }
+            if l & minus(0) != 0 {
+                v -= s[c - 1];
+            }
+            if l & plus(1) != 0 {
+                v -= s[c + sy];
+            }
+            if l & minus(1) != 0 {
+                v -= s[c - sy];
+            }
+            if l & plus(2) != 0 {
+                v -= s[c + sz];
+            }
+            if l & minus(2) != 0 {
+                v -= s[c - sz];
             }
             *o = v;
         }
@@ -128,12 +145,12 @@ impl System {
             }
             let mut pivot = d;
             for a in 0..3 {
-                if !self.minus(a, c) {
+                if self.links[c] & minus(a) == 0 {
                     continue;
                 }
                 let below = c - self.stride[a];
                 let p = e[below];
-                let others = (0..3).filter(|&b| b != a && self.plus[b][below]).count() as f64;
+                let others = (self.links[below] & 7 & !plus(a)).count_ones() as f64;
                 pivot -= (1.0 + TAU * others) * p * p;
             }
             if pivot < SIGMA * d {
@@ -147,9 +164,10 @@ impl System {
     /// z = M⁻¹ r by MIC(0)'s two triangular sweeps; `q` is scratch.
     fn precondition(&self, e: &[f64], r: &[f64], q: &mut [f64], z: &mut [f64]) {
         for c in 0..e.len() {
+            let l = self.links[c];
             let mut t = r[c];
             for a in 0..3 {
-                if self.minus(a, c) {
+                if l & minus(a) != 0 {
                     let below = c - self.stride[a];
                     t += e[below] * q[below];
                 }
@@ -157,9 +175,10 @@ impl System {
             q[c] = t * e[c];
         }
         for c in (0..e.len()).rev() {
+            let l = self.links[c];
             let mut t = q[c];
             for a in 0..3 {
-                if self.plus[a][c] {
+                if l & plus(a) != 0 {
                     t += e[c] * z[c + self.stride[a]];
                 }
             }
