@@ -69,6 +69,7 @@ impl Solids {
 
 /// The total normal velocity (u_p + u_g)·n, m/s, that face (i, j, k) of component `axis` must
 /// carry, or `None` where the face is free (the projection sets it).
+#[inline]
 pub fn fixed_normal(
     grid: &Grid,
     solids: &Solids,

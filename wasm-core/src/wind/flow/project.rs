@@ -197,7 +197,8 @@ fn max_abs(a: &[f64]) -> f64 {
 
 /// Makes `u_g` (m/s) divergence-free on the fluid cells, its fixed faces as they are (set them
 /// first, [`super::boundary::impose`]), to `tolerance` in at most `max_iterations` CG
-/// iterations. Returns how it went; the potential φ (m²/s) is left in `phi`.
+/// iterations. Returns how it went; the potential φ (m²/s) is left in `phi`, and a `phi` of
+/// the grid's cells on entry (the last step's) is the first guess.
 pub fn project(
     grid: &Grid,
     solids: &Solids,
@@ -231,21 +232,37 @@ pub fn project(
             }
         }
     }
-    phi.clear();
-    phi.resize(cells, 0.0);
     let scale = max_abs(&b);
+    if phi.len() != cells || scale == 0.0 {
+        phi.clear();
+        phi.resize(cells, 0.0);
+    }
     let mut report = Projection::default();
     if scale > 0.0 {
-        let e = system.preconditioner();
+        // The last projection's φ is the first guess: r = b − A·φ.
+        for (p, &d) in phi.iter_mut().zip(&system.diag) {
+            if d == 0.0 {
+                *p = 0.0;
+            }
+        }
         let mut r = b;
+        let mut a_s = vec![0.0; cells];
+        system.apply(phi, &mut a_s);
+        for (rc, &ac) in r.iter_mut().zip(&a_s) {
+            *rc -= ac;
+        }
+        report.residual = max_abs(&r) / scale;
+        if report.residual <= tolerance {
+            subtract_gradient(grid, solids, faces, u_g, phi);
+            return report;
+        }
+        let e = system.preconditioner();
         let mut q = vec![0.0; cells];
         let mut z = vec![0.0; cells];
         let mut s = vec![0.0; cells];
-        let mut a_s = vec![0.0; cells];
         system.precondition(&e, &r, &mut q, &mut z);
         s.copy_from_slice(&z);
         let mut sigma = dot(&r, &z);
-        report.residual = 1.0;
         while report.iterations < max_iterations {
             report.iterations += 1;
             system.apply(&s, &mut a_s);
