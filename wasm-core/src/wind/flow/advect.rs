@@ -25,7 +25,7 @@ pub fn trace(grid: &Grid, velocity: &MacField, x: [f32; 3], dt: f32) -> [f32; 3]
 }
 
 /// [`trace`] with the velocity `v0` (m/s) at `x` already sampled.
-#[inline]
+#[inline(always)]
 fn trace_from(
     faces: &FaceSampler,
     velocity: &MacField,

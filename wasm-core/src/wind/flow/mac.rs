@@ -126,7 +126,7 @@ impl FaceSampler {
     }
 
     /// The velocity of `field` at `x` (m), m/s ([`MacField::at`]).
-    #[inline]
+    #[inline(always)]
     pub fn at(&self, field: &MacField, x: [f32; 3]) -> [f32; 3] {
         let mut wall = [(0, 0.0); 3];
         let mut centre = [(0, 0.0); 3];

@@ -28,7 +28,7 @@ impl Axis {
 
     /// The lower sample and the fraction within its cell of the point `t` cells from the
     /// origin, clamped to the samples.
-    #[inline]
+    #[inline(always)]
     pub fn locate(&self, t: f32) -> (usize, f32) {
         let p = (t - self.offset).clamp(0.0, self.top);
         // p ≥ 0, so truncation is the floor (without a call to libm's floorf).
@@ -58,7 +58,7 @@ impl Layout {
     }
 
     /// The eight values around lower corner `b`.
-    #[inline]
+    #[inline(always)]
     pub fn corners(&self, values: &[f32], b: [usize; 3]) -> [f32; 8] {
         let i0 = b[0] + self.row[0] * b[1] + self.row[1] * b[2];
         let [sx, sy, sz] = self.step;
@@ -115,7 +115,7 @@ impl Sampler {
     }
 
     /// The eight corner values around `x` (m) and the fractions within their cell.
-    #[inline]
+    #[inline(always)]
     fn corners(&self, values: &[f32], x: [f32; 3]) -> ([f32; 8], [f32; 3]) {
         let mut b = [0; 3];
         let mut f = [0.0; 3];
@@ -126,14 +126,14 @@ impl Sampler {
     }
 
     /// The value of `values` at `x` (m).
-    #[inline]
+    #[inline(always)]
     pub fn value(&self, values: &[f32], x: [f32; 3]) -> f32 {
         let (c, f) = self.corners(values, x);
         blend(&c, f)
     }
 
     /// [`Sampler::value`] with the least and greatest of the eight samples it blends.
-    #[inline]
+    #[inline(always)]
     pub fn value_bounds(&self, values: &[f32], x: [f32; 3]) -> (f32, f32, f32) {
         let (c, f) = self.corners(values, x);
         let (lo, hi) = bounds(&c);
