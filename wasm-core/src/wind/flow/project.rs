@@ -253,7 +253,7 @@ pub fn project(
         }
         report.residual = max_abs(&r) / scale;
         if report.residual <= tolerance {
-            subtract_gradient(grid, solids, faces, u_g, phi);
+            subtract_gradient(grid, &system, faces, u_g, phi);
             return report;
         }
         let e = system.preconditioner();
@@ -284,31 +284,43 @@ pub fn project(
             }
         }
     }
-    subtract_gradient(grid, solids, faces, u_g, phi);
+    subtract_gradient(grid, &system, faces, u_g, phi);
     report
 }
 
-/// The free faces of `u_g` lose ∇φ.
-fn subtract_gradient(grid: &Grid, solids: &Solids, faces: Faces, u_g: &mut MacField, phi: &[f64]) {
+/// The free faces of `u_g` lose ∇φ: a face inside the box is free where it joins two fluid
+/// cells, one on the box's faces where its cell is fluid and the face is open.
+fn subtract_gradient(grid: &Grid, system: &System, faces: Faces, u_g: &mut MacField, phi: &[f64]) {
     let n = grid.cells;
     let inv_h = 1.0 / f64::from(grid.h);
+    let open = faces == Faces::Open;
     for a in 0..3 {
         let d = grid.face_dims(a);
+        let st = system.stride[a];
         for k in 0..d[2] {
             for j in 0..d[1] {
                 for i in 0..d[0] {
                     let idx = [i, j, k];
-                    if fixed_normal(grid, solids, faces, a, idx).is_some() {
-                        continue;
-                    }
-                    let at = |m: usize| {
-                        let mut c = idx;
-                        c[a] = m;
-                        phi[grid.cell(c[0], c[1], c[2])]
-                    };
                     let s = idx[a];
-                    let below = if s > 0 { at(s - 1) } else { 0.0 };
-                    let above = if s < n[a] { at(s) } else { 0.0 };
+                    let mut c = idx;
+                    c[a] = s.min(n[a] - 1);
+                    let cell = grid.cell(c[0], c[1], c[2]);
+                    let (below, above) = if s == 0 {
+                        if !(open && system.diag[cell] > 0.0) {
+                            continue;
+                        }
+                        (0.0, phi[cell])
+                    } else if s == n[a] {
+                        if !(open && system.diag[cell] > 0.0) {
+                            continue;
+                        }
+                        (phi[cell], 0.0)
+                    } else {
+                        if system.links[cell - st] & plus(a) == 0 {
+                            continue;
+                        }
+                        (phi[cell - st], phi[cell])
+                    };
                     let f = grid.face(a, i, j, k);
                     u_g.u[a][f] -= ((above - below) * inv_h) as f32;
                 }
