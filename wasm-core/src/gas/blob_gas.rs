@@ -88,7 +88,14 @@ pub struct Gas {
     /// Whether the centres are advected elsewhere (on the GPU, [`crate::gas::slots`]): a step
     /// then leaves them as they are and does the rest.
     pub centres_elsewhere: bool,
+    /// c (1/s), how fast each blob's heat is lost: h = h0·exp(−c·age) (the scene's
+    /// `flow.cooling`; 0 without a flow).
+    pub cooling: f64,
 }
+
+/// (2π)^{3/2}: a blob's heat per kelvin of its centre's temperature excess and m³ of σ0³
+/// (h0 = temperature·(2π)^{3/2}·σ0³, so T at a newborn's centre is its emitter's temperature).
+const HEAT_PER_KELVIN: f64 = 15.749_609_945_722_419;
 
 /// Re-base the decay epoch once α(t − epoch) exceeds this (keeps factors well inside f32).
 const MAX_DECAY_EXPONENT: f64 = 20.0;
@@ -109,7 +116,21 @@ impl Gas {
             decayed: Vec::new(),
             diffusion_epoch: f64::NEG_INFINITY,
             centres_elsewhere: false,
+            cooling: 0.0,
         }
+    }
+
+    /// Each blob's heat at `t` (K·m³), h0·exp(−c·(t − birth)), into `heat`.
+    pub fn heat_into(&self, t: f64, heat: &mut Vec<f32>) {
+        let b = &self.blobs;
+        heat.clear();
+        heat.extend(b.heat0.iter().zip(&b.birth).map(|(&h0, &birth)| {
+            if h0 == 0.0 {
+                0.0
+            } else {
+                (h0 as f64 * (-self.cooling * (t - birth)).exp()) as f32
+            }
+        }));
     }
 
     /// Takes edited gas constants and emitters at time `t` (s), keeping every blob where it is
@@ -408,6 +429,7 @@ impl Gas {
                 let blob = Blob {
                     velocity0: v0,
                     velocity_time: em.velocity_time,
+                    heat0: (em.temperature * HEAT_PER_KELVIN * (em.sigma0 as f64).powi(3)) as f32,
                     carried,
                     ..Blob::new(position, em.sigma0, em.mass0, birth)
                 }
@@ -589,7 +611,13 @@ impl Gas {
                     self.counts.split += 1;
                     let levels = self.split_levels(old.sigma[i]);
                     let first = out.len();
-                    self.split_into(&old.get(i), old.sigma[i], old.mass[i], levels, t, &mut out);
+                    let mut parent = old.get(i);
+                    // The children share the parent's heat now, as its mass: h0 at their birth t.
+                    let children = (SPLIT_CHILDREN as f64).powi(levels as i32);
+                    parent.heat0 = (parent.heat0 as f64
+                        * (-self.cooling * (t - parent.birth)).exp()
+                        / children) as f32;
+                    self.split_into(&parent, old.sigma[i], old.mass[i], levels, t, &mut out);
                     self.decayed
                         .extend(out.mass[first..].iter().map(|m| m * to_epoch));
                 }

@@ -24,6 +24,8 @@ pub struct Blobs {
     /// σ and mass at birth (emission, or the split that made the blob).
     pub sigma0: Vec<f32>,
     pub mass0: Vec<f32>,
+    /// Heat at birth h0 (K·m³, docs/FORMATS.md, the flow's heat): h = h0·exp(−c·age).
+    pub heat0: Vec<f32>,
     /// Birth time (s).
     pub birth: Vec<f64>,
     /// Own velocity at birth relative to the wind (m/s), relaxing as exp(−age/τ).
@@ -48,6 +50,8 @@ pub struct Blob {
     pub position: Vec3,
     pub sigma0: f32,
     pub mass0: f32,
+    /// Heat at birth (K·m³).
+    pub heat0: f32,
     pub birth: f64,
     pub albedo: [f32; 3],
     pub emission: [f32; 3],
@@ -65,6 +69,7 @@ impl Blob {
             position,
             sigma0,
             mass0,
+            heat0: 0.0,
             birth,
             albedo: [-1.0; 3],
             emission: [0.0; 3],
@@ -123,6 +128,7 @@ impl Blobs {
         self.emission.extend_from_slice(&b.emission);
         self.sigma0.push(b.sigma0);
         self.mass0.push(b.mass0);
+        self.heat0.push(b.heat0);
         self.birth.push(b.birth);
         self.velocity0.extend_from_slice(&b.velocity0.to_array());
         self.velocity_time.push(b.velocity_time);
@@ -142,6 +148,7 @@ impl Blobs {
         self.emission.extend_from_slice(&other.emission);
         self.sigma0.extend_from_slice(&other.sigma0);
         self.mass0.extend_from_slice(&other.mass0);
+        self.heat0.extend_from_slice(&other.heat0);
         self.birth.extend(other.birth.iter().map(|b| b + shift));
         self.velocity0.extend_from_slice(&other.velocity0);
         self.velocity_time.extend_from_slice(&other.velocity_time);
@@ -179,6 +186,7 @@ impl Blobs {
         compact(&mut self.emission, 3, keep);
         compact(&mut self.sigma0, 1, keep);
         compact(&mut self.mass0, 1, keep);
+        compact(&mut self.heat0, 1, keep);
         compact(&mut self.birth, 1, keep);
         compact(&mut self.velocity0, 3, keep);
         compact(&mut self.velocity_time, 1, keep);
@@ -200,6 +208,7 @@ impl Blobs {
         drop(&mut self.emission, 3, count);
         drop(&mut self.sigma0, 1, count);
         drop(&mut self.mass0, 1, count);
+        drop(&mut self.heat0, 1, count);
         drop(&mut self.birth, 1, count);
         drop(&mut self.velocity0, 3, count);
         drop(&mut self.velocity_time, 1, count);
@@ -216,6 +225,7 @@ impl Blobs {
             position: self.center(i),
             sigma0: self.sigma0[i],
             mass0: self.mass0[i],
+            heat0: self.heat0[i],
             birth: self.birth[i],
             albedo: rgb(&self.albedo),
             emission: rgb(&self.emission),

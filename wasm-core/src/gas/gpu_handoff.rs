@@ -27,6 +27,12 @@ impl Simulation {
                 "a scene that plays a shape in reverse is stepped by the worker, not on the GPU",
             ));
         }
+        if self.scene.active_flow().is_some() {
+            return Err(ParamError::new(
+                "flow",
+                "a scene with a flow is stepped by the worker, not on the GPU",
+            ));
+        }
         self.gas.centres_elsewhere = true;
         self.slots = Some(SlotTable::new(&mut self.gas.blobs));
         self.gpu_walls = None;

@@ -10,6 +10,7 @@ use crate::scene::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
 use crate::scene::limits::MAX_COORD;
 use crate::scene::scene_format::{Primitive, Scene};
 use crate::scene::shapes::Shape;
+use crate::wind::flow::{Projection, SceneFlow, Stir};
 use crate::wind::wall_set::WallSet;
 use crate::wind::wind_slice::SlicePlane;
 use crate::wind::{Wind, WindFrame};
@@ -41,6 +42,12 @@ pub struct Simulation {
     pub(super) slots: Option<SlotTable>,
     /// The solids whose grid the GPU was last handed ([`Simulation::solid_grid_for_gpu`], in [`crate::gas::gpu_handoff`]).
     pub(super) gpu_walls: Option<Arc<WallSet>>,
+    /// The physical large scales (paper §7), when the scene has an enabled `flow`.
+    flow: Option<SceneFlow>,
+    /// Each blob's heat at the last flow step (K·m³), scratch.
+    heat: Vec<f32>,
+    /// The last flow step's projection.
+    projection: Option<Projection>,
 }
 
 /// What an edit did to the running simulation.
@@ -96,6 +103,8 @@ impl Simulation {
     fn start(scene: Scene, field: Option<Arc<TurbulentField>>) -> Self {
         let wind = Wind::new(&scene, field.clone());
         let mut gas = Gas::new(scene.gas.clone(), &scene.emitters, scene.seed);
+        let flow = scene.active_flow().map(|f| SceneFlow::new(f, &scene));
+        gas.cooling = scene.active_flow().map_or(0.0, |f| f.cooling);
         let mut reversed = Vec::new();
         for (i, shape) in scene.shapes.iter().enumerate() {
             match shape.reverse_from {
@@ -116,6 +125,9 @@ impl Simulation {
             frames: Default::default(),
             slots: None,
             gpu_walls: None,
+            flow,
+            heat: Vec::new(),
+            projection: None,
         }
     }
 
@@ -151,8 +163,32 @@ impl Simulation {
         self.wind = Wind::new(&scene, field.clone());
         self.wind.set_transient(transient);
         self.field = field;
+        self.edit_flow(&scene);
+        self.wind
+            .set_flow(self.flow.as_ref().map(SceneFlow::frozen));
         self.scene = scene;
         Ok(Edit::Kept)
+    }
+
+    /// The flow after an edit to `scene`: kept (u_g and all) with its new constants while its
+    /// box, cells, faces and solid objects stay; else started again at rest; gone without an
+    /// enabled `flow`.
+    fn edit_flow(&mut self, scene: &Scene) {
+        let stir = self.flow.as_ref().and_then(|f| f.stir);
+        self.flow = match (self.flow.take(), scene.active_flow()) {
+            (Some(mut old), Some(new))
+                if old.same_grid(new) && scene.render.objects == self.scene.render.objects =>
+            {
+                old.retune(new);
+                Some(old)
+            }
+            (_, Some(new)) => Some(SceneFlow::new(new, scene)),
+            (_, None) => None,
+        };
+        if let Some(f) = &mut self.flow {
+            f.stir = stir;
+        }
+        self.gas.cooling = scene.active_flow().map_or(0.0, |f| f.cooling);
     }
 
     /// Swaps in the small-scale field (synthesised for the scene's field settings after an
@@ -161,8 +197,10 @@ impl Simulation {
         let field = in_use(&self.scene, field);
         check_field(&self.scene, field.as_deref())?;
         let transient = self.wind.transient().cloned();
+        let flow = self.wind.flow().cloned();
         self.wind = Wind::new(&self.scene, field.clone());
         self.wind.set_transient(transient);
+        self.wind.set_flow(flow);
         self.field = field;
         Ok(())
     }
@@ -186,6 +224,9 @@ impl Simulation {
     ) -> Result<(), ParamError> {
         if radius == 0.0 {
             self.stir(None);
+            if let Some(f) = &mut self.flow {
+                f.stir = None;
+            }
             return Ok(());
         }
         let vector = |a: [f32; 3], name: &str, limit: f32| {
@@ -204,9 +245,21 @@ impl Simulation {
                 format!("radius must be between 0 and {MAX_STIR_RADIUS} m"),
             ));
         }
+        let velocity = vector(velocity, "velocity", MAX_STIR_VELOCITY)?;
+        let position = vector(position, "position", MAX_COORD as f32)?;
+        if let Some(f) = &mut self.flow {
+            // Where the scene has a flow, the stir pushes momentum into it (docs/FORMATS.md,
+            // the flow's stirring); the air keeps turning after the pointer stops.
+            f.stir = Some(Stir {
+                centre: position,
+                velocity,
+                radius,
+            });
+            return Ok(());
+        }
         self.stir(Some(Primitive::Uniform {
-            velocity: vector(velocity, "velocity", MAX_STIR_VELOCITY)?,
-            position: vector(position, "position", MAX_COORD as f32)?,
+            velocity,
+            position,
             decay: Some(radius),
             enabled: true,
         }));
@@ -305,7 +358,7 @@ impl Simulation {
     /// Steps that make up `seconds`, refused (naming `simulation.dt` and the time) over
     /// [`crate::scene::limits::MAX_STEPS`].
     pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
-        self.scene.simulation.budgeted_steps(seconds)
+        self.scene.budgeted_steps(seconds)
     }
 
     /// A run of `steps` fixed steps, refused unless it is a whole number, 0 or more (path
@@ -320,8 +373,30 @@ impl Simulation {
         self.budgeted_steps(steps * self.scene.simulation.dt)
     }
 
-    /// One fixed step.
+    /// One fixed step: the flow's (if any, [`Self::step_flow`]), then the gas's
+    /// ([`Self::step_gas`]).
     pub fn step(&mut self) {
+        self.step_flow();
+        self.step_gas();
+    }
+
+    /// The flow's part of a step (nothing without a flow): u_g from now to a step on under
+    /// the primitives, the solids, the blobs' heat and the stir, frozen for the gas's part.
+    pub fn step_flow(&mut self) {
+        let t = self.time();
+        let dt = self.scene.simulation.dt;
+        let Some(flow) = &mut self.flow else {
+            return;
+        };
+        self.gas.heat_into(t, &mut self.heat);
+        let b = &self.gas.blobs;
+        self.projection = Some(flow.step(&self.wind, t, dt, &b.position, &b.sigma, &self.heat));
+        self.wind.set_flow(Some(flow.frozen()));
+    }
+
+    /// The gas's part of a step: the blobs advected through the wind (the flow's u_g of the
+    /// last [`Self::step_flow`] included), emitted, diffused, dissipated, split.
+    pub fn step_gas(&mut self) {
         let t = self.time();
         let dt = self.scene.simulation.dt;
         self.gas.step(
@@ -332,6 +407,16 @@ impl Simulation {
             &mut self.frames,
         );
         self.steps += 1;
+    }
+
+    /// The scene's flow, if it has an enabled one.
+    pub fn flow(&self) -> Option<&SceneFlow> {
+        self.flow.as_ref()
+    }
+
+    /// The last flow step's projection (iterations and residual), if any.
+    pub fn projection(&self) -> Option<Projection> {
+        self.projection
     }
 
     /// The wind of the last step frozen at its start and at its middle (the RK2 midpoint;

@@ -90,3 +90,25 @@ pub const MAX_LIST_OBJECTS: usize = MAX_OBJECTS + MAX_PRIMITIVES;
 /// Most blobs in a blob list: what the largest scene can show, `gas.max_blobs` of gas plus the
 /// reversed shapes' blobs (at most 2,000,000 over all their steps).
 pub const MAX_LIST_BLOBS: usize = MAX_BLOBS_LIMIT + 2 * MAX_SHAPES_BLOBS;
+
+/// The cells a flow may have along each axis (`flow.cells[i]`), `[fewest, most]`.
+pub const FLOW_CELLS: [usize; 2] = [8, 256];
+/// Most cells of a flow (2^21): its solver holds about [`FLOW_BYTES_PER_CELL`] bytes a cell.
+pub const MAX_FLOW_CELLS: u64 = 1 << 21;
+/// What the flow's solver holds a cell (bytes): its face velocities and their scratch copies,
+/// the projection's vectors in double precision, the solid cells and the temperature.
+pub const FLOW_BYTES_PER_CELL: u64 = 200;
+/// How far the box's sides per cell may differ from their mean (relative): the cells are cubes.
+pub const FLOW_CUBE_TOLERANCE: f64 = 0.01;
+/// Most cell-steps (cells × steps) one run with a flow may take: about an hour of one core at
+/// the largest grid.
+pub const MAX_FLOW_CELL_STEPS: f64 = 1e10;
+/// Most substeps of the flow's explicit viscosity in one step (each substep keeps ν·dt/h² at
+/// most [`FLOW_VISCOSITY_STEP`]).
+pub const MAX_VISCOSITY_SUBSTEPS: f64 = 64.0;
+/// The largest ν·dt/h² of one substep of the flow's explicit viscosity (forward Euler of the
+/// seven-point Laplacian is stable up to 1/6).
+pub const FLOW_VISCOSITY_STEP: f64 = 0.125;
+/// An emitter's `temperature` range (K above the ambient air): down to absolute zero at room
+/// temperature, up to a flame's ten thousand.
+pub const TEMPERATURE: [f64; 2] = [-273.15, 1e4];

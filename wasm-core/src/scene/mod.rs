@@ -5,6 +5,8 @@
 //!   mapping (paper §3), the large-scale wind primitives u_l (Eq. 3), the emitters (§6), the
 //!   gas constants (Eqs. 12, 15, 16), the simulation's step and the render settings — with its
 //!   types, defaults and JSON Schema.
+//! - [`flow_settings`]: the scene's `flow`, the coarse grid of the physical large scales
+//!   (§7) and its constants.
 //! - [`shapes`]: the initial blob sets (§6, "3-D morphing") as the scene writes them;
 //!   [`bodies`]: the solid objects as shapes (signed distance and normal).
 //! - [`blob_list`]: the blob list, the one moment a renderer draws (§5: the blobs' centres,
@@ -20,6 +22,7 @@
 
 pub mod blob_list;
 pub mod bodies;
+pub mod flow_settings;
 pub mod json_errors;
 pub mod limits;
 pub mod list_budget;

@@ -13,9 +13,11 @@ use crate::field::spectrum::SpectrumParams;
 use crate::field::turbulent_field::DEFAULT_SEED;
 use crate::field::{FieldParams, MAX_SEED};
 use crate::scene::blob_list::RenderSettings;
+use crate::scene::flow_settings::FlowSettings;
 use crate::scene::limits::{
-    MAX_ALBEDO, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS, MAX_MASS0, MAX_PATH_KEYS,
-    MAX_PRIMITIVES, MAX_SHAPES, MAX_SIGMA0, MAX_STEPS, WORLD_MAPPING,
+    MAX_ALBEDO, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS, MAX_FLOW_CELL_STEPS,
+    MAX_MASS0, MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_SHAPES, MAX_SIGMA0, MAX_STEPS, TEMPERATURE,
+    WORLD_MAPPING,
 };
 use crate::scene::shapes::Shape;
 use schemars::JsonSchema;
@@ -62,6 +64,10 @@ pub struct Scene {
     pub simulation: SimulationSettings,
     #[serde(default)]
     pub render: RenderSettings,
+    /// The physical large scales (paper §7): u_g solved on a coarse grid over a box; none
+    /// keeps the wind kinematic.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flow: Option<FlowSettings>,
 }
 
 impl Default for Scene {
@@ -76,6 +82,7 @@ impl Default for Scene {
             gas: GasSettings::default(),
             simulation: SimulationSettings::default(),
             render: RenderSettings::default(),
+            flow: None,
         }
     }
 }
@@ -308,6 +315,15 @@ pub struct Emitter {
     /// spline of a repulsor's path), in place of `center`; empty keeps it at `center`.
     #[schemars(length(max = MAX_PATH_KEYS), inner(inner(range(min = -MAX_COORD, max = MAX_COORD))))]
     pub path: Vec<[f64; 4]>,
+    /// Temperature excess (K over the ambient air) of each blob at birth: its heat
+    /// h0 = temperature·(2π)^{3/2}·σ0³ drives the flow's buoyancy (read only with a `flow`).
+    #[serde(skip_serializing_if = "is_zero")]
+    #[schemars(range(min = TEMPERATURE[0], max = TEMPERATURE[1]))]
+    pub temperature: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl Default for Emitter {
@@ -327,6 +343,7 @@ impl Default for Emitter {
             velocity_time: 1.0,
             enabled: true,
             path: Vec::new(),
+            temperature: 0.0,
         }
     }
 }
@@ -438,6 +455,35 @@ impl Scene {
     /// field (amplitude > 0) and solid objects the field must go round.
     pub fn needs_potential(&self) -> bool {
         self.field.amplitude > 0.0 && self.has_solids()
+    }
+
+    /// The enabled flow, if any.
+    pub fn active_flow(&self) -> Option<&FlowSettings> {
+        self.flow.as_ref().filter(|f| f.enabled)
+    }
+
+    /// The steps of a run of `seconds` ([`SimulationSettings::budgeted_steps`]), refused too
+    /// (naming `flow.cells`) when the enabled flow's cells × steps exceed
+    /// [`MAX_FLOW_CELL_STEPS`].
+    pub fn budgeted_steps(&self, seconds: f64) -> Result<u64, ParamError> {
+        let steps = self.simulation.budgeted_steps(seconds)?;
+        if let Some(f) = self.active_flow() {
+            let work = f.cell_count() as f64 * steps as f64;
+            if work > MAX_FLOW_CELL_STEPS {
+                return Err(ParamError::new(
+                    "flow.cells",
+                    format!(
+                        "{} cells × {steps} steps ({} s at dt = {:?} s) is {work:.3e} cell-steps, \
+                         over the limit of {MAX_FLOW_CELL_STEPS:.0e}: fewer cells, a larger \
+                         simulation.dt or less time",
+                        f.cell_count(),
+                        crate::error::number(seconds),
+                        self.simulation.dt
+                    ),
+                ));
+            }
+        }
+        Ok(steps)
     }
 
     /// Serialises to pretty JSON.

@@ -15,11 +15,14 @@ use crate::scene::blob_list::{
     Background, BlobList, Camera, Image, Light, Medium, Object, Phase, RenderSettings,
 };
 use crate::scene::bodies::Body;
+use crate::scene::flow_settings::FlowSettings;
 use crate::scene::limits::{
-    MAX_ALBEDO, MAX_BIRTHS_PER_STEP, MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS,
-    MAX_IMAGE_SIDE, MAX_LIGHTS, MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_MASS0, MAX_OBJECTS,
-    MAX_PATH_KEYS, MAX_PRIMITIVES, MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS,
-    MAX_SHAPES, MAX_SHAPES_BLOBS, MAX_SHAPE_BLOBS, MAX_SIGMA0, WORLD_MAPPING,
+    FLOW_BYTES_PER_CELL, FLOW_CELLS, FLOW_CUBE_TOLERANCE, MAX_ALBEDO, MAX_BIRTHS_PER_STEP,
+    MAX_BLOBS_LIMIT, MAX_COORD, MAX_EMISSION, MAX_EMITTERS, MAX_FLOW_CELLS, MAX_IMAGE_SIDE,
+    MAX_LIGHTS, MAX_LIST_BLOBS, MAX_LIST_OBJECTS, MAX_MASS0, MAX_OBJECTS, MAX_PATH_KEYS,
+    MAX_PRIMITIVES, MAX_REVERSED_BLOB_STEPS, MAX_REVERSED_STEPS, MAX_SECONDS, MAX_SHAPES,
+    MAX_SHAPES_BLOBS, MAX_SHAPE_BLOBS, MAX_SIGMA0, MAX_VISCOSITY_SUBSTEPS, TEMPERATURE,
+    WORLD_MAPPING,
 };
 use crate::scene::scene_format::{
     Emitter, GasSettings, Primitive, Scene, DEFAULT_BOUNDARY_WIDTH, SCENE_VERSION,
@@ -58,9 +61,12 @@ impl Scene {
         }
         view(&self.render, "render.", MAX_OBJECTS)?;
         emitters_outside_solids(self)?;
+        if let Some(f) = &self.flow {
+            flow(f, self.simulation.dt)?;
+        }
         if let Some(t) = self.render.time {
             // A still at `render.time` is a run like any other (docs/FORMATS.md, the command line).
-            self.simulation.budgeted_steps(t)?;
+            self.budgeted_steps(t)?;
         }
         Ok(())
     }
@@ -297,7 +303,92 @@ fn emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
     check::range(&p("rate"), e.rate, 0.0, 1e6)?;
     blob_birth(path, e.sigma0, e.mass0, e.albedo, e.emission)?;
     check::vector(&p("velocity"), e.velocity, 1e4)?;
-    check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)
+    check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)?;
+    let [lo, hi] = TEMPERATURE;
+    check::range(&p("temperature"), e.temperature, lo, hi)
+}
+
+/// The flow (docs/FORMATS.md, the flow): its box, its cells (each within [`FLOW_CELLS`], at
+/// most [`MAX_FLOW_CELLS`] in all, cubes within [`FLOW_CUBE_TOLERANCE`]), its constants, and
+/// its viscosity's substeps at the step `dt` (s) within [`MAX_VISCOSITY_SUBSTEPS`].
+fn flow(f: &FlowSettings, dt: f64) -> Result<(), ParamError> {
+    for (i, &v) in f.bounds.iter().enumerate() {
+        check::range(&format!("flow.box[{i}]"), v, -MAX_COORD, MAX_COORD)?;
+    }
+    for a in 0..3 {
+        let (lo, hi) = (f.bounds[a], f.bounds[a + 3]);
+        if hi <= lo {
+            return Err(ParamError::new(
+                format!("flow.box[{}]", a + 3),
+                format!(
+                    "must be greater than flow.box[{a}] (the box's lower corner), got {} ≤ {}",
+                    crate::error::number(hi),
+                    crate::error::number(lo)
+                ),
+            ));
+        }
+    }
+    let [fewest, most] = FLOW_CELLS;
+    for (i, &n) in f.cells.iter().enumerate() {
+        check::integer(
+            &format!("flow.cells[{i}]"),
+            n as u64,
+            fewest as u64,
+            most as u64,
+        )?;
+    }
+    let count = f.cell_count();
+    if count > MAX_FLOW_CELLS {
+        return Err(ParamError::new(
+            "flow.cells",
+            format!(
+                "{count} cells ({} × {} × {}) are over the limit of {MAX_FLOW_CELLS} \
+                 (2^21, {} MB of solver): fewer cells",
+                f.cells[0],
+                f.cells[1],
+                f.cells[2],
+                (MAX_FLOW_CELLS * FLOW_BYTES_PER_CELL) >> 20
+            ),
+        ));
+    }
+    let h = f.h();
+    let spacings = f.spacings();
+    if spacings
+        .iter()
+        .any(|s| (s - h).abs() > FLOW_CUBE_TOLERANCE * h)
+    {
+        return Err(ParamError::new(
+            "flow.cells",
+            format!(
+                "the box's sides per cell ({} m, {} m, {} m) must agree within {} % (the cells \
+                 are cubes): choose cells in proportion to the box",
+                crate::error::number(spacings[0]),
+                crate::error::number(spacings[1]),
+                crate::error::number(spacings[2]),
+                FLOW_CUBE_TOLERANCE * 100.0
+            ),
+        ));
+    }
+    check::range("flow.viscosity", f.viscosity, 0.0, 10.0)?;
+    check::range("flow.buoyancy", f.buoyancy, 0.0, 1.0)?;
+    for (i, &g) in f.gravity.iter().enumerate() {
+        check::range(&format!("flow.gravity[{i}]"), g, -1e3, 1e3)?;
+    }
+    check::range("flow.cooling", f.cooling, 0.0, 1e3)?;
+    let substeps = f.viscosity_substeps(dt);
+    if substeps > MAX_VISCOSITY_SUBSTEPS {
+        return Err(ParamError::new(
+            "flow.viscosity",
+            format!(
+                "ν = {} m²/s at dt = {dt:?} s on cells of {} m needs {substeps} substeps a \
+                 step, over the limit of {MAX_VISCOSITY_SUBSTEPS}: a smaller viscosity, a \
+                 smaller simulation.dt or coarser cells",
+                crate::error::number(f.viscosity),
+                crate::error::number(h)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// What every born blob carries, under `path` (paper §6: an emitter's births and an initial

@@ -18,6 +18,7 @@ use crate::field::TurbulentField;
 use crate::scene::bodies::Body;
 use crate::scene::scene_format::{Primitive, Scene};
 use crate::wind::carried::Phases;
+use crate::wind::flow::FrozenFlow;
 use crate::wind::frozen::{freeze, Frozen};
 use crate::wind::large::Large;
 use crate::wind::small_scale::SmallScale;
@@ -36,6 +37,9 @@ pub struct Wind {
     transient: Option<Large>,
     walls: Option<Arc<WallSet>>,
     phases: Option<Phases>,
+    /// The flow's u_g for the coming step (paper §7's physical large scales), if the scene
+    /// has a flow ([`crate::wind::flow::SceneFlow`] sets it).
+    flow: Option<Arc<FrozenFlow>>,
 }
 
 impl Wind {
@@ -65,7 +69,32 @@ impl Wind {
             transient: None,
             walls,
             phases,
+            flow: None,
         }
+    }
+
+    /// Sets (or with `None` removes) the flow's u_g, added to the large scales inside its box
+    /// from the next frame.
+    pub fn set_flow(&mut self, flow: Option<Arc<FrozenFlow>>) {
+        self.flow = flow;
+    }
+
+    /// The flow's u_g, if set.
+    pub fn flow(&self) -> Option<&Arc<FrozenFlow>> {
+        self.flow.as_ref()
+    }
+
+    /// Each acting repulsor's sphere at time `t`: centre (m), radius (m) and velocity (m/s).
+    pub fn repulsor_spheres(&self, t: f64) -> Vec<(Vec3, f32, Vec3)> {
+        self.acting()
+            .filter_map(|l| match (&l.primitive, &l.path) {
+                (Primitive::Repulsor { radius, .. }, Some(path)) => {
+                    let (x, v) = path.at(t);
+                    Some((x.as_vec3(), *radius, v.as_vec3()))
+                }
+                _ => None,
+            })
+            .collect()
     }
 
     /// Sets (or with `None` removes) the transient primitive, which acts beside the scene's
@@ -176,6 +205,7 @@ impl Wind {
         }
         frame.walls = self.walls.clone();
         frame.blend = self.phases.map(|p| p.blend(t));
+        frame.flow = self.flow.clone();
     }
 
     /// A new frame at time `t`.

@@ -7,6 +7,7 @@ use crate::scene::bodies::Body;
 use crate::wind::carried::Blend;
 use crate::wind::doublets::Part;
 use crate::wind::field_slice::FieldSlice;
+use crate::wind::flow::FrozenFlow;
 use crate::wind::frozen::{FrozenPrimitive, NOT_AN_IMAGE};
 use crate::wind::solids::{Around, Nearest};
 use crate::wind::wall_set::WallSet;
@@ -33,6 +34,8 @@ pub struct WindFrame {
     pub(crate) walls: Option<Arc<WallSet>>,
     /// The carried phases' blend at this time.
     pub(crate) blend: Option<Blend>,
+    /// The flow's u_g (paper §7), added to the large scales in its box.
+    pub(crate) flow: Option<Arc<FrozenFlow>>,
 }
 
 impl WindFrame {
@@ -60,7 +63,17 @@ impl WindFrame {
         if self.has_slice {
             u += self.slice.sample(x);
         }
+        if let Some(f) = &self.flow {
+            u += f.velocity(x);
+        }
         FrozenPrimitive::add_winds(&self.primitives, u, x)
+    }
+
+    /// u_p, the scene's primitives alone at `x` (no solids, no mirror images, no flow), m/s:
+    /// the wind the flow's solver is given.
+    #[inline]
+    pub fn primitive_wind(&self, x: Vec3A) -> Vec3A {
+        FrozenPrimitive::add_winds(&self.primitives[..self.originals], self.constant, x)
     }
 
     /// The small-scale field's slice sampled at `x`, with the carried coordinates' offsets
@@ -131,8 +144,38 @@ impl WindFrame {
             }
         };
         let Some(w) = &self.walls else {
-            let u = FrozenPrimitive::add_winds(&self.primitives, self.constant, x);
+            let mut u = FrozenPrimitive::add_winds(&self.primitives, self.constant, x);
+            if let Some(f) = &self.flow {
+                u += f.velocity(x);
+            }
             return (u, small(self), f32::INFINITY);
+        };
+        let (large, small, clear) = self.around_solids(w, x, o);
+        match &self.flow {
+            None => (large, small, clear),
+            Some(f) => {
+                // Within the flow's box u_p + u_g replaces the solids' closed forms for the
+                // large scales; across its fade layer the two blend.
+                let weight = f.weight(x);
+                if weight == 0.0 {
+                    return (large, small, clear);
+                }
+                let solved = self.primitive_wind(x) + f.velocity(x) / weight;
+                (large + (solved - large) * weight, small, clear)
+            }
+        }
+    }
+
+    /// [`Self::parts_and_clearance`] of the wind that goes round the solids `w` by their closed
+    /// forms and the ramped curl (no flow).
+    #[inline]
+    fn around_solids(&self, w: &WallSet, x: Vec3A, o: [Vec3A; 2]) -> (Vec3A, Vec3A, f32) {
+        let small = |f: &Self| {
+            if f.has_slice {
+                f.blended(&f.slice, x, o)
+            } else {
+                Vec3A::ZERO
+            }
         };
         let around = w.solids.around(x);
         if let Some(near) = w.solids.nearest_among(around.layers, x) {

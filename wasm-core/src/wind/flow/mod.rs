@@ -16,6 +16,9 @@
 //! - [`diffuse`]: ν∇²u_g; [`forces`]: the buoyancy b = −β T g and force splats.
 //! - [`project`]: the pressure projection.
 //! - [`step`]: one step of them all ([`Flow`]).
+//! - [`heat`]: the gas's heat on the cells; [`scene_flow`]: a scene's flow stepped under its
+//!   primitives, solids and stirs; [`frozen_flow`]: u_g as the blobs read it, faded beyond
+//!   the box.
 //!
 //! A step at 32³ costs, per cell, the advection's ~33 trilinear interpolations, a diffusion
 //! substep and a projection of tens of CG iterations; the flow's tests print the measured time.
@@ -24,15 +27,20 @@ pub mod advect;
 pub mod boundary;
 pub mod diffuse;
 pub mod forces;
+pub mod frozen_flow;
 pub mod grid;
+pub mod heat;
 pub mod mac;
 pub mod project;
 pub mod sample;
+pub mod scene_flow;
 pub mod step;
 
 pub use boundary::{Faces, Solids};
 pub use forces::Splat;
+pub use frozen_flow::FrozenFlow;
 pub use grid::Grid;
 pub use mac::MacField;
 pub use project::Projection;
+pub use scene_flow::{SceneFlow, Stir};
 pub use step::Flow;
