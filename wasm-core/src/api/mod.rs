@@ -55,6 +55,10 @@ export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Floa
 /** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
  *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
  *  slot and σ range after the last step. */
+/** The flow's grid at one time (`exportFlow`): the box (m), the cells, the time (s), u_g at the
+ *  cells' centres (m/s, (nz, ny, nx, 3), x fastest) and the temperature excess (K, (nz, ny, nx)). */
+export interface FlowGrid { box: number[]; cells: Uint32Array; time: number;
+  velocity: Float32Array; temperature: Float32Array; }
 /** Streamlines past a solid sphere (`classroom::sphere_flow`): the core's wind and the closed form,
  *  `lines × points` (x, y) pairs each, in radii, and the largest gap between them. */
 export interface SphereFlow { core: Float32Array; closedForm: Float32Array; lines: number;

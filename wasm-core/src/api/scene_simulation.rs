@@ -41,6 +41,15 @@ pub fn scene_field_params(scene_json: &str) -> Result<String, JsError> {
 #[wasm_bindgen]
 pub struct SceneSimulation {
     inner: Simulation,
+    /// The last flow step's time (ms; 0 without a flow).
+    flow_ms: f64,
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// The page's or the worker's clock (`performance.now()`, ms).
+    #[wasm_bindgen(js_namespace = performance, js_name = now)]
+    fn performance_now() -> f64;
 }
 
 #[wasm_bindgen]
@@ -50,7 +59,10 @@ impl SceneSimulation {
     pub fn new(scene_json: &str) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let inner = Simulation::new(scene).map_err(js_error)?;
-        Ok(Self { inner })
+        Ok(Self {
+            inner,
+            flow_ms: 0.0,
+        })
     }
 
     /// Builds a simulation on an existing field, which must have the scene's field parameters.
@@ -58,7 +70,10 @@ impl SceneSimulation {
     pub fn with_field(scene_json: &str, field: &WindField) -> Result<SceneSimulation, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let inner = Simulation::with_field(scene, Some(field.inner.clone())).map_err(js_error)?;
-        Ok(Self { inner })
+        Ok(Self {
+            inner,
+            flow_ms: 0.0,
+        })
     }
 
     /// Applies an edited scene to the running simulation, keeping its blobs and time
@@ -96,9 +111,54 @@ impl SceneSimulation {
             .map_err(js_error)
     }
 
-    /// Runs `n` fixed steps.
+    /// Runs `n` fixed steps, timing the flow's part of each (`flowMs`).
     pub fn step(&mut self, n: u32) {
-        self.inner.run(n as u64);
+        if self.inner.flow().is_none() {
+            self.inner.run(n as u64);
+            return;
+        }
+        for _ in 0..n {
+            let start = performance_now();
+            self.inner.step_flow();
+            self.flow_ms = performance_now() - start;
+            self.inner.step_gas();
+        }
+    }
+
+    /// How long the last flow step took (ms), 0 without a flow.
+    #[wasm_bindgen(js_name = flowMs)]
+    pub fn flow_ms(&self) -> f64 {
+        self.flow_ms
+    }
+
+    /// Whether the scene has an enabled flow (stepped here, in the worker).
+    #[wasm_bindgen(js_name = hasFlow)]
+    pub fn has_flow(&self) -> bool {
+        self.inner.flow().is_some()
+    }
+
+    /// The flow's grid now, or undefined without a flow: `{box, cells, time, velocity,
+    /// temperature}`, velocity u_g at the cells' centres (m/s, (nz, ny, nx, 3), x fastest) and
+    /// temperature T (K, (nz, ny, nx)), as `windfield flow` writes them.
+    #[wasm_bindgen(js_name = exportFlow, unchecked_return_type = "FlowGrid | undefined")]
+    pub fn export_flow(&self) -> JsValue {
+        let Some(g) = self.inner.flow_grid() else {
+            return JsValue::UNDEFINED;
+        };
+        object(vec![
+            ("box", g.bounds.to_vec().into()),
+            (
+                "cells",
+                g.cells
+                    .iter()
+                    .map(|&n| n as u32)
+                    .collect::<Vec<u32>>()
+                    .into(),
+            ),
+            ("time", g.time.into()),
+            ("velocity", g.velocity.into()),
+            ("temperature", g.temperature.into()),
+        ])
     }
 
     /// Refuses a run of `steps` fixed steps that is not a whole number or is over the budget

@@ -10,7 +10,7 @@ use crate::scene::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
 use crate::scene::limits::MAX_COORD;
 use crate::scene::scene_format::{Primitive, Scene};
 use crate::scene::shapes::Shape;
-use crate::wind::flow::{Projection, SceneFlow, Stir};
+use crate::wind::flow::{FlowGrid, Projection, SceneFlow, Stir};
 use crate::wind::wall_set::WallSet;
 use crate::wind::wind_slice::SlicePlane;
 use crate::wind::{Wind, WindFrame};
@@ -412,6 +412,15 @@ impl Simulation {
     /// The scene's flow, if it has an enabled one.
     pub fn flow(&self) -> Option<&SceneFlow> {
         self.flow.as_ref()
+    }
+
+    /// The flow's grid now (u_g and T on its cells), if the scene has a flow: at rest with no
+    /// heat before the first step.
+    pub fn flow_grid(&self) -> Option<FlowGrid> {
+        self.flow.as_ref().map(|f| FlowGrid {
+            time: self.time(),
+            ..f.export()
+        })
     }
 
     /// The last flow step's projection (iterations and residual), if any.

@@ -42,5 +42,5 @@ pub use frozen_flow::FrozenFlow;
 pub use grid::Grid;
 pub use mac::MacField;
 pub use project::Projection;
-pub use scene_flow::{SceneFlow, Stir};
+pub use scene_flow::{FlowGrid, SceneFlow, Stir};
 pub use step::Flow;

@@ -38,6 +38,22 @@ pub struct Stir {
     pub radius: f32,
 }
 
+/// The flow's grid at one time, as `windfield flow` and `exportFlow()` write it
+/// (docs/FORMATS.md, the flow's exports).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlowGrid {
+    /// The box `[x0, y0, z0, x1, y1, z1]`, m.
+    pub bounds: [f64; 6],
+    /// Cells along x, y, z.
+    pub cells: [usize; 3],
+    /// Its time, s.
+    pub time: f64,
+    /// u_g at each cell's centre, m/s: (nz, ny, nx, 3), x fastest.
+    pub velocity: Vec<f32>,
+    /// T at each cell, K: (nz, ny, nx).
+    pub temperature: Vec<f32>,
+}
+
 /// The flow of a scene, at rest from its start.
 #[derive(Debug, Clone)]
 pub struct SceneFlow {
@@ -170,6 +186,17 @@ impl SceneFlow {
         self.frozen = Arc::new(FrozenFlow::new(&grid, self.flow.u_g.clone()));
         self.time = t + dt;
         report
+    }
+
+    /// The grid as the exports write it ([`FlowGrid`]) at the time of the last step.
+    pub fn export(&self) -> FlowGrid {
+        FlowGrid {
+            bounds: self.settings.bounds,
+            cells: self.settings.cells,
+            time: self.time,
+            velocity: self.cell_velocity(),
+            temperature: self.temperature.clone(),
+        }
     }
 
     /// u_g at the cells' centres (m/s, xyz interleaved, x fastest, then y, then z): each
