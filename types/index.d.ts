@@ -48,6 +48,10 @@ export interface WindFieldStats {
   stepper: WindFieldStepper;
   /** Why the worker steps the gas where the GPU was asked for (`setStepper('gpu' | 'auto')`); absent otherwise. */
   stepperReason?: string;
+  /** The last flow step's time (ms); 0 for a scene without a flow. */
+  flowMs: number;
+  /** What steps the scene's flow: the engine worker's core; null for a scene without a flow. */
+  flowStepper: 'cpu' | null;
   /** With the playground's `?profile`: the real-time view's passes on the GPU (ms). */
   passes?: Record<string, number>;
   /** How each pass stores its floats: 16-bit where the GPU cannot render to, blend or filter 32-bit ones. Absent before the scene is loaded. */
@@ -56,6 +60,23 @@ export interface WindFieldStats {
   memoryBudget?: { bytes: number; blobCap: number; volumeBytes: number } | null;
   /** What this device gives up against a full one, one phrase each (empty on a full GPU). */
   gaveUp?: string[];
+}
+
+/**
+ * The flow's grid at one time (`exportFlow()`): the layout `windfield flow --out FILE.npy`
+ * writes, split into its velocity and its temperature.
+ */
+export interface WindFieldFlowGrid {
+  /** The box `[x0, y0, z0, x1, y1, z1]` (m). */
+  box: number[];
+  /** The cells `[nx, ny, nz]`. */
+  cells: Uint32Array;
+  /** The simulated time of the grid (s). */
+  time: number;
+  /** u_g at the cells' centres (m/s): `(nz, ny, nx, 3)`, x fastest, 3·nx·ny·nz floats. */
+  velocity: Float32Array;
+  /** The gas's temperature excess T at the cells' centres (K): `(nz, ny, nx)`, x fastest. */
+  temperature: Float32Array;
 }
 
 /** How a GPU pass stores floats. */
@@ -112,6 +133,8 @@ export interface WindFieldMethods {
   exportVolume(options: { voxel: number; format?: 'vdb' }): Promise<Blob>;
   /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many there were. */
   cancelExport(): Promise<number>;
+  /** The flow's grid now (velocity and temperature, whole typed arrays); null for a scene without a flow. */
+  exportFlow(): Promise<WindFieldFlowGrid | null>;
 }
 
 export interface ExportStillOptions {

@@ -43,6 +43,10 @@ if (player) {
     const stepper: 'cpu' | 'gpu' = await el.setStepper('auto');
     const limit: 'worker' | 'view' | 'display' | 'paused' = stats.limitedBy;
     console.log(time, stepper, stats.stepper, stats.frames, limit);
+    const grid = await el.exportFlow();
+    const flowStepper: 'cpu' | null = stats.flowStepper;
+    if (grid) console.log(grid.cells[0] * grid.cells[1] * grid.cells[2], grid.velocity.length, grid.temperature[0], grid.box[3], grid.time);
+    console.log(flowStepper, stats.flowMs.toFixed(2));
   })();
 
   // @ts-expect-error: not a view
@@ -63,6 +67,8 @@ if (player) {
   void el.exportStill({ format: 'tiff' });
   // @ts-expect-error: a volume needs its voxel size
   void el.exportVolume({});
+  // @ts-expect-error: the flow's grid may be null (a scene without a flow)
+  void el.exportFlow().then((g) => g.velocity);
   // @ts-expect-error: stir is on or off
   el.stir = 'yes';
   // @ts-expect-error: a uniform wind needs its velocity

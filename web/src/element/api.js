@@ -8,6 +8,7 @@ import { $api, $player, $run, $whenReady } from './internals.js';
 /** `stats()` before the scene is loaded. */
 const NO_STATS = Object.freeze({
   blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1, frames: 0, limitedBy: 'paused', stepper: 'cpu',
+  flowMs: 0, flowStepper: null,
 });
 
 export const ApiMixin = (Base) => class extends Base {
@@ -66,6 +67,11 @@ export const ApiMixin = (Base) => class extends Base {
 
   async exportVolume(options) {
     return (await this[$whenReady]()).exportVolume(options);
+  }
+
+  /** The flow's grid now ({box, cells, time, velocity, temperature}); null for a scene without a flow. */
+  async exportFlow() {
+    return (await this[$whenReady]()).exportFlow();
   }
 
   async cancelExport() {

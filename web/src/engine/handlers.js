@@ -30,11 +30,12 @@ const PROGRESS_EVERY_MS = 1000;
  * The current state as whole buffers (transferred), from one `packFrame`: `blobs` the packed
  * frame (Uint32Array, WORDS_PER_BLOB words a blob, whole rows), `info` its description
  * (Float32Array, `frame::packed::PackedFrame::info`), `spheres` the visible repulsor spheres
- * (Float32Array, SPHERE_FLOATS each: x y z radius r g b).
+ * (Float32Array, SPHERE_FLOATS each: x y z radius r g b); `flowMs` the last step's time of the
+ * scene's flow, stepped here (ms, 0 without one).
  */
 function frame(sim) {
   const { words: blobs, info, spheres } = sim.packFrame();
-  const result = { count: info[0], time: sim.time(), blobs, info, spheres };
+  const result = { count: info[0], time: sim.time(), blobs, info, spheres, flowMs: sim.flowMs() };
   return { result, transfer: [blobs.buffer, info.buffer, spheres.buffer] };
 }
 
@@ -275,6 +276,16 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
       return { result: { wasmBytes: memory(), blobs: s.count(), nonFinite } };
     },
     checkSteps: ({ steps }) => ({ result: sim().checkSteps(steps) ?? null }),
+    // The flow's grid now (docs/FORMATS.md, the browser API's `exportFlow`): u_g at the cells'
+    // centres (m/s, (nz, ny, nx, 3), x fastest) and the temperature excess (K, (nz, ny, nx)),
+    // whole buffers; null for a scene without a flow. Always the worker's: it steps the flow.
+    exportFlow: () => {
+      const grid = sim().exportFlow();
+      if (!grid) return { result: null };
+      const { cells, velocity, temperature } = grid;
+      const result = { box: Array.from(grid.box), cells, time: grid.time, velocity, temperature };
+      return { result, transfer: [cells.buffer, velocity.buffer, temperature.buffer] };
+    },
     // The blob list for the page (docs/FORMATS.md: `exportBlobs`).
     blobList: ({ camera, image }) => ({ result: session.blobList(camera, image) }),
     // The reference still of the current state from `camera` at `width × height`: the blob list

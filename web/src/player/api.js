@@ -20,6 +20,7 @@ export function browserApi(player, ready) {
     exportStill: (options) => player.exportStill(options),
     exportFlipbook: (options) => player.exportFlipbook(options),
     exportVolume: (options) => player.exportVolume(options),
+    exportFlow: () => player.exportFlow(),
     cancelExport: () => player.cancelExport(),
     recordWebM: (options) => player.recordWebM(options),
     inspectVolume: (options) => player.inspectVolume(options),

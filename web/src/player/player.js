@@ -141,7 +141,7 @@ export class Player {
     };
     this.#stats = {
       blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1,
-      frames: 0, limitedBy: 'paused', sceneBlobCap: null,
+      frames: 0, limitedBy: 'paused', sceneBlobCap: null, flowMs: 0,
     };
     this.#view = new SceneView(canvas);
     this.#settings = new ViewSettings(this.#view, { resize: () => this.resize(), invalidate: () => this.#invalidate() });
@@ -470,6 +470,8 @@ export class Player {
     if (steps > 0) this.#stats.stepMs = frame.stepMs;
     this.#recovery.stepped(steps);
     this.#stats.packMs = frame.packMs;
+    // The worker's frame times the flow's last step; the GPU's comes from a scene without one.
+    this.#stats.flowMs = frame.flowMs ?? 0;
     this.#stats.frameBytes = frame.crossed ?? frame.blobs.byteLength + frame.info.byteLength + frame.spheres.byteLength;
     await this.#draw();
     this.#stats.frameMs = performance.now() - t0;
@@ -823,6 +825,7 @@ export class Player {
       ...this.#stats,
       stepper: handoff.active,
       ...(handoff.reason && { stepperReason: handoff.reason }),
+      flowStepper: handoff.flowStepper,
       renderer: this.#machine.renderer,
       software: this.#machine.software,
       lighter: this.#lighter.snapshot(),
@@ -887,6 +890,11 @@ export class Player {
 
   exportVolume(options) {
     return this.#captures.exportVolume(options);
+  }
+
+  /** The flow's grid now ({box, cells, time, velocity, temperature}), or null without a flow. */
+  exportFlow() {
+    return this.#captures.exportFlow();
   }
 
   /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many. */

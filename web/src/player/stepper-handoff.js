@@ -9,8 +9,18 @@ import { GpuStepper, gpuStepperRefuses, gpuStepperUnsupported, MAX_GPU_LATTICE }
 /** Why 'auto' steps in the worker on a browser that draws 3-D in software. */
 const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps the gas faster than its GPU passes';
 
-/** Why `scene` must be stepped in the worker (it splits blobs, plays a shape in reverse, …), or null. */
+/** Whether `scene` (as the core normalised it) has a flow that acts: an enabled `flow`. */
+function hasFlow(scene) {
+  return Boolean(scene?.flow && scene.flow.enabled !== false);
+}
+
+/**
+ * Why `scene` must be stepped in the worker (it has a flow, splits blobs, plays a shape in
+ * reverse, …), or null. The flow's grid is stepped by the worker alone, and the blobs move
+ * through it there.
+ */
 function sceneKeepsGpuAway(scene) {
+  if (hasFlow(scene)) return 'the scene has a flow, which the worker steps';
   if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
   if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
   return gpuStepperRefuses(scene);
@@ -73,6 +83,11 @@ export class StepperHandoff {
   /** Why the worker steps the gas where the choice allows the GPU (`stats().stepperReason`), or null. */
   get reason() {
     return this.#reason;
+  }
+
+  /** What steps the scene's flow (`stats().flowStepper`): 'cpu' (the worker's core), or null without a flow. */
+  get flowStepper() {
+    return hasFlow(this.#scene()) ? 'cpu' : null;
   }
 
   /** The GPU stepper while it steps the gas, else null. */

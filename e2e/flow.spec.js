@@ -1,0 +1,152 @@
+// The flow in the browser (docs/FORMATS.md, the browser API): a scene with a flow hands out its
+// grid (`exportFlow`: u_g (nz, ny, nx, 3) and T (nz, ny, nx), whole Float32Arrays from the
+// worker), warm where a hot emitter's gas is; `stats()` says the worker steps it
+// (`flowStepper: 'cpu'`) and times its last step (`flowMs`); the GPU stepper leaves such a scene
+// to the worker without a fault, also when an edit adds a flow to a GPU-stepped scene; a scene
+// without a flow hands out null. The same on a <wind-field> element.
+import { readFileSync } from 'node:fs';
+import { test, expect, bare, collectErrors } from './helpers.js';
+import { encodeScene } from '../web/src/state/url-codec.js';
+
+const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
+const hotFlow = fixture('hot-flow');
+const smallPlume = fixture('small-plume');
+
+async function open(page, scene) {
+  await page.goto(`./?view=points#${await encodeScene(scene)}`);
+  await page.waitForFunction(() => window.windfield !== undefined);
+  await page.evaluate(() => window.windfield.ready);
+  await page.evaluate(() => window.windfield.pause());
+}
+
+/**
+ * What the test reads of `exportFlow()`'s answer, in the page (typed arrays summed up there):
+ * its kinds and lengths, whether every value is finite, the warmest cell within 0.3 m of
+ * `near` (K) and the fastest |u_g| component (m/s). Defined in the page by `installSummary`.
+ */
+function installSummary() {
+  window.flowSummary = (grid, near) => {
+    if (grid === null) return null;
+    const [nx, ny, nz] = grid.cells;
+    const [x0, y0, z0, x1] = grid.box;
+    const h = (x1 - x0) / nx;
+    let warm = -Infinity;
+    for (let k = 0; k < nz; k++) {
+      for (let j = 0; j < ny; j++) {
+        for (let i = 0; i < nx; i++) {
+          const c = [x0 + (i + 0.5) * h, y0 + (j + 0.5) * h, z0 + (k + 0.5) * h];
+          if (Math.hypot(c[0] - near[0], c[1] - near[1], c[2] - near[2]) < 0.3) warm = Math.max(warm, grid.temperature[(k * ny + j) * nx + i]);
+        }
+      }
+    }
+    return {
+      kinds: [grid.cells, grid.velocity, grid.temperature].map((a) => a.constructor.name),
+      cells: [nx, ny, nz],
+      box: grid.box,
+      time: grid.time,
+      velocity: grid.velocity.length,
+      temperature: grid.temperature.length,
+      finite: grid.velocity.every(Number.isFinite) && grid.temperature.every(Number.isFinite),
+      warm,
+      fastest: grid.velocity.reduce((m, v) => Math.max(m, Math.abs(v)), 0),
+    };
+  };
+}
+
+/** The checks of a hot flow's summary `s` (the fixture's 8 × 16 × 8 cells) at `time` (s). */
+function expectHotGrid(s, time) {
+  expect(s.kinds).toEqual(['Uint32Array', 'Float32Array', 'Float32Array']);
+  expect(s.cells).toEqual(hotFlow.flow.cells);
+  expect(s.box).toEqual(hotFlow.flow.box);
+  expect(s.time).toBeCloseTo(time, 9);
+  const n = s.cells[0] * s.cells[1] * s.cells[2];
+  expect(s.velocity).toBe(3 * n);
+  expect(s.temperature).toBe(n);
+  expect(s.finite).toBe(true);
+  expect(s.warm).toBeGreaterThan(0);
+  expect(s.fastest).toBeGreaterThan(0);
+}
+
+const emitterAt = hotFlow.emitters[0].center;
+
+test('a scene with a flow: exportFlow hands out its grid, warm near the hot emitter; the worker steps it', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.addInitScript(installSummary);
+  await open(page, hotFlow);
+  const out = await page.evaluate(async (near) => {
+    const w = window.windfield;
+    await w.step(20);
+    const grid = await w.exportFlow();
+    const stats = w.stats();
+    // The GPU is asked for: the worker keeps the gas, and says why.
+    const stepper = await w.setStepper('gpu');
+    await w.step(1);
+    return { summary: window.flowSummary(grid, near), stats, stepper, after: w.stats() };
+  }, emitterAt);
+  expectHotGrid(out.summary, out.stats.time);
+  expect(out.stats.flowStepper).toBe('cpu');
+  expect(out.stats.flowMs).toBeGreaterThanOrEqual(0);
+  expect(out.stats.stepper).toBe('cpu');
+  expect(out.stats.stepperReason).toMatch(/flow/);
+  expect(out.stepper).toBe('cpu');
+  expect(out.after.stepper).toBe('cpu');
+  expect(out.after.flowStepper).toBe('cpu');
+  expect(out.after.stepperReason).toMatch(/flow/);
+  expect(errors).toEqual([]);
+});
+
+test('a scene without a flow hands out null; an edit that adds one brings the gas back from the GPU', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.addInitScript(installSummary);
+  await open(page, smallPlume);
+  const out = await page.evaluate(async ({ scene, flow, temperature, near }) => {
+    const w = window.windfield;
+    const stepper = await w.setStepper('gpu');
+    await w.step(20);
+    const plain = { grid: await w.exportFlow(), stats: w.stats() };
+    // The same scene with a flow and a hot emitter: its blobs and time are kept.
+    const edited = structuredClone(scene);
+    edited.flow = flow;
+    edited.emitters[0].temperature = temperature;
+    await w.editScene(edited);
+    const kept = w.stats();
+    await w.step(20);
+    const grid = await w.exportFlow();
+    return { stepper, plain, kept, grid: window.flowSummary(grid, near), stats: w.stats() };
+  }, { scene: smallPlume, flow: hotFlow.flow, temperature: hotFlow.emitters[0].temperature, near: smallPlume.emitters[0].center });
+  expect(out.stepper).toBe('gpu');
+  expect(out.plain.grid).toBeNull();
+  expect(out.plain.stats.flowStepper).toBeNull();
+  expect(out.plain.stats.flowMs).toBe(0);
+  expect(out.plain.stats.stepper).toBe('gpu');
+  expect(out.kept.time).toBe(out.plain.stats.time);
+  expect(out.kept.stepper).toBe('cpu');
+  expect(out.kept.flowStepper).toBe('cpu');
+  expect(out.stats.stepperReason).toMatch(/flow/);
+  expectHotGrid(out.grid, out.stats.time);
+  expect(errors).toEqual([]);
+});
+
+test('a <wind-field> element hands out its flow, and null for a scene without one', async ({ page }) => {
+  const errors = collectErrors(page);
+  await page.addInitScript(installSummary);
+  await page.route('**/hot-flow.json', (route) => route.fulfill({ contentType: 'application/json', body: JSON.stringify(hotFlow) }));
+  await bare(page, 'flow', '<wind-field id="f" src="./hot-flow.json" loading="eager" poster-time="0" style="width: 240px"></wind-field>');
+  const out = await page.evaluate(async ({ plain, near }) => {
+    const el = document.querySelector('#f');
+    await el.ready;
+    await el.pause();
+    await el.step(20);
+    const hot = { grid: window.flowSummary(await el.exportFlow(), near), stats: el.stats() };
+    await el.setScene(plain);
+    await el.step(5);
+    return { hot, plain: { grid: await el.exportFlow(), stats: el.stats() } };
+  }, { plain: smallPlume, near: emitterAt });
+  expectHotGrid(out.hot.grid, out.hot.stats.time);
+  expect(out.hot.stats.flowStepper).toBe('cpu');
+  expect(out.hot.stats.flowMs).toBeGreaterThanOrEqual(0);
+  expect(out.plain.grid).toBeNull();
+  expect(out.plain.stats.flowStepper).toBeNull();
+  expect(out.plain.stats.flowMs).toBe(0);
+  expect(errors).toEqual([]);
+});
