@@ -5,6 +5,8 @@
 //! windfield stats field.npy --json
 //! windfield render scene.json --frames 0..240 --fps 24 --out frames/f%04d.png --shard 0/4
 //! windfield wind scene.json --seconds 2 --box -1,0,-1,1,2,1 --n 32,64,32 --out wind.npy
+//! windfield wind plume.json --frames 0..48 --fps 24 --points probes.json --out wind.json
+//! windfield flow plume.json --seconds 2 --out flow.npy
 //! windfield schema > ../public/scene.schema.json
 //! windfield contract > ../web/src/generated/contract.js
 //! ```
@@ -30,6 +32,7 @@ mod claim;
 mod contract;
 mod failure;
 mod flipbook;
+mod flow;
 mod formats;
 mod frames;
 mod generate;
@@ -73,12 +76,16 @@ enum Command {
     /// Render a still with the CPU reference renderer: a blob list, or a scene simulated first.
     /// An --out ending in .exr writes OpenEXR (half-float linear RGBA).
     Render(render::RenderArgs),
-    /// Sample the scene's whole wind (m/s) at one time, at points or over a box of cells.
+    /// Sample the scene's whole wind (m/s), its flow included, at one time or at the frames of
+    /// a series, at points or over a box of cells.
     Wind(wind::WindArgs),
     /// Render a scene's frames into one sprite sheet (PNG or EXR, with alpha) and its JSON.
     Flipbook(flipbook::FlipbookArgs),
     /// Write the gas's density (and emission) as an OpenVDB volume.
     Volume(volume::VolumeArgs),
+    /// Run a scene with a flow and write the flow's grid (u_g in m/s at the cells' centres and
+    /// the temperature excess in K) as .npy, .vdb or .json.
+    Flow(flow::FlowArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
     /// Print the JavaScript module of the constants the core shares with the page's code
@@ -99,6 +106,7 @@ fn main() -> ExitCode {
         Command::Wind(a) => wind::run(a),
         Command::Flipbook(a) => flipbook::run(a),
         Command::Volume(a) => volume::run(a),
+        Command::Flow(a) => flow::run(a),
         Command::Schema => schema::run(),
         Command::Contract => contract::run(),
     };

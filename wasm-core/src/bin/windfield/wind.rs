@@ -1,9 +1,18 @@
 //! `windfield wind`: the scene's whole wind u = u_l + u_s (m/s, world axes; what the solids
-//! make of it included, carried eddies traced back) at one time, at given points or over a box
-//! of cells, for other programs (docs/FORMATS.md, the command line).
+//! make of it included, carried eddies traced back, the flow's u_g inside its box) at one time,
+//! or at each frame of a series, at given points or over a box of cells, for other programs
+//! (docs/FORMATS.md, the command line).
+//!
+//! Without a flow the wind at T is a function of T alone: it is sampled at once, nothing is
+//! simulated. With an enabled flow u_g is the state of a solver stepped under the gas's heat,
+//! so the scene is simulated to T (whole steps of `simulation.dt`, under the step budget) and
+//! the simulation's wind sampled then; a series (`--frames A..B --fps F`) is one simulation,
+//! sampled at each frame's time k/F as it passes it, so frame k is what `--seconds k/F`
+//! writes.
 
 use super::atomic::write_atomically;
 use super::failure::Failure;
+use super::frames::FrameRange;
 use super::input::{read_scene, read_text};
 use super::moment::check_seconds;
 use super::summary::{grouped, wall};
@@ -15,9 +24,9 @@ use std::sync::Arc;
 use std::time::Instant;
 use windfield::export::vector_grid::VectorGrid;
 use windfield::field::{npy, TurbulentField};
-use windfield::scene::limits::MAX_COORD;
+use windfield::scene::limits::{MAX_COORD, MAX_FPS};
 use windfield::wind::Wind;
-use windfield::Scene;
+use windfield::{Scene, Simulation};
 
 /// Most points one run samples (as many as a field's lattice may hold).
 pub const MAX_POINTS: usize = 1 << 24;
@@ -29,9 +38,16 @@ pub const MAX_TRACE_STEPS: f64 = 10_000.0;
 pub struct WindArgs {
     /// Scene file (JSON, format version 1).
     scene: PathBuf,
-    /// The time (s), 0 or more (at most 1,000,000 steps of simulation.dt).
+    /// The time (s), 0 or more (with a flow, at most 1,000,000 steps of simulation.dt).
     #[arg(long, allow_hyphen_values = true)]
-    seconds: f64,
+    seconds: Option<f64>,
+    /// A series instead of one time: frames k in the half-open range A..B at t = k/fps,
+    /// written as one JSON array of frames, each an array of [u, v, w].
+    #[arg(long, value_name = "A..B", allow_hyphen_values = true)]
+    frames: Option<String>,
+    /// With --frames: frames per second.
+    #[arg(long, requires = "frames", allow_hyphen_values = true)]
+    fps: Option<f64>,
     /// A JSON array of points [x, y, z] (m); the output (.json) is an array of [u, v, w]
     /// (m/s) in the same order.
     #[arg(long, required_unless_present = "bounds", conflicts_with_all = ["bounds", "cells"])]
@@ -55,7 +71,7 @@ pub struct WindArgs {
         allow_hyphen_values = true
     )]
     cells: Option<String>,
-    /// Output file: .json, or for a box .npy or .vdb too.
+    /// Output file: .json, or for a box at one time .npy or .vdb too.
     #[arg(long)]
     out: PathBuf,
 }
@@ -68,14 +84,18 @@ enum Format {
     Vdb,
 }
 
-/// The output format of `path` (`points`: only JSON), or a refusal naming `--out`.
-fn format_of(path: &Path, points: bool) -> Result<Format, Failure> {
+/// The output format of `path` (`points` or a `series`: only JSON), or a refusal naming
+/// `--out`.
+fn format_of(path: &Path, points: bool, series: bool) -> Result<Format, Failure> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
     match ext.as_str() {
         "json" => Ok(Format::Json),
+        "npy" | "vdb" if series => Err(Failure::Input(
+            "--out: a series (--frames) is written as .json (an array of frames, each an array of [u, v, w])".into(),
+        )),
         "npy" if !points => Ok(Format::Npy),
         "npy" => Err(Failure::Input(
             "--out: the wind at --points is written as .json (an array of [u, v, w])".into(),
@@ -258,10 +278,115 @@ fn write_box(
     }
 }
 
+/// When the wind is sampled: once, or at each frame of a series.
+enum Moments {
+    /// `--seconds T`.
+    Once(f64),
+    /// `--frames A..B --fps F`: frame k at t = k/F.
+    Frames(FrameRange, f64),
+}
+
+impl Moments {
+    /// `--seconds`, or `--frames` with `--fps`, checked; not both.
+    fn parse(args: &WindArgs) -> Result<Self, Failure> {
+        match (args.seconds, &args.frames) {
+            (Some(_), Some(_)) => Err(Failure::Input(
+                "--frames: a series samples the times of its frames, --seconds one time: give one of them, not both".into(),
+            )),
+            (Some(t), None) => {
+                check_seconds(t)?;
+                Ok(Self::Once(t))
+            }
+            (None, Some(frames)) => {
+                let range = FrameRange::parse(frames).map_err(Failure::Input)?;
+                let fps = args.fps.ok_or_else(|| {
+                    Failure::Input(
+                        "--fps: required with --frames (frames per second of the series)".into(),
+                    )
+                })?;
+                if !(fps.is_finite() && fps > 0.0 && fps <= MAX_FPS) {
+                    return Err(Failure::Input(format!(
+                        "--fps: must be a number greater than 0 and at most {MAX_FPS} (got {})",
+                        windfield::error::number(fps)
+                    )));
+                }
+                Ok(Self::Frames(range, fps))
+            }
+            (None, None) => Err(Failure::Input(
+                "give --seconds T, or --frames A..B with --fps F".into(),
+            )),
+        }
+    }
+
+    /// The times (s), in increasing order.
+    fn times(&self) -> Vec<f64> {
+        match *self {
+            Self::Once(t) => vec![t],
+            Self::Frames(range, fps) => (range.start..range.end).map(|k| k as f64 / fps).collect(),
+        }
+    }
+
+    /// How many times.
+    fn count(&self) -> u64 {
+        match self {
+            Self::Once(_) => 1,
+            Self::Frames(range, _) => range.end - range.start,
+        }
+    }
+}
+
+/// The whole wind of `scene` (read from `file`) at `points` at each of `times` (s, in
+/// increasing order): without a flow its wind sampled at each time; with one, one simulation
+/// run through the times (refused over its budget for the last one), its wind sampled as it
+/// passes each.
+fn sample_at(
+    scene: Scene,
+    points: &[Vec3],
+    times: &[f64],
+    file: &str,
+) -> Result<Vec<Vec<Vec3>>, Failure> {
+    let bad = |e: windfield::ParamError| Failure::Input(format!("{file}: {e}"));
+    // Carried coordinates are traced back in steps of the scene's dt (at most 10,000 a phase).
+    let trace = scene
+        .simulation
+        .dt
+        .max(scene.field.carry_period() / MAX_TRACE_STEPS);
+    if scene.active_flow().is_none() {
+        let wind = wind_of(&scene, bad)?;
+        return Ok(times
+            .iter()
+            .map(|&t| wind.sample(points, t, trace))
+            .collect());
+    }
+    // The budget holds for the last time, told before the solver's memory is taken.
+    let last = times.last().copied().unwrap_or(0.0);
+    scene.budgeted_steps(last).map_err(bad)?;
+    let mut sim = Simulation::new(scene).map_err(bad)?;
+    Ok(times
+        .iter()
+        .map(|&t| {
+            sim.run(sim.steps_for(t) - sim.steps());
+            sim.wind.sample(points, t, trace)
+        })
+        .collect())
+}
+
+/// Writes a series as JSON: an array of frames, each an array of [u, v, w], each frame the
+/// bytes one time's JSON has.
+fn write_series(path: &Path, frames: &[Vec<Vec3>]) -> Result<(), Failure> {
+    let rows: Vec<Vec<[f32; 3]>> = frames
+        .iter()
+        .map(|u| u.iter().map(|v| v.to_array()).collect())
+        .collect();
+    let text = serde_json::to_string(&rows).expect("numbers serialise");
+    write_atomically(path, |w| w.write_all(text.as_bytes()))
+}
+
 pub fn run(args: WindArgs) -> Result<(), Failure> {
     let start = Instant::now();
-    check_seconds(args.seconds)?;
-    let format = format_of(&args.out, args.points.is_some())?;
+    let moments = Moments::parse(&args)?;
+    let series = matches!(moments, Moments::Frames(..));
+    let format = format_of(&args.out, args.points.is_some(), series)?;
     let scene = read_scene(&args.scene)?;
     let (cells, points) = match (&args.points, &args.bounds, &args.cells) {
         (Some(p), _, _) => (None, read_points(p)?),
@@ -275,26 +400,41 @@ pub fn run(args: WindArgs) -> Result<(), Failure> {
             ))
         }
     };
+    let samples = moments.count() as u128 * points.len() as u128;
+    if samples > MAX_POINTS as u128 {
+        return Err(Failure::Input(format!(
+            "--frames: at most {MAX_POINTS} samples in all, frames × points (got {} × {})",
+            moments.count(),
+            points.len()
+        )));
+    }
     let file = args.scene.display().to_string();
-    let wind = wind_of(&scene, |e| Failure::Input(format!("{file}: {e}")))?;
-    // Carried coordinates are traced back in steps of the scene's dt (at most 10,000 a phase).
-    let trace = scene
-        .simulation
-        .dt
-        .max(scene.field.carry_period() / MAX_TRACE_STEPS);
-    let u = wind.sample(&points, args.seconds, trace);
-    match &cells {
-        Some(cells) => write_box(&args.out, format, cells, args.seconds, &u)?,
-        None => write_json(&args.out, &u)?,
+    let flow = scene.active_flow().is_some();
+    let times = moments.times();
+    let frames = sample_at(scene, &points, &times, &file)?;
+    match (&moments, &cells) {
+        (Moments::Frames(..), _) => write_series(&args.out, &frames)?,
+        (Moments::Once(t), Some(cells)) => write_box(&args.out, format, cells, *t, &frames[0])?,
+        (Moments::Once(_), None) => write_json(&args.out, &frames[0])?,
     }
     let what = match &cells {
         Some(CellBox { n: [x, y, z], .. }) => format!("{x}×{y}×{z} cells"),
         None => format!("{} points", grouped(points.len())),
     };
+    let when = match moments {
+        Moments::Once(t) => format!("at t = {t:.2} s"),
+        Moments::Frames(range, fps) => format!(
+            "in frames {}..{} at {fps} fps (t = {:.2} to {:.2} s)",
+            range.start,
+            range.end,
+            times[0],
+            times[times.len() - 1]
+        ),
+    };
     eprintln!(
-        "wrote {}: the wind at {what} at t = {:.2} s, {}",
+        "wrote {}: the wind{} at {what} {when}, {}",
         args.out.display(),
-        args.seconds,
+        if flow { ", its flow simulated," } else { "" },
         wall(start)
     );
     Ok(())
