@@ -18,6 +18,13 @@ export type EmitterShape = 'point' | 'disk' | 'sphere' | 'box';
  */
 export type SpectrumLaw = 'kolmogorov' | 'paper-literal';
 /**
+ * What the box's six faces do.
+ *
+ * This interface was referenced by `Scene`'s JSON-Schema
+ * via the `definition` "FlowFaces".
+ */
+export type FlowFaces = 'open' | 'closed';
+/**
  * Output encoding: `srgb` applies the sRGB transfer curve before quantising, `linear` does not.
  *
  * This interface was referenced by `Scene`'s JSON-Schema
@@ -262,6 +269,11 @@ export interface Scene {
    */
   emitters: Emitter[];
   field: FieldSettings;
+  /**
+   * The physical large scales (paper §7): u_g solved on a coarse grid over a box; none
+   * keeps the wind kinematic.
+   */
+  flow?: FlowSettings | null;
   gas: GasSettings;
   render: RenderSettings;
   /**
@@ -344,6 +356,11 @@ export interface Emitter {
    * @maxItems 3
    */
   size: [number, number, number];
+  /**
+   * Temperature excess (K over the ambient air) of each blob at birth: its heat
+   * h0 = temperature·(2π)^{3/2}·σ0³ drives the flow's buoyancy (read only with a `flow`).
+   */
+  temperature?: number;
   /**
    * Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
    * exp(−age/`velocity_time`).
@@ -432,6 +449,53 @@ export interface SpectrumParams {
    * Temporal spread: G_k is a Gaussian in ω with standard deviation kσ (σ ≥ 0; 0 freezes time).
    */
   sigma: number;
+}
+/**
+ * The flow: u_g on `cells` cubes over `box`, under the primitives and the small scales.
+ *
+ * This interface was referenced by `Scene`'s JSON-Schema
+ * via the `definition` "FlowSettings".
+ */
+export interface FlowSettings {
+  /**
+   * The box `[x0, y0, z0, x1, y1, z1]` (m), x0 < x1, y0 < y1, z0 < z1.
+   *
+   * @minItems 6
+   * @maxItems 6
+   */
+  box: [number, number, number, number, number, number];
+  /**
+   * β, the expansion coefficient of the Boussinesq buoyancy b = −β T g (1/K).
+   */
+  buoyancy: number;
+  /**
+   * Cells along x, y and z, each 8 to 256, at most 2^21 in all; the box's sides divided by
+   * them agree within 1 % (the cells are cubes).
+   *
+   * @minItems 3
+   * @maxItems 3
+   */
+  cells: [number, number, number];
+  /**
+   * c, the rate at which the gas's heat is lost: h = h0·exp(−c·age) (1/s).
+   */
+  cooling: number;
+  /**
+   * `false` keeps the flow in the scene without effect.
+   */
+  enabled: boolean;
+  faces: FlowFaces;
+  /**
+   * g (m/s²).
+   *
+   * @minItems 3
+   * @maxItems 3
+   */
+  gravity: [number, number, number];
+  /**
+   * ν, the kinematic viscosity (m²/s).
+   */
+  viscosity: number;
 }
 /**
  * Gas constants (paper Eqs. 12, 15, 16).
@@ -701,6 +765,11 @@ export interface SceneInput {
    */
   emitters?: EmitterInput[];
   field?: FieldSettingsInput;
+  /**
+   * The physical large scales (paper §7): u_g solved on a coarse grid over a box; none
+   * keeps the wind kinematic.
+   */
+  flow?: FlowSettingsInput | null;
   gas?: GasSettingsInput;
   render?: RenderSettingsInput;
   /**
@@ -783,6 +852,11 @@ export interface EmitterInput {
    * @maxItems 3
    */
   size?: [number, number, number];
+  /**
+   * Temperature excess (K over the ambient air) of each blob at birth: its heat
+   * h0 = temperature·(2π)^{3/2}·σ0³ drives the flow's buoyancy (read only with a `flow`).
+   */
+  temperature?: number;
   /**
    * Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
    * exp(−age/`velocity_time`).
@@ -871,6 +945,53 @@ export interface SpectrumParamsInput {
    * Temporal spread: G_k is a Gaussian in ω with standard deviation kσ (σ ≥ 0; 0 freezes time).
    */
   sigma?: number;
+}
+/**
+ * The flow: u_g on `cells` cubes over `box`, under the primitives and the small scales.
+ *
+ * This interface was referenced by `SceneInput`'s JSON-Schema
+ * via the `definition` "FlowSettings".
+ */
+export interface FlowSettingsInput {
+  /**
+   * The box `[x0, y0, z0, x1, y1, z1]` (m), x0 < x1, y0 < y1, z0 < z1.
+   *
+   * @minItems 6
+   * @maxItems 6
+   */
+  box: [number, number, number, number, number, number];
+  /**
+   * β, the expansion coefficient of the Boussinesq buoyancy b = −β T g (1/K).
+   */
+  buoyancy?: number;
+  /**
+   * Cells along x, y and z, each 8 to 256, at most 2^21 in all; the box's sides divided by
+   * them agree within 1 % (the cells are cubes).
+   *
+   * @minItems 3
+   * @maxItems 3
+   */
+  cells: [number, number, number];
+  /**
+   * c, the rate at which the gas's heat is lost: h = h0·exp(−c·age) (1/s).
+   */
+  cooling?: number;
+  /**
+   * `false` keeps the flow in the scene without effect.
+   */
+  enabled?: boolean;
+  faces?: FlowFaces;
+  /**
+   * g (m/s²).
+   *
+   * @minItems 3
+   * @maxItems 3
+   */
+  gravity?: [number, number, number];
+  /**
+   * ν, the kinematic viscosity (m²/s).
+   */
+  viscosity?: number;
 }
 /**
  * Gas constants (paper Eqs. 12, 15, 16).
