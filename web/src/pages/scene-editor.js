@@ -1,6 +1,7 @@
 // The playground's scene editor: lil-gui folders for every list in the scene (wind primitives,
 // emitters, lights, objects) with add, remove, edit and on/off, plus the world mapping and the
-// medium. Every change goes through `apply(draft)`, which validates and loads the edited copy;
+// medium, and the flow (paper §7: the large scales solved on a coarse grid). Every change goes
+// through `apply(draft)`, which validates and loads the edited copy;
 // the folders are then rebuilt from the scene that loaded (or the last good one). A slider
 // whose range is a rule of the format takes it from the core (the contract).
 
@@ -29,6 +30,60 @@ export const TEMPLATES = {
   },
 };
 
+/** Cells offered along the flow box's longest side (the others follow, so that the cells stay cubes). */
+export const FLOW_CELLS = [8, 12, 16, 20, 24, 32, 40, 48, 64];
+/** The cells a new flow has along its box's longest side: a few ms a step in the worker. */
+const FLOW_LONGEST = 24;
+/** Fewest and most cells of a flow along each axis (docs/FORMATS.md, the flow). */
+const FLOW_AXIS = [8, 256];
+/** A new flow's room round the emitters (m): beside and below them, and above them (smoke rises). */
+const FLOW_MARGIN = { side: 0.4, below: 0.2, above: 1.2 };
+
+/**
+ * The box `bounds` ([x0, y0, z0, x1, y1, z1], m) fitted to cubes with `longest` cells along its
+ * longest side: edge h = longest side / `longest`, each axis round(side/h) cells (8 at least),
+ * each side made exactly that many h about its centre. Returns `{box, cells}`.
+ */
+export function fitFlowBox(bounds, longest) {
+  const sides = [0, 1, 2].map((a) => bounds[a + 3] - bounds[a]);
+  const h = Math.max(...sides) / longest;
+  const cells = sides.map((s) => Math.min(FLOW_AXIS[1], Math.max(FLOW_AXIS[0], Math.round(s / h))));
+  const round = (v) => Math.round(v * 1e6) / 1e6;
+  const box = [0, 1, 2].map((a) => (bounds[a] + bounds[a + 3]) / 2);
+  const half = cells.map((n) => (n * h) / 2);
+  return { box: [...box.map((c, a) => round(c - half[a])), ...box.map((c, a) => round(c + half[a]))], cells };
+}
+
+/** The cells along the longest side of a flow's box. */
+export const flowLongest = (flow) => {
+  const sides = [0, 1, 2].map((a) => flow.box[a + 3] - flow.box[a]);
+  return flow.cells[sides.indexOf(Math.max(...sides))];
+};
+
+/**
+ * A flow round the scene's emitters (room beside, below and above them, the floor kept as
+ * its lower bound when the emitters sit above y = 0), with air's constants and open faces.
+ */
+export function defaultFlow(scene) {
+  const lo = [Infinity, Infinity, Infinity];
+  const hi = [-Infinity, -Infinity, -Infinity];
+  for (const e of scene.emitters.length ? scene.emitters : [{ center: [0, 0, 0], radius: 0.1 }]) {
+    const half = e.shape === 'box' ? e.size.map((s) => s / 2) : [e.radius ?? 0, e.radius ?? 0, e.radius ?? 0];
+    const at = e.path?.length ? e.path.map(([, ...p]) => p) : [e.center];
+    for (const c of at) {
+      for (let a = 0; a < 3; a += 1) {
+        lo[a] = Math.min(lo[a], c[a] - half[a]);
+        hi[a] = Math.max(hi[a], c[a] + half[a]);
+      }
+    }
+  }
+  const bounds = [
+    lo[0] - FLOW_MARGIN.side, lo[1] >= 0 ? Math.max(0, lo[1] - FLOW_MARGIN.below) : lo[1] - FLOW_MARGIN.below, lo[2] - FLOW_MARGIN.side,
+    hi[0] + FLOW_MARGIN.side, hi[1] + FLOW_MARGIN.above, hi[2] + FLOW_MARGIN.side,
+  ];
+  return { ...fitFlowBox(bounds, FLOW_LONGEST), viscosity: 1.5e-5, buoyancy: 1 / 293.15, gravity: [0, -9.81, 0], cooling: 0.5, faces: 'open', enabled: true };
+}
+
 /** Where each list lives in a scene. */
 export const LISTS = {
   wind: { title: 'Wind primitives', get: (s) => s.wind, kind: (item) => item.type, optional: ['decay', 'color'] },
@@ -41,6 +96,8 @@ export const LISTS = {
 const SWITCH_ON = { decay: 1, albedo: [0.9, 0.9, 0.9], emission: [1, 0.8, 0.5], color: [0.8, 0.8, 0.8], model: 'mug' };
 /** Fields edited elsewhere or not by hand (paths, the kind itself). */
 const SKIP = new Set(['type', 'path', 'enabled']);
+/** Fields shown under another name (with their units). */
+const NAMES = { temperature: 'temperature (K over the air)' };
 const COLOUR = new Set(['color', 'albedo', 'emission']);
 const CHOICES = { shape: ['point', 'disk', 'sphere', 'box'], model: ['mug', 'teapot'] };
 /**
@@ -71,7 +128,7 @@ function addFields(folder, item, changed, optional = []) {
   for (const [key, value] of Object.entries(item)) {
     if (SKIP.has(key)) continue;
     if (typeof value === 'number') {
-      folder.add(item, key).onFinishChange(changed);
+      folder.add(item, key).name(NAMES[key] ?? key).onFinishChange(changed);
     } else if (typeof value === 'boolean') {
       folder.add(item, key).onChange(changed);
     } else if (typeof value === 'string' && CHOICES[key]) {
@@ -111,6 +168,7 @@ export function sceneEditor(parent, { scene, apply }) {
     world(root, draft, changed);
     for (const [key, list] of Object.entries(LISTS)) listFolder(root, key, list, draft, changed);
     medium(root, draft, changed);
+    flowFolder(root, draft, changed);
     for (const f of root.foldersRecursive()) if (!open.has(f._title)) f.close();
     if (open.has('Scene') || !open.size) root.open();
   };
@@ -148,6 +206,8 @@ function listFolder(root, key, list, draft, changed) {
     if ('enabled' in item) sub.add(item, 'enabled').name('on').onChange(changed);
     // An object's `solid` is left out of a scene when false: offer the switch on every object.
     if (key === 'objects') item.solid ??= false;
+    // An emitter's `temperature` (the heat that lifts its gas in a flow) is left out when 0.
+    if (key === 'emitters') item.temperature ??= 0;
     addFields(sub, item, changed, list.optional);
     sub.add({ remove: () => { items.splice(i, 1); changed(); } }, 'remove');
   });
@@ -175,4 +235,32 @@ function medium(root, draft, changed) {
   if (Array.isArray(render.background)) {
     render.background.forEach((_, a) => f.add(render.background, a, 0, 1, 0.01).name(`background ${'rgb'[a]}`).onFinishChange(changed));
   }
+}
+
+/**
+ * The flow (paper §7): on/off (on adds a flow round the emitters, off keeps it switched off),
+ * the cells along the box's longest side (the others in proportion, the box refitted so the
+ * cells stay cubes), the box's corners, ν, β, the cooling and the faces.
+ */
+function flowFolder(root, draft, changed) {
+  const f = root.addFolder('Flow (§7)');
+  const flow = draft.flow;
+  const state = { on: Boolean(flow?.enabled) };
+  f.add(state, 'on').name('flow (physical large scales)').onChange((on) => {
+    if (on && !draft.flow) draft.flow = defaultFlow(draft);
+    else if (draft.flow) draft.flow.enabled = on;
+    changed();
+  });
+  if (!flow) return;
+  const grid = { longest: flowLongest(flow) };
+  const refit = () => Object.assign(flow, fitFlowBox(flow.box, grid.longest));
+  f.add(grid, 'longest', [...new Set([...FLOW_CELLS, grid.longest])].sort((a, b) => a - b))
+    .name('cells (longest side)').onChange(() => { refit(); changed(); });
+  f.add({ cells: flow.cells.join(' × ') }, 'cells').name('cells (x × y × z)').disable();
+  flow.box.forEach((_, i) => f.add(flow.box, i).name(`box ${i < 3 ? 'from' : 'to'} ${'xyz'[i % 3]} (m)`)
+    .onFinishChange(() => { refit(); changed(); }));
+  f.add(flow, 'viscosity').name('viscosity ν (m²/s)').onFinishChange(changed);
+  f.add(flow, 'buoyancy').name('buoyancy β (1/K)').onFinishChange(changed);
+  f.add(flow, 'cooling').name('cooling (1/s)').onFinishChange(changed);
+  f.add(flow, 'faces', ['open', 'closed']).name('faces').onChange(changed);
 }

@@ -1,6 +1,6 @@
 // Wind guides: what the large-scale primitives and the emitters are, drawn in the scene
 // (arrows for uniform wind, sources and sinks; a circulating ring for a vortex; the path of a
-// repulsor; the outline of each emitter), and a drag handle (three.js TransformControls) that
+// repulsor; the outline of each emitter; the edges of the flow's box), and a drag handle (three.js TransformControls) that
 // moves one of them. Guides are a view aid: captures and recordings leave them out.
 
 import * as THREE from 'three';
@@ -9,6 +9,7 @@ import { TransformControls } from 'three/examples/jsm/controls/TransformControls
 const WIND = 0x6fc3ff;
 const SINK = 0xff8a65;
 const EMITTER = 0xffd54f;
+const FLOW = 0x9ccc65;
 /** Arrow length (m) per m/s of wind, and its bounds. */
 const ARROW_PER_SPEED = 0.8;
 const ARROW_MIN = 0.15;
@@ -96,6 +97,18 @@ function emitterGuide(e) {
   return lines;
 }
 
+/** The flow's box (paper §7: the grid the large scales are solved on): its twelve edges. */
+export function flowGuide(flow) {
+  const [x0, y0, z0, x1, y1, z1] = flow.box;
+  const lines = new THREE.LineSegments(
+    new THREE.EdgesGeometry(new THREE.BoxGeometry(x1 - x0, y1 - y0, z1 - z0)),
+    new THREE.LineDashedMaterial({ color: FLOW, dashSize: 0.06, gapSize: 0.04 }),
+  );
+  lines.computeLineDistances();
+  lines.position.set((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2);
+  return lines;
+}
+
 /** A guide of something switched off (`enabled: false`) is drawn faint. */
 function faintIfOff(guide, enabled) {
   if (!enabled) {
@@ -138,10 +151,10 @@ export class GuidesLayer {
     this.onMoved = null;
   }
 
-  /** Rebuilds the guides when the scene's primitives or emitters change (a new scene is compared once). */
+  /** Rebuilds the guides when the scene's primitives, emitters or flow change (a new scene is compared once). */
   update(scene) {
     if (scene === this.scene) return;
-    const key = JSON.stringify([scene.wind, scene.emitters]);
+    const key = JSON.stringify([scene.wind, scene.emitters, scene.flow ?? null]);
     if (key === this.key) {
       this.scene = scene;
       return;
@@ -153,6 +166,7 @@ export class GuidesLayer {
     }
     for (const p of scene.wind) this.group.add(faintIfOff(primitiveGuide(p), p.enabled));
     for (const e of scene.emitters) this.group.add(faintIfOff(emitterGuide(e), e.enabled));
+    if (scene.flow) this.group.add(faintIfOff(flowGuide(scene.flow), scene.flow.enabled));
     this.scene = scene;
     this.select(this.selected);
   }
