@@ -8,12 +8,12 @@ use windfield::scene::Scene;
 /// A still-air scene: a point emitter at (0, 0.1, 0) of `temperature` K, a flow over a
 /// 1.2 × 2.4 × 1.2 m box (cells of 7.5 cm) with `cooling` 1/s, no small scales; `extra` is
 /// spliced into the scene's top level (a ceiling object, say).
-fn plume(temperature: f64, cooling: f64, extra: &str) -> Simulation {
+fn plume_at(rate: f64, amplitude: f64, temperature: f64, cooling: f64, extra: &str) -> Simulation {
     let text = format!(
         r#"{{"version": 1, "seed": 3,
             "field": {{"size": [16, 16, 16, 16], "period": [1, 1, 1], "time_period": 2,
-                       "amplitude": 0.15}},
-            "emitters": [{{"shape": "disk", "radius": 0.05, "center": [0, 0.1, 0], "rate": 40,
+                       "amplitude": {amplitude}}},
+            "emitters": [{{"shape": "disk", "radius": 0.05, "center": [0, 0.1, 0], "rate": {rate},
                           "sigma0": 0.06, "mass0": 1, "temperature": {temperature}}}],
             "gas": {{"diffusion": 0.002, "dissipation": 0}},
             "simulation": {{"dt": 0.02}},
@@ -54,36 +54,246 @@ fn axis_speed(sim: &Simulation) -> f64 {
         / 7.0
 }
 
-/// The rms distance from the axis (m) of blobs in height bins of 0.2 m from `lo` m.
-fn widths(sim: &Simulation, bins: &[f32]) -> Vec<f64> {
+/// The rms distance from the axis (m) of the blobs between heights `lo` and `hi` (m), and
+/// how many there are, and the highest blob's height (m).
+fn band(sim: &Simulation, lo: f32, hi: f32) -> (f64, usize, f32) {
     let b = sim.blobs();
-    bins.iter()
-        .map(|&lo| {
-            let (mut s, mut n) = (0.0, 0);
-            for i in 0..b.len() {
-                let c = b.center(i);
-                if c.y >= lo && c.y < lo + 0.2 {
-                    s += (c.x * c.x + c.z * c.z) as f64;
-                    n += 1;
-                }
-            }
-            (s / n.max(1) as f64).sqrt()
-        })
-        .collect()
+    let (mut s, mut n, mut top) = (0.0, 0, f32::NEG_INFINITY);
+    for i in 0..b.len() {
+        let c = b.center(i);
+        top = top.max(c.y);
+        if c.y >= lo && c.y < hi {
+            s += (c.x * c.x + c.z * c.z) as f64;
+            n += 1;
+        }
+    }
+    ((s / n.max(1) as f64).sqrt(), n, top)
 }
 
+/// A hot emitter's gas rises by its heat in still air (mean height after 3 s at least 0.5 m
+/// above the emitter); the same emitter without heat stays within 0.1 m of it.
 #[test]
-fn explore() {
-    for (temperature, cooling) in [(0.0, 0.5), (100.0, 0.5), (30.0, 0.0), (60.0, 0.0)] {
-        let mut sim = plume(temperature, cooling, "");
+fn a_hot_plume_rises_by_its_heat_and_a_cold_one_stays() {
+    for (temperature, lo, hi) in [(0.0, 0.0, 0.2), (40.0, 0.6, f64::INFINITY)] {
+        let mut sim = plume_at(40.0, 0.15, temperature, 0.5, "");
         sim.run(150);
-        let (y, r, n) = height_and_spread(&sim, 0.0);
-        let mut w = 0.0;
-        for _ in 0..50 {
-            sim.run(2);
-            w += axis_speed(&sim) / 50.0;
+        let (y, _, n) = height_and_spread(&sim, 0.0);
+        assert!(n > 100, "{n} blobs");
+        assert!(y >= lo && y <= hi, "T = {temperature} K: mean height {y} m");
+        if temperature > 0.0 {
+            let p = sim.projection().expect("a flow");
+            assert!(p.residual <= 1e-4, "{p:?}");
         }
-        let p = sim.projection().expect("a flow");
-        println!("T {temperature} c {cooling}: mean height {y:.3} m, spread {r:.3} m over {n} blobs; axis w {w:.3}; widths {:?}; CG {} its, residual {:.2e}", widths(&sim, &[0.3, 0.6, 0.9, 1.2, 1.5]), p.iterations, p.residual);
     }
+}
+
+/// Plume theory (Morton, Taylor & Turner 1956): with no cooling the rise speed goes as the
+/// buoyancy flux's cube root, w ∝ F^{1/3}, so doubling the heat raises it by 2^{1/3} ≈ 1.26
+/// (within 1.1–1.45).
+#[test]
+fn doubling_the_heat_raises_the_rise_speed_by_the_cube_root_of_two() {
+    let speed = |temperature: f64| {
+        let mut sim = plume_at(40.0, 0.15, temperature, 0.0, "");
+        sim.run(150);
+        (0..50)
+            .map(|_| {
+                sim.run(2);
+                axis_speed(&sim)
+            })
+            .sum::<f64>()
+            / 50.0
+    };
+    let (w1, w2) = (speed(30.0), speed(60.0));
+    let ratio = w2 / w1;
+    println!("rise speed {w1:.3} → {w2:.3} m/s, ratio {ratio:.3}");
+    assert!(w1 > 0.2, "{w1}");
+    assert!((1.1..=1.45).contains(&ratio), "{ratio}");
+}
+
+/// The plume widens about linearly with height (MTT 1956's self-similar plume, b ∝ z): the rms
+/// distance of its blobs from the axis, averaged over 2.5 s in 0.2 m bands from 0.3 to 1.9 m,
+/// fits a line of positive slope with r² ≥ 0.9, and widens from the first band to the last
+/// as the bands' heights do, within a factor of 2.
+#[test]
+fn the_plume_widens_about_linearly_with_height() {
+    let bins = [0.3f32, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 1.7];
+    let mut sim = plume_at(150.0, 2.0, 20.0, 0.0, "");
+    sim.run(75);
+    let mut acc = vec![(0.0f64, 0usize); bins.len()];
+    for _ in 0..25 {
+        sim.run(5);
+        for (k, &lo) in bins.iter().enumerate() {
+            let (r, n, _) = band(&sim, lo, lo + 0.2);
+            acc[k].0 += r * r * n as f64;
+            acc[k].1 += n;
+        }
+    }
+    assert!(acc.iter().all(|&(_, n)| n > 100), "{acc:?}");
+    // The bands' middles' heights above the source at 0.1 m.
+    let z: Vec<f64> = bins.iter().map(|&lo| lo as f64).collect();
+    let w: Vec<f64> = acc.iter().map(|&(s, n)| (s / n as f64).sqrt()).collect();
+    let m = z.len() as f64;
+    let (mz, mw) = (z.iter().sum::<f64>() / m, w.iter().sum::<f64>() / m);
+    let szz: f64 = z.iter().map(|a| (a - mz).powi(2)).sum();
+    let sww: f64 = w.iter().map(|b| (b - mw).powi(2)).sum();
+    let szw: f64 = z.iter().zip(&w).map(|(a, b)| (a - mz) * (b - mw)).sum();
+    let slope = szw / szz;
+    let r2 = szw * szw / (szz * sww);
+    let growth = w[w.len() - 1] / w[0];
+    let heights = z[z.len() - 1] / z[0];
+    println!("widths {w:.3?}: slope {slope:.3}, r² {r2:.3}, growth {growth:.2} over ×{heights:.2}");
+    assert!(slope > 0.0 && r2 >= 0.9, "slope {slope}, r² {r2}");
+    assert!(
+        growth > heights / 2.0 && growth < heights * 2.0,
+        "{growth} vs {heights}"
+    );
+}
+
+/// A ceiling jet (Alpert 1972): the plume under a solid ceiling 1 m up leaves no blob above it
+/// and runs out along it, its spread just under the ceiling (0.8–1 m) at least 3× the free
+/// plume's at the same height.
+#[test]
+fn a_plume_under_a_ceiling_runs_out_along_it() {
+    let spread = |extra: &str| {
+        let mut sim = plume_at(40.0, 0.15, 60.0, 0.2, extra);
+        sim.run(200);
+        band(&sim, 0.8, 1.0)
+    };
+    let (free, _, _) = spread("");
+    let (under, n, top) = spread(CEILING);
+    println!("spread under the ceiling {under:.3} m ({n} blobs), free {free:.3} m; top {top:.3} m");
+    assert!(top < 1.0, "a blob at {top} m");
+    assert!(n > 50 && under >= 3.0 * free, "{under} vs {free}");
+}
+
+/// A solid ceiling 1 m up.
+const CEILING: &str = r#", "render": {"objects": [{"type": "plane", "point": [0, 1.0, 0],
+    "normal": [0, -1, 0], "color": [0.5, 0.5, 0.5], "solid": true}]}"#;
+
+/// A stir's momentum persists in the flow: half the kinetic energy a half-second drag put in
+/// is still there a second after the pointer stops, at air's viscosity.
+#[test]
+fn a_stir_keeps_turning_after_the_pointer_stops() {
+    let text = r#"{"version": 1, "field": {"amplitude": 0}, "simulation": {"dt": 0.02},
+        "flow": {"box": [-1, -1, -1, 1, 1, 1], "cells": [24, 24, 24]}}"#;
+    let mut sim = Simulation::new(Scene::from_json(text).expect("valid")).expect("runs");
+    let energy = |sim: &Simulation| {
+        let f = sim.flow().expect("a flow");
+        f.flow.u_g.kinetic_energy(&f.flow.grid)
+    };
+    for k in 0..25 {
+        sim.stir_at([-0.3 + 0.024 * k as f32, 0.0, 0.0], [1.2, 0.0, 0.0], 0.15)
+            .expect("a stir");
+        sim.step();
+    }
+    sim.stir_at([0.0; 3], [0.0; 3], 0.0).expect("stops");
+    let put_in = energy(&sim);
+    sim.run(50);
+    let left = energy(&sim);
+    println!("stir: {put_in:.4e} → {left:.4e}, {:.3}", left / put_in);
+    assert!(put_in > 1e-3, "{put_in}");
+    assert!(left >= 0.5 * put_in, "{left} of {put_in}");
+}
+
+/// The same scene gives the same bytes: two runs of a hot plume under a ceiling agree bit for
+/// bit, blobs and grid alike.
+#[test]
+fn a_flow_scene_gives_the_same_bytes_twice() {
+    let run = || {
+        let mut sim = plume_at(40.0, 0.15, 60.0, 0.5, CEILING);
+        sim.run(40);
+        (
+            sim.blobs().position.clone(),
+            sim.flow_grid().expect("a flow"),
+        )
+    };
+    let (a, b) = (run(), run());
+    assert_eq!(a.0, b.0);
+    assert_eq!(a.1, b.1);
+}
+
+/// Every new key is checked, naming its path; a flow too large for memory or time is refused
+/// before any work.
+#[test]
+fn the_flows_keys_are_checked_and_budgeted() {
+    let scene = |flow: &str, extra: &str| {
+        format!(r#"{{"version": 1, "field": {{"amplitude": 0}}, "flow": {flow}{extra}}}"#)
+    };
+    let unit = r#""box": [0, 0, 0, 1, 1, 1]"#;
+    let refused = [
+        (format!("{{{unit}}}"), "flow"),
+        (format!(r#"{{{unit}, "cells": [8, 8]}}"#), "flow.cells"),
+        (
+            format!(r#"{{{unit}, "cells": [4, 8, 8]}}"#),
+            "flow.cells[0]",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 300]}}"#),
+            "flow.cells[2]",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8.5]}}"#),
+            "flow.cells[2]",
+        ),
+        (format!(r#"{{{unit}, "cells": [8, 8, 16]}}"#), "flow.cells"),
+        (
+            format!(r#"{{{unit}, "cells": [256, 256, 256]}}"#),
+            "flow.cells",
+        ),
+        (
+            r#"{"box": [0, 0, 0, 1, 0, 1], "cells": [8, 8, 8]}"#.into(),
+            "flow.box[4]",
+        ),
+        (
+            r#"{"box": [0, 0, 0, 1, 1, 1e9], "cells": [8, 8, 8]}"#.into(),
+            "flow.box[5]",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "viscosity": -1}}"#),
+            "flow.viscosity",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "viscosity": 10}}"#),
+            "flow.viscosity",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "buoyancy": 2}}"#),
+            "flow.buoyancy",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "cooling": -0.1}}"#),
+            "flow.cooling",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "gravity": [0, 1e4, 0]}}"#),
+            "flow.gravity[1]",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": "ajar"}}"#),
+            "flow.faces",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "swirl": 1}}"#),
+            "flow",
+        ),
+    ];
+    for (flow, path) in &refused {
+        let e = Scene::from_json(&scene(flow, "")).expect_err(flow);
+        assert!(e.to_string().starts_with(path), "{flow}: {e}");
+    }
+    let small = format!(r#"{{{unit}, "cells": [8, 8, 8]}}"#);
+    let hot = r#", "emitters": [{"temperature": 2e4}]"#;
+    let e = Scene::from_json(&scene(&small, hot)).expect_err("too hot");
+    assert!(e.to_string().starts_with("emitters[0].temperature"), "{e}");
+    // Time: 2^19 cells for 30,000 steps is over the run's budget, refused before a step.
+    let big = r#"{"box": [0, 0, 0, 2, 2, 0.5], "cells": [128, 128, 32]}"#;
+    let sim = Simulation::new(Scene::from_json(&scene(big, "")).expect("valid")).expect("runs");
+    let e = sim.budgeted_steps(3e4 / 60.0).expect_err("over the budget");
+    assert!(e.to_string().starts_with("flow.cells"), "{e}");
+    let e = Scene::from_json(&scene(big, r#", "render": {"time": 600}"#)).expect_err("render.time");
+    assert!(e.to_string().starts_with("flow.cells"), "{e}");
+    // A disabled flow is kept and does nothing.
+    let off = format!(r#"{{{unit}, "cells": [8, 8, 8], "enabled": false}}"#);
+    let sim = Simulation::new(Scene::from_json(&scene(&off, "")).expect("valid")).expect("runs");
+    assert!(sim.flow().is_none());
 }
