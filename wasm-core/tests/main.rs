@@ -12,6 +12,7 @@ mod exports;
 mod field_statistics;
 mod figure1;
 mod flow;
+mod flow_shedding;
 mod fuzz_inputs;
 mod gas_physics;
 mod gpu_steps;
