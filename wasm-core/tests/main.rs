@@ -14,6 +14,7 @@ mod figure1;
 mod flow;
 mod flow_cli;
 mod flow_scene;
+mod flow_shedding;
 mod fuzz_inputs;
 mod gas_physics;
 mod gpu_steps;

@@ -7,10 +7,15 @@
 //!   the velocity's normal derivative is 0 (sampling clamps to the box), so air leaves and
 //!   enters.
 //! - A closed face of the box is a wall: (u_p + u_g)·n = 0.
+//! - Along a solid's surface the air is held to the solid's tangential velocity (no-slip: the
+//!   viscous step reads a ghost value 2v − u across the surface, the surface halfway between a
+//!   face beside it and the one inside it), or slips freely where the solid is marked slipping
+//!   (a frictionless wall or a plane of symmetry: the ghost value is u, no shear).
 //!
 //! A staircase of cubes stands for a curved solid: it loses the surface's slope within a cell
-//! (an error of order h in the velocity next to it) and slips freely along it (no boundary
-//! layer: the coarse grid holds none).
+//! (an error of order h in the velocity next to it). A boundary layer thinner than a cell is
+//! not resolved: at a coarse h the no-slip wall's shear is that of a layer one cell thick, and
+//! the advection's own viscosity (of order 0.06 h·|u|) outweighs air's.
 
 use super::grid::Grid;
 use super::mac::MacField;
@@ -31,6 +36,10 @@ pub struct Solids {
     pub solid: Vec<bool>,
     /// Each cell's solid velocity, m/s (read only where `solid`).
     pub velocity: Vec<[f32; 3]>,
+    /// Whether each solid cell lets the air slip along its surface (a frictionless wall or a
+    /// plane of symmetry) rather than holding it to its own velocity (no-slip, read only where
+    /// `solid`).
+    pub slip: Vec<bool>,
 }
 
 impl Solids {
@@ -39,11 +48,28 @@ impl Solids {
         Self {
             solid: vec![false; grid.cell_count()],
             velocity: vec![[0.0; 3]; grid.cell_count()],
+            slip: vec![false; grid.cell_count()],
         }
     }
 
-    /// Marks solid, moving at `v` (m/s), every cell whose centre `inside` holds.
+    /// Marks solid, moving at `v` (m/s) and no-slip, every cell whose centre `inside` holds.
     pub fn add(&mut self, grid: &Grid, v: [f32; 3], inside: impl Fn([f32; 3]) -> bool) {
+        self.add_surface(grid, v, false, inside);
+    }
+
+    /// Marks solid, moving at `v` (m/s), every cell whose centre `inside` holds, the air
+    /// slipping freely along its surface (a frictionless wall or a plane of symmetry).
+    pub fn add_slipping(&mut self, grid: &Grid, v: [f32; 3], inside: impl Fn([f32; 3]) -> bool) {
+        self.add_surface(grid, v, true, inside);
+    }
+
+    fn add_surface(
+        &mut self,
+        grid: &Grid,
+        v: [f32; 3],
+        slip: bool,
+        inside: impl Fn([f32; 3]) -> bool,
+    ) {
         let n = grid.cells;
         for k in 0..n[2] {
             for j in 0..n[1] {
@@ -52,6 +78,7 @@ impl Solids {
                         let c = grid.cell(i, j, k);
                         self.solid[c] = true;
                         self.velocity[c] = v;
+                        self.slip[c] = slip;
                     }
                 }
             }
@@ -97,6 +124,21 @@ pub fn fixed_normal(
         (Some(a), None) | (None, Some(a)) => Some(a),
         (None, None) => None,
     }
+}
+
+/// Whether face (i, j, k) of component `axis` touches a no-slip solid cell (one of the two
+/// cells it joins along `axis`): across such a face the air's tangential velocity is held.
+#[inline]
+pub fn holds(grid: &Grid, solids: &Solids, axis: usize, idx: [usize; 3]) -> bool {
+    let s = idx[axis];
+    let n = grid.cells[axis];
+    let holding = |m: usize| {
+        let mut c = idx;
+        c[axis] = m;
+        let c = grid.cell(c[0], c[1], c[2]);
+        solids.solid[c] && !solids.slip[c]
+    };
+    (s > 0 && holding(s - 1)) || (s < n && holding(s))
 }
 
 /// Sets u_g on every fixed face so that u_p + u_g carries its fixed normal velocity there.

@@ -4,21 +4,48 @@
 //! a 5 cm cell one substep holds for 20 s, so a step costs 7 samples and one update per face;
 //! a large ν costs proportionally more substeps.
 //!
-//! Beyond the box's faces and along the lattice's ends the neighbour is the sample itself (zero
-//! normal derivative: free slip along closed walls, free outflow through open ones). Fixed faces
-//! (solids and walls) are left as they are and enter their neighbours' Laplacian as the wall's
-//! value. The stencil's error is of order h² (a wave of k loses
-//! (4/h²)·sin²(kh/2) in place of k²).
+//! The conditions hold on the whole wind u = u_p + u_g (u_p the primitives' wind, whose own
+//! Laplacian is not added: it is given). A free face's neighbours in the stencil are:
+//!
+//! - beyond the box's faces and along the lattice's ends, the sample itself (zero normal
+//!   derivative: free slip along closed walls, free outflow through open ones);
+//! - across its own axis, a fixed face (a solid's or a closed wall's): the normal velocity v·n
+//!   that face carries;
+//! - along the other two axes, a face of a solid cell, a ghost value across the surface
+//!   halfway between them: 2v − u for a no-slip solid (so u = v on the surface), u for a
+//!   slipping one (no shear).
+//!
+//! Fixed faces are left as they are (the projection's step sets them). The stencil's error is
+//! of order h² in the fluid (a wave of k loses (4/h²)·sin²(kh/2) in place of k²) and of order h
+//! at a staircase surface.
 
-use super::boundary::{fixed_normal, Faces, Solids};
+use super::boundary::{fixed_normal, holds, Faces, Solids};
 use super::grid::Grid;
 use super::mac::MacField;
 
 /// The largest ν·dt/h² of one substep.
 const STABLE: f32 = 0.125;
 
-/// `u` after ν∇²u has acted for `dt` (s) at viscosity `nu` (m²/s).
-pub fn diffuse(grid: &Grid, solids: &Solids, faces: Faces, u: &mut MacField, nu: f32, dt: f32) {
+/// What a face is to its neighbours' stencil.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Face {
+    /// Free: its own value.
+    Free,
+    /// Fixed, carrying the total normal velocity v (m/s); `holds`: a no-slip solid's.
+    Fixed { v: f32, holds: bool },
+}
+
+/// `u` (u_g, m/s) after ν∇²(u_p + u_g) has acted for `dt` (s) at viscosity `nu` (m²/s), `u_p`
+/// the primitives' wind on the faces (m/s).
+pub fn diffuse(
+    grid: &Grid,
+    solids: &Solids,
+    faces: Faces,
+    u_p: &MacField,
+    u: &mut MacField,
+    nu: f32,
+    dt: f32,
+) {
     if nu <= 0.0 || dt <= 0.0 {
         return;
     }
@@ -27,15 +54,20 @@ pub fn diffuse(grid: &Grid, solids: &Solids, faces: Faces, u: &mut MacField, nu:
     let r = r / substeps as f32;
     for a in 0..3 {
         let d = grid.face_dims(a);
-        let mut free = vec![false; u.u[a].len()];
+        let mut kind = vec![Face::Free; u.u[a].len()];
         for k in 0..d[2] {
             for j in 0..d[1] {
                 for i in 0..d[0] {
-                    free[grid.face(a, i, j, k)] =
-                        fixed_normal(grid, solids, faces, a, [i, j, k]).is_none();
+                    if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
+                        kind[grid.face(a, i, j, k)] = Face::Fixed {
+                            v,
+                            holds: holds(grid, solids, a, [i, j, k]),
+                        };
+                    }
                 }
             }
         }
+        let up = &u_p.u[a];
         let stride = [1, d[0], d[0] * d[1]];
         for _ in 0..substeps {
             let old = u.u[a].clone();
@@ -43,19 +75,26 @@ pub fn diffuse(grid: &Grid, solids: &Solids, faces: Faces, u: &mut MacField, nu:
                 for j in 0..d[1] {
                     for i in 0..d[0] {
                         let s = grid.face(a, i, j, k);
-                        if !free[s] {
+                        if kind[s] != Face::Free {
                             continue;
                         }
                         let idx = [i, j, k];
+                        // The neighbour `m` across axis `b`'s value of u_g.
+                        let neighbour = |m: usize, b: usize| match kind[m] {
+                            Face::Free => old[m],
+                            Face::Fixed { v, .. } if b == a => v - up[m],
+                            Face::Fixed { v, holds: true } => 2.0 * v - up[s] - old[s] - up[m],
+                            Face::Fixed { holds: false, .. } => old[s],
+                        };
                         let mut lap = 0.0;
                         for b in 0..3 {
                             let below = if idx[b] > 0 {
-                                old[s - stride[b]]
+                                neighbour(s - stride[b], b)
                             } else {
                                 old[s]
                             };
                             let above = if idx[b] + 1 < d[b] {
-                                old[s + stride[b]]
+                                neighbour(s + stride[b], b)
                             } else {
                                 old[s]
                             };

@@ -80,7 +80,7 @@ impl Flow {
         let g = &self.grid;
         let carrier = u_p.plus(&self.u_g);
         let mut u = advect_velocity(g, &self.u_g, &carrier, dt);
-        diffuse(g, &self.solids, self.faces, &mut u, self.viscosity, dt);
+        diffuse(g, &self.solids, self.faces, u_p, &mut u, self.viscosity, dt);
         if let Some(t) = temperature {
             add_buoyancy(g, &mut u, t, self.buoyancy, self.gravity, dt);
         }
