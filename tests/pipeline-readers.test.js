@@ -243,6 +243,17 @@ test('the wind grid of `generate` is the field\'s lattice in world units, read b
   assert.match(refused(['generate', '--size', '8', '--time', '1', '--out', join(dir, 'x.npy')]), /--time: applies to a wind grid/);
 });
 
+test('`windfield flow` as OpenVDB is the same grid as its .npy, velocity and temperature at the cell centres', () => {
+  const scene = `${root}tests/fixtures/hot-flow.json`;
+  cli(['flow', scene, '--seconds', '0.5', '--out', join(dir, 'flow.npy')]);
+  cli(['flow', scene, '--seconds', '0.5', '--out', join(dir, 'flow.vdb')]);
+  const r = reader('vdb_flow.py', join(dir, 'flow.vdb'), join(dir, 'flow.npy'));
+  assert.deepEqual(r.types, ['vec3s', 'float']);
+  assert.equal(r.active[0], r.active[1]);
+  assert.ok(r.hottest > 0, 'the emitter heats the grid');
+  assert.equal(r.worst, 0, 'the two files hold the same float32 values');
+});
+
 test('`windfield wind --box` as OpenVDB is the same wind as its .npy, at the cell centres', () => {
   const scene = `${root}public/scenes/steam-mug.json`;
   const box = ['--box', '-0.5,0,-0.5,0.5,1.2,0.5', '--n', '6,8,5'];

@@ -45,6 +45,10 @@ const CROSS_FIELD = [
   /shapes: all shapes together make .* blobs, over the limit/, // Σ count
   /field\.boundary_width: .*half the field's shortest period/, // against field.period
   /lies inside the solid .* render\.objects\[\d+\]/, // an emitter against the solid objects
+  /flow\.box\[\d\]: must be greater than flow\.box/, // the flow's upper corner against its lower
+  /flow\.cells: the box's sides per cell/, // the cells are cubes: the box against its cells
+  /flow\.cells: .* cells .* over the limit/, // the product of the cells, and cells × steps
+  /flow\.viscosity: .* substeps a step/, // ν against simulation.dt and the cells' edge
 ];
 
 /** A scene with every variant: each primitive, emitter shape, light, object, phase and solid. */

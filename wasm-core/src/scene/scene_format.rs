@@ -514,7 +514,10 @@ pub fn json_schema() -> String {
              100,000 steps and 2e6 blobs over them (blobs × (steps + 1), a gas that splits \
              counting max(count, gas.max_blobs) a step); field.boundary_width is at most half \
              the shortest field.period; no emitter's center (or path key) lies inside a solid \
-             object."
+             object; a flow's box has each upper corner above its lower, at most 2^21 cells, \
+             sides per cell that agree within 1 % (the cells are cubes), at most 1e10 cells × \
+             steps of render.time / simulation.dt, and at most 64 viscosity substeps a step \
+             (ν·simulation.dt/h² at most 1/8 each)."
                 .into(),
         );
     }
