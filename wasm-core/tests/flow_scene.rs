@@ -78,6 +78,7 @@ fn a_hot_plume_rises_by_its_heat_and_a_cold_one_stays() {
         let mut sim = plume_at(40.0, 0.15, temperature, 0.5, "");
         sim.run(150);
         let (y, _, n) = height_and_spread(&sim, 0.0);
+        println!("T = {temperature} K: mean height {y:.3} m over {n} blobs");
         assert!(n > 100, "{n} blobs");
         assert!(y >= lo && y <= hi, "T = {temperature} K: mean height {y} m");
         if temperature > 0.0 {
