@@ -1,0 +1,261 @@
+// The flow stepped on the GPU (DESIGN of the flow, paper §7): the grid's velocity u_g (m/s) on
+// a MAC grid, each component's faces in an R32F atlas (`gl.js`), stepped by the core's laws
+// in the core's order (`wind::flow::step`): advect u_g by u_p + u_g (semi-Lagrangian with
+// MacCormack's clamped correction), diffuse it (explicit substeps, ν·dt_sub/h² ≤ 1/8), add the
+// buoyancy −β T g and the force splats, set the fixed faces so that (u_p + u_g)·n = v·n, and
+// project: the divergence, a Poisson solve for φ = p·dt/ρ, and the free faces lose ∇φ.
+//
+// The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ
+// (a warm start, as the core's conjugate gradients take), a fixed number of iterations a step
+// (two passes each): by default 3 × the longest side of cells + 30, which reaches a relative
+// residual max|b − Aφ| / max|b| of 1e-4 or better on the boxes checked (`residual()` measures
+// it; the core's MIC(0) conjugate gradients stop at 1e-5 in f64). Nothing is read back unless
+// asked (`faces`, `cellVelocity`, `residual`).
+//
+// Cost per step: 3 carrier passes, 6 advection passes (11 trilinear interpolations a face),
+// 3 per diffusion substep, up to 3 for buoyancy and for each splat, 3 to impose, 1 divergence,
+// 2 per SOR iteration, 3 for the gradient.
+
+import { boundaryOf, faceDims, noSolids } from './boundary.js';
+import { Lattice, Pass } from './gl.js';
+import {
+  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, RELAX, RESIDUAL, SPLAT,
+} from './passes.js';
+
+/** The largest ν·dt/h² of one diffusion substep (the core's `diffuse::STABLE`). */
+const STABLE = 0.125;
+/** Air's kinematic viscosity (m²/s) and an ideal gas's expansion at room temperature (1/K). */
+const AIR = { viscosity: 1.5e-5, buoyancy: 1 / 293.15 };
+
+const f32 = Math.fround;
+
+/** Where component `axis`'s samples lie, in cells from the origin (the core's `Grid::offset`). */
+function offsetOf(axis) {
+  const o = [0.5, 0.5, 0.5];
+  o[axis] = 0;
+  return o;
+}
+
+/** A ping-pong pair of lattices: `now` read, `next` written, then swapped. */
+class Pair {
+  constructor(gl, dims, channels = 1) {
+    this.both = [new Lattice(gl, dims, channels), new Lattice(gl, dims, channels)];
+    this.current = 0;
+  }
+
+  get now() {
+    return this.both[this.current];
+  }
+
+  get next() {
+    return this.both[1 - this.current];
+  }
+
+  swap() {
+    this.current = 1 - this.current;
+  }
+
+  dispose() {
+    for (const l of this.both) l.dispose();
+  }
+}
+
+export class GpuFlow {
+  /**
+   * The flow at rest on the grid of `origin` (m), `cells` [nx, ny, nz] and cube edge `h` (m)
+   * with `faces` 'open' or 'closed', ν `viscosity` (m²/s), β `buoyancy` (1/K), `gravity`
+   * (m/s²), and the SOR's `iterations` a step and `omega`, on the WebGL2 context `gl`
+   * (float render targets: `flowGpuUnsupported`).
+   */
+  constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], iterations, omega }) {
+    this.gl = gl;
+    this.origin = origin.map(f32);
+    this.cells = [...cells];
+    this.h = f32(h);
+    this.faces = faces;
+    this.viscosity = f32(viscosity);
+    this.buoyancy = f32(buoyancy);
+    this.gravity = gravity.map(f32);
+    const longest = Math.max(...cells);
+    this.iterations = iterations ?? 3 * longest + 30;
+    // SOR's best ω for the model problem on the longest side (twice it with no open face).
+    const side = faces === 'closed' ? 2 * longest : longest;
+    this.omega = omega ?? 2 / (1 + Math.sin(Math.PI / side));
+    const dims = [0, 1, 2].map((a) => faceDims(cells, a));
+    this.u = dims.map((d) => new Pair(gl, d));
+    this.up = dims.map((d) => new Lattice(gl, d, 1, false));
+    this.carrier = dims.map((d) => new Lattice(gl, d));
+    this.back = dims.map((d) => new Lattice(gl, d, 4));
+    this.kind = dims.map((d) => new Lattice(gl, d, 2, false));
+    this.rows = new Lattice(gl, cells, 4, false);
+    this.temperature = new Lattice(gl, cells, 1, false);
+    this.b = new Lattice(gl, cells);
+    this.phi = new Pair(gl, cells);
+    this.cellOut = new Lattice(gl, cells, 4);
+    this.passes = Object.fromEntries(Object.entries({
+      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES,
+    }).map(([name, body]) => [name, new Pass(gl, body)]));
+    this.setSolids(noSolids(cells));
+    this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
+    this.clear();
+  }
+
+  /** The uniforms every pass reads. */
+  get #grid() {
+    return { origin: { vec3: this.origin }, invH: f32(1 / this.h), h: this.h, cells: { ivec3: this.cells } };
+  }
+
+  /** u_g = 0 and φ = 0. */
+  clear() {
+    const gl = this.gl;
+    gl.clearColor(0, 0, 0, 0);
+    for (const l of [...this.u.flatMap((p) => p.both), ...this.phi.both]) {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, l.framebuffer);
+      gl.clear(gl.COLOR_BUFFER_BIT);
+    }
+  }
+
+  /**
+   * The solid cells: `solid` (one byte a cell, x fastest), `velocity` (m/s, three floats a
+   * cell) and `slip` (one byte a cell: the air slips along it), as `boundary.js` builds them.
+   */
+  setSolids(solids) {
+    const { kinds, rows, definite } = boundaryOf(this.cells, solids, this.faces);
+    kinds.forEach((k, a) => this.kind[a].upload(k));
+    this.rows.upload(rows);
+    this.definite = definite;
+  }
+
+  /** The primitives' wind u_p on each component's faces (three Float32Arrays, m/s). */
+  setWind(faces) {
+    faces.forEach((v, a) => this.up[a].upload(v));
+  }
+
+  /** A uniform primitives' wind `v` (m/s) on every face. */
+  setUniformWind(v) {
+    this.setWind([0, 1, 2].map((a) => {
+      const d = faceDims(this.cells, a);
+      return new Float32Array(d[0] * d[1] * d[2]).fill(v[a]);
+    }));
+  }
+
+  /** Draws `pass` into component `a`'s next u_g with `uniforms` and makes it the current one. */
+  #update(a, pass, uniforms) {
+    this.passes[pass].draw(this.u[a].next, { ...this.#grid, ...uniforms });
+    this.u[a].swap();
+  }
+
+  /**
+   * One step of `dt` (s) with the temperature excess `temperature` on the cells (K, a
+   * Float32Array, x fastest; null: no heat) and `splats` ({centre (m), radius (m), force
+   * (m/s²)} each).
+   */
+  step(dt, temperature = null, splats = []) {
+    const grid = this.#grid;
+    dt = f32(dt);
+    const carriers = { cx: this.carrier[0], cy: this.carrier[1], cz: this.carrier[2] };
+    for (let a = 0; a < 3; a++) this.passes.CARRIER.draw(this.carrier[a], { ...grid, up: this.up[a], ug: this.u[a].now });
+    for (let a = 0; a < 3; a++) {
+      const offset = { vec3: offsetOf(a) };
+      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...carriers, dt, offset, q: this.u[a].now });
+      this.#update(a, 'ADVECT_CORRECT', { ...carriers, dt, offset, q: this.u[a].now, back: this.back[a] });
+    }
+    this.#diffuse(dt);
+    if (temperature) {
+      this.temperature.upload(temperature);
+      const dtBeta = f32(dt * this.buoyancy);
+      for (let a = 0; a < 3; a++) {
+        if (this.gravity[a] === 0) continue;
+        this.#update(a, 'BUOYANCY', { u: this.u[a].now, temperature: this.temperature, axis: { int: a }, dtBeta, g: this.gravity[a] });
+      }
+    }
+    for (const s of splats) {
+      for (let a = 0; a < 3; a++) {
+        if (s.force[a] === 0) continue;
+        this.#update(a, 'SPLAT', {
+          u: this.u[a].now, offset: { vec3: offsetOf(a) }, centre: { vec3: s.centre.map(f32) }, radius: f32(s.radius), dtForce: f32(dt * s.force[a]),
+        });
+      }
+    }
+    for (let a = 0; a < 3; a++) this.#update(a, 'IMPOSE', { u: this.u[a].now, up: this.up[a], kind: this.kind[a] });
+    this.#project();
+  }
+
+  /** ν∇²(u_p + u_g) for `dt` (s) in explicit substeps. */
+  #diffuse(dt) {
+    if (this.viscosity <= 0 || dt <= 0) return;
+    const r = f32(f32(this.viscosity * dt) / f32(this.h * this.h));
+    const substeps = Math.max(1, Math.ceil(f32(r / STABLE)));
+    const rs = f32(r / substeps);
+    for (let a = 0; a < 3; a++) {
+      for (let k = 0; k < substeps; k++) {
+        this.#update(a, 'DIFFUSE', { old: this.u[a].now, up: this.up[a], kind: this.kind[a], axis: { int: a }, r: rs });
+      }
+    }
+  }
+
+  /** The projection: b = −h²∇·u_g, SOR sweeps from the last φ, the free faces lose ∇φ. */
+  #project() {
+    const grid = this.#grid;
+    const [ux, uy, uz] = this.u.map((p) => p.now);
+    this.passes.DIVERGENCE.draw(this.b, { ...grid, ux, uy, uz, rows: this.rows });
+    const omega = this.omega;
+    for (let n = 0; n < this.iterations; n++) {
+      for (const parity of [0, 1]) {
+        this.passes.RELAX.draw(this.phi.next, { ...grid, phi: this.phi.now, rows: this.rows, b: this.b, omega, parity: { int: parity } });
+        this.phi.swap();
+      }
+    }
+    for (let a = 0; a < 3; a++) {
+      this.#update(a, 'GRADIENT', { u: this.u[a].now, phi: this.phi.now, rows: this.rows, axis: { int: a }, open: this.faces === 'open' });
+    }
+  }
+
+  /**
+   * The last projection's relative residual max|b − Aφ| / max|b| over the fluid cells (with no
+   * open face, b less its mean over them, as the core solves it), read back.
+   */
+  residual() {
+    this.passes.RESIDUAL.draw(this.cellOut, { ...this.#grid, phi: this.phi.now, rows: this.rows, b: this.b });
+    const v = this.cellOut.read();
+    let mean = 0;
+    let fluid = 0;
+    if (!this.definite) {
+      for (let c = 0; c < v.length; c += 4) {
+        if (v[c + 2] > 0) {
+          mean += v[c + 1];
+          fluid += 1;
+        }
+      }
+      mean = fluid > 0 ? mean / fluid : 0;
+    }
+    let r = 0;
+    let b = 0;
+    for (let c = 0; c < v.length; c += 4) {
+      if (v[c + 2] === 0) continue;
+      r = Math.max(r, Math.abs(v[c] - mean));
+      b = Math.max(b, Math.abs(v[c + 1] - mean));
+    }
+    return b === 0 ? 0 : r / b;
+  }
+
+  /** u_g on each component's faces (three Float32Arrays, m/s), read back. */
+  faces() {
+    return this.u.map((p) => p.now.read());
+  }
+
+  /** u_g at the cells' centres (m/s, xyz interleaved, x fastest: as `exportFlow()`), read back. */
+  cellVelocity() {
+    const [ux, uy, uz] = this.u.map((p) => p.now);
+    this.passes.CENTRES.draw(this.cellOut, { ...this.#grid, ux, uy, uz });
+    const v = this.cellOut.read();
+    const out = new Float32Array((3 * v.length) / 4);
+    for (let c = 0; c < v.length / 4; c++) out.set(v.subarray(4 * c, 4 * c + 3), 3 * c);
+    return out;
+  }
+
+  dispose() {
+    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut]) l.dispose();
+    for (const p of Object.values(this.passes)) p.dispose();
+  }
+}

@@ -1,0 +1,5 @@
+// The flow on the GPU: `GpuFlow` steps the grid's u_g with WebGL2 passes where
+// `flowGpuUnsupported` finds nothing missing; `noSolids` and `addSolid` mark its solid cells.
+export { GpuFlow } from './gpu-flow.js';
+export { addSolid, faceDims, noSolids } from './boundary.js';
+export { flowGpuUnsupported } from './gl.js';

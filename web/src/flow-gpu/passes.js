@@ -1,0 +1,330 @@
+// The flow's passes on the GPU, each a per-texel map over one lattice (a velocity component's
+// faces, or the cells), the same laws as the core's `wind::flow` step by step:
+//
+// - CARRIER: u_p + u_g on one component's faces (the advecting velocity).
+// - ADVECT_BACK, ADVECT_CORRECT: semi-Lagrangian advection by a midpoint trace back, then
+//   MacCormack's correction from a trace forward, clamped to the eight samples the first trace
+//   blended (`advect.rs`: Selle et al. 2008).
+// - DIFFUSE: one explicit substep of ν∇² on one component's faces, with the core's stencil at
+//   the box's faces, fixed faces and no-slip or slipping solids (`diffuse.rs`).
+// - BUOYANCY: b = −β T g, T averaged onto each face from its two cells (`forces.rs`).
+// - SPLAT: a Gaussian force splat within four widths of its centre (`forces.rs`).
+// - IMPOSE: each fixed face's u_g = v·n − u_p (`boundary.rs`).
+// - DIVERGENCE: the Poisson right-hand side b = −h² ∇·u_g of each fluid cell (`project.rs`).
+// - RELAX: one half sweep (red or black cells) of successive over-relaxation of Σ_f (φ_i − φ_j)
+//   = b_i over the free faces f (φ = 0 beyond an open face).
+// - GRADIENT: each free face loses ∇φ (`project.rs`).
+// - RESIDUAL: b − Aφ per cell (for the solve's check); CENTRES: u_g at the cells' centres.
+//
+// Every pass starts from `s`, the sample of its texel in the target's lattice, and writes 0 past
+// the lattice's last slice.
+
+const SAMPLE = /* glsl */ `
+  ivec3 s = sampleOf(ivec2(gl_FragCoord.xy), target);
+  if (beyond(s, target)) {
+    outValue = vec4(0.0);
+    return;
+  }`;
+
+const OUT = 'layout(location = 0) out vec4 outValue;';
+
+/** The carrier on one component's faces: u_p + u_g. */
+export const CARRIER = /* glsl */ `
+uniform sampler2D up;
+uniform ivec4 upL;
+uniform sampler2D ug;
+uniform ivec4 ugL;
+${OUT}
+void main() {${SAMPLE}
+  outValue = vec4(fetch1(up, s, upL) + fetch1(ug, s, ugL), 0.0, 0.0, 0.0);
+}`;
+
+const TRACE = /* glsl */ `
+uniform sampler2D cx;
+uniform ivec4 cxL;
+uniform sampler2D cy;
+uniform ivec4 cyL;
+uniform sampler2D cz;
+uniform ivec4 czL;
+uniform float dt;
+// Where this lattice's samples lie, in cells from the origin.
+uniform vec3 offset;
+vec3 carrier(vec3 x) {
+  return vec3(
+    trilinear(cx, cxL, vec3(0.0, 0.5, 0.5), x),
+    trilinear(cy, cyL, vec3(0.5, 0.0, 0.5), x),
+    trilinear(cz, czL, vec3(0.5, 0.5, 0.0), x));
+}
+// The point the carrier takes to x over dt (a midpoint step; a negative dt traces forward),
+// v0 the carrier at x.
+vec3 traceFrom(vec3 x, vec3 v0, float dt) {
+  vec3 mid = x - 0.5 * dt * v0;
+  return x - dt * carrier(mid);
+}`;
+
+/** The first trace: the value found where the carrier brought the sample from, and its bounds. */
+export const ADVECT_BACK = /* glsl */ `
+${TRACE}
+uniform sampler2D q;
+uniform ivec4 qL;
+${OUT}
+void main() {${SAMPLE}
+  vec3 x = origin + h * (vec3(s) + offset);
+  vec3 back = traceFrom(x, carrier(x), dt);
+  float c[8];
+  vec3 f;
+  corners(q, qL, offset, back, c, f);
+  float lo = c[0];
+  float hi = c[0];
+  for (int n = 1; n < 8; n++) {
+    lo = min(lo, c[n]);
+    hi = max(hi, c[n]);
+  }
+  outValue = vec4(blend(c, f), lo, hi, 0.0);
+}`;
+
+/** MacCormack's correction of the first trace, clamped to its bounds. */
+export const ADVECT_CORRECT = /* glsl */ `
+${TRACE}
+uniform sampler2D q;
+uniform ivec4 qL;
+// The first trace: (value, lo, hi) per sample.
+uniform sampler2D back;
+uniform ivec4 backL;
+${OUT}
+void main() {${SAMPLE}
+  vec3 x = origin + h * (vec3(s) + offset);
+  vec3 ahead = traceFrom(x, carrier(x), -dt);
+  float returned = trilinear(back, backL, offset, ahead);
+  vec4 first = texelFetch(back, texelOf(s, backL), 0);
+  float corrected = first.x + 0.5 * (fetch1(q, s, qL) - returned);
+  outValue = vec4(clamp(corrected, first.y, first.z), 0.0, 0.0, 0.0);
+}`;
+
+const KINDS = /* glsl */ `
+// Each face's [kind, v]: kind 0 free, 1 fixed holding the air (no-slip), 2 fixed slipping.
+uniform sampler2D kind;
+uniform ivec4 kindL;
+vec2 kindOf(ivec3 m) {
+  return texelFetch(kind, texelOf(m, kindL), 0).xy;
+}`;
+
+/** One explicit substep of ν∇² (r = ν·dt_sub/h²) on component `axis`'s faces. */
+export const DIFFUSE = /* glsl */ `
+${KINDS}
+uniform sampler2D old;
+uniform ivec4 oldL;
+uniform sampler2D up;
+uniform ivec4 upL;
+uniform int axis;
+uniform float r;
+${OUT}
+// The neighbour m across axis b: u_g there, or what a fixed face stands for.
+float neighbour(ivec3 m, int b, ivec3 s, float o) {
+  vec2 k = kindOf(m);
+  if (k.x == 0.0) return fetch1(old, m, oldL);
+  if (b == axis) return k.y - fetch1(up, m, upL);
+  if (k.x == 1.0) return 2.0 * k.y - fetch1(up, s, upL) - o - fetch1(up, m, upL);
+  return o;
+}
+void main() {${SAMPLE}
+  float o = fetch1(old, s, oldL);
+  if (kindOf(s).x != 0.0) {
+    outValue = vec4(o, 0.0, 0.0, 0.0);
+    return;
+  }
+  float lap = 0.0;
+  for (int b = 0; b < 3; b++) {
+    ivec3 e = ivec3(b == 0 ? 1 : 0, b == 1 ? 1 : 0, b == 2 ? 1 : 0);
+    float below = s[b] > 0 ? neighbour(s - e, b, s, o) : o;
+    float above = s[b] + 1 < target[b] ? neighbour(s + e, b, s, o) : o;
+    lap += below + above - 2.0 * o;
+  }
+  outValue = vec4(o + r * lap, 0.0, 0.0, 0.0);
+}`;
+
+/** u −= (dt·β)·T·g on component `axis`'s faces, T on the cells. */
+export const BUOYANCY = /* glsl */ `
+uniform sampler2D u;
+uniform ivec4 uL;
+uniform sampler2D temperature;
+uniform ivec4 temperatureL;
+uniform int axis;
+uniform float dtBeta;
+uniform float g;
+${OUT}
+float at(ivec3 s, int m) {
+  ivec3 c = s;
+  c[axis] = m;
+  return fetch1(temperature, c, temperatureL);
+}
+void main() {${SAMPLE}
+  int n = cells[axis];
+  int k = s[axis];
+  float t = k == 0 ? at(s, 0) : k == n ? at(s, n - 1) : 0.5 * (at(s, k - 1) + at(s, k));
+  outValue = vec4(fetch1(u, s, uL) - dtBeta * t * g, 0.0, 0.0, 0.0);
+}`;
+
+/** u += (dt·force)·exp(−|x − centre|²/radius²) on the faces within four widths of the centre. */
+export const SPLAT = /* glsl */ `
+uniform sampler2D u;
+uniform ivec4 uL;
+uniform vec3 offset;
+uniform vec3 centre;
+uniform float radius;
+uniform float dtForce;
+${OUT}
+void main() {${SAMPLE}
+  float v = fetch1(u, s, uL);
+  float reach = 4.0 * radius;
+  vec3 lo = (centre - reach - origin) / h - offset;
+  vec3 hi = (centre + reach - origin) / h - offset;
+  vec3 p = vec3(s);
+  if (all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi))) {
+    vec3 d = origin + h * (p + offset) - centre;
+    float q = d.x * d.x + d.y * d.y + d.z * d.z;
+    v += dtForce * exp(-q / (radius * radius));
+  }
+  outValue = vec4(v, 0.0, 0.0, 0.0);
+}`;
+
+/** Each fixed face's u_g = v − u_p (so u_p + u_g carries v); free faces as they are. */
+export const IMPOSE = /* glsl */ `
+${KINDS}
+uniform sampler2D u;
+uniform ivec4 uL;
+uniform sampler2D up;
+uniform ivec4 upL;
+${OUT}
+void main() {${SAMPLE}
+  vec2 k = kindOf(s);
+  outValue = vec4(k.x == 0.0 ? fetch1(u, s, uL) : k.y - fetch1(up, s, upL), 0.0, 0.0, 0.0);
+}`;
+
+const ROWS = /* glsl */ `
+// Each cell's Poisson row: [free faces, links (bit a: the next cell along a is joined, bit
+// 3 + a: the previous one), 0, 0].
+uniform sampler2D rows;
+uniform ivec4 rowsL;
+uniform sampler2D phi;
+uniform ivec4 phiL;
+// Σ of φ over the cell's fluid neighbours.
+float neighbours(ivec3 s, int links) {
+  float sum = 0.0;
+  for (int a = 0; a < 3; a++) {
+    ivec3 e = ivec3(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
+    if ((links & (1 << a)) != 0) sum += fetch1(phi, s + e, phiL);
+    if ((links & (8 << a)) != 0) sum += fetch1(phi, s - e, phiL);
+  }
+  return sum;
+}`;
+
+/** b = −h²·∇·u_g on the fluid cells (0 on the others). */
+export const DIVERGENCE = /* glsl */ `
+uniform sampler2D ux;
+uniform ivec4 uxL;
+uniform sampler2D uy;
+uniform ivec4 uyL;
+uniform sampler2D uz;
+uniform ivec4 uzL;
+uniform sampler2D rows;
+uniform ivec4 rowsL;
+${OUT}
+void main() {${SAMPLE}
+  float d = 0.0;
+  d += fetch1(ux, s + ivec3(1, 0, 0), uxL) - fetch1(ux, s, uxL);
+  d += fetch1(uy, s + ivec3(0, 1, 0), uyL) - fetch1(uy, s, uyL);
+  d += fetch1(uz, s + ivec3(0, 0, 1), uzL) - fetch1(uz, s, uzL);
+  float diag = texelFetch(rows, texelOf(s, rowsL), 0).x;
+  outValue = vec4(diag > 0.0 ? -(h * h) * (d / h) : 0.0, 0.0, 0.0, 0.0);
+}`;
+
+/** One half sweep of SOR: the cells of `parity` updated, the others kept. */
+export const RELAX = /* glsl */ `
+${ROWS}
+uniform sampler2D b;
+uniform ivec4 bL;
+uniform float omega;
+uniform int parity;
+${OUT}
+void main() {${SAMPLE}
+  float p = fetch1(phi, s, phiL);
+  if (((s.x + s.y + s.z) & 1) != parity) {
+    outValue = vec4(p, 0.0, 0.0, 0.0);
+    return;
+  }
+  vec4 row = texelFetch(rows, texelOf(s, rowsL), 0);
+  if (row.x == 0.0) {
+    outValue = vec4(0.0);
+    return;
+  }
+  float gs = (fetch1(b, s, bL) + neighbours(s, int(row.y))) / row.x;
+  outValue = vec4(p + omega * (gs - p), 0.0, 0.0, 0.0);
+}`;
+
+/** b − Aφ and b per cell (0 off the fluid). */
+export const RESIDUAL = /* glsl */ `
+${ROWS}
+uniform sampler2D b;
+uniform ivec4 bL;
+${OUT}
+void main() {${SAMPLE}
+  vec4 row = texelFetch(rows, texelOf(s, rowsL), 0);
+  float bs = fetch1(b, s, bL);
+  float r = row.x == 0.0 ? 0.0 : bs - (row.x * fetch1(phi, s, phiL) - neighbours(s, int(row.y)));
+  outValue = vec4(r, bs, row.x, 0.0);
+}`;
+
+/** Component `axis`'s free faces lose ∇φ (φ = 0 beyond an open face). */
+export const GRADIENT = /* glsl */ `
+${ROWS}
+uniform sampler2D u;
+uniform ivec4 uL;
+uniform int axis;
+uniform bool open;
+${OUT}
+void main() {${SAMPLE}
+  float v = fetch1(u, s, uL);
+  int n = cells[axis];
+  int k = s[axis];
+  ivec3 c = s;
+  c[axis] = min(k, n - 1);
+  float below;
+  float above;
+  if (k == 0 || k == n) {
+    if (!(open && texelFetch(rows, texelOf(c, rowsL), 0).x > 0.0)) {
+      outValue = vec4(v, 0.0, 0.0, 0.0);
+      return;
+    }
+    float p = fetch1(phi, c, phiL);
+    below = k == 0 ? 0.0 : p;
+    above = k == 0 ? p : 0.0;
+  } else {
+    ivec3 e = ivec3(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0);
+    int links = int(texelFetch(rows, texelOf(c - e, rowsL), 0).y);
+    if ((links & (1 << axis)) == 0) {
+      outValue = vec4(v, 0.0, 0.0, 0.0);
+      return;
+    }
+    below = fetch1(phi, c - e, phiL);
+    above = fetch1(phi, c, phiL);
+  }
+  outValue = vec4(v - (above - below) * invH, 0.0, 0.0, 0.0);
+}`;
+
+/** u_g at the cells' centres: each component the mean of the cell's two faces. */
+export const CENTRES = /* glsl */ `
+uniform sampler2D ux;
+uniform ivec4 uxL;
+uniform sampler2D uy;
+uniform ivec4 uyL;
+uniform sampler2D uz;
+uniform ivec4 uzL;
+${OUT}
+void main() {${SAMPLE}
+  outValue = vec4(
+    0.5 * (fetch1(ux, s, uxL) + fetch1(ux, s + ivec3(1, 0, 0), uxL)),
+    0.5 * (fetch1(uy, s, uyL) + fetch1(uy, s + ivec3(0, 1, 0), uyL)),
+    0.5 * (fetch1(uz, s, uzL) + fetch1(uz, s + ivec3(0, 0, 1), uzL)),
+    0.0);
+}`;
