@@ -12,9 +12,11 @@
 // rate it holds and the resolution scale it chose (the page's `quality` query sets its quality).
 // `views=0` leaves the frames out. `solids=16,64,256` then steps the plume of each count among
 // that many solid spheres (as `npm run bench`), with each stepper (each figure says which stepper
-// stepped), and `widths` the layers' widths (m, 0.02 by default) it steps them with.
+// stepped), and `widths` the layers' widths (m, 0.02 by default) it steps them with. `flow=32,64`
+// times the flow's GPU step at those cells a side (flow.js here), and only that.
 import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
 import { plumeSpheres } from './plume-spheres.js';
+import { flowBench } from './flow-bench.js';
 
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
@@ -45,6 +47,10 @@ async function plumeOf(w, plume, n) {
 
 async function main() {
   log({ renderer: renderer() });
+  if (query.has('flow')) {
+    await flowBench(log, query.get('flow').split(',').map(Number));
+    return;
+  }
   while (!window.windfield) await new Promise((r) => setTimeout(r, 100));
   const w = window.windfield;
   await w.ready;

@@ -4,7 +4,7 @@
 # served by Python, and scripts/gpu-bench/page.js reporting through the console. Needs no Node
 # on the GPU machine.
 #   CHROMIUM=/path/to/chromium scripts/gpu-bench/run.sh [query]   e.g. "frames=10&counts=10000"
-# (query: frames, counts, qualities, steppers, solids, profile, live, liveView, twin; TIMEOUT seconds,
+# (query: frames, counts, qualities, steppers, solids, profile, live, liveView, twin, flow; TIMEOUT seconds,
 # 600 by default).
 # Prints one JSON object per line (the renderer's name first). docs/BENCHMARKS.md records a run.
 # On a machine with no browser: pack-browser.sh here, on-device.sh there.
@@ -19,6 +19,8 @@ log="$(mktemp)"
 trap 'kill $server $browser 2>/dev/null || true; [ -z "${LOG_TO:-}" ] || cp "$log" "$LOG_TO"; rm -rf "$site" "$profile" "$log"' EXIT
 cp -r "$root/dist/." "$site/"
 cp "$root/scripts/gpu-bench/page.js" "$site/gpu-bench.js"
+cp "$root/scripts/gpu-bench/flow.js" "$site/flow-bench.js"
+cp -r "$root/web/src/flow-gpu" "$site/flow-gpu"
 cp "$root/tests/support/gas-twin.js" "$root/scripts/plume-spheres.js" "$site/"
 for f in dense-plume small-plume; do cp "$root/tests/fixtures/$f.json" "$site/"; done
 sed 's#</body>#<script type="module" src="./gpu-bench.js"></script></body>#' "$root/dist/index.html" > "$site/gpu-bench.html"
