@@ -177,23 +177,30 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
       s.stir(new Float32Array(3), new Float32Array(3), 0);
     }
   };
-  /** A scene's blob cap for the lighter version (`lighten.js`): a whole number ≥ 1, or none. */
-  const setCap = (blobCap) => {
+  /**
+   * The lighter version's hold on a scene (`lighten.js`): its blob cap (a whole number ≥ 1, or
+   * none) and its flow's grid ('coarse': half the cells along each side; 'full' or none: the scene's).
+   */
+  const setCap = (blobCap, flowGrid) => {
     if (blobCap !== undefined && blobCap !== null && !(Number.isInteger(blobCap) && blobCap >= 1)) {
       throw new Error(`blobCap must be a whole number of at least 1, or null (got ${blobCap})`);
     }
+    if (flowGrid !== undefined && flowGrid !== 'full' && flowGrid !== 'coarse') {
+      throw new Error(`flowGrid must be 'full' or 'coarse' (got ${flowGrid})`);
+    }
     session.blobCap = blobCap ?? Infinity;
+    session.coarseFlow = flowGrid === 'coarse';
   };
   /** The exports in flight (their cancel tokens). */
   const exports = new Set();
   return {
-    load: async ({ id, scene, blobCap }) => {
-      setCap(blobCap);
+    load: async ({ id, scene, blobCap, flowGrid }) => {
+      setCap(blobCap, flowGrid);
       stir = null;
       return { result: await session.load(id, scene) };
     },
-    edit: async ({ id, scene, blobCap }) => {
-      setCap(blobCap);
+    edit: async ({ id, scene, blobCap, flowGrid }) => {
+      setCap(blobCap, flowGrid);
       return { result: await session.edit(id, scene) };
     },
     reset: async ({ id }) => {

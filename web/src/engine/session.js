@@ -11,7 +11,7 @@
 // answered meanwhile (on the current scene), and a newer valid `load` or `edit` wanting other
 // field parameters supersedes it: the older one then rejects with "cancelled: ...".
 
-import { lightenScene, overCap } from './lighten.js';
+import { coarsenFlow, lightenScene, overCap } from './lighten.js';
 
 /** Lets the worker's event loop run (progress posts, newer requests) between synthesis stages. */
 const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
@@ -53,11 +53,14 @@ export class Session {
   fieldVersion = 0;
   /**
    * Its scene: the core's normalised JSON text, that parsed, its field parameters ('' for none),
-   * and the JSON text the simulation runs (the lighter version's under a blob cap, `lighten.js`).
+   * and the JSON text the simulation runs (the lighter version's under a blob cap or on a
+   * coarser flow, `lighten.js`).
    */
   current = null;
   /** Most live blobs the simulation may run (`Infinity`: the scene's own `gas.max_blobs`). */
   blobCap = Infinity;
+  /** Whether a scene's flow runs on the coarser grid (`coarserCells`, the lighter version's). */
+  coarseFlow = false;
   /** Steps the simulation has taken since it started (its load, a restart). */
   steps = 0;
   /**
@@ -138,17 +141,20 @@ export class Session {
 
   /**
    * `text` validated and normalised by the core: {json, scene, key, run}, `run` the JSON text the
-   * simulation runs (the scene's own, or its lighter version under the blob cap).
+   * simulation runs (the scene's own, or its lighter version under the blob cap and with its
+   * flow on the coarser grid).
    */
   #read(text) {
     const json = this.core.validateScene(sceneText(text));
     const scene = JSON.parse(json);
     const key = scene.field.amplitude > 0 ? this.core.sceneFieldParams(json) : '';
-    const run = overCap(scene, this.blobCap) ? this.core.validateScene(JSON.stringify(lightenScene(scene, this.blobCap))) : json;
+    const capped = lightenScene(scene, this.blobCap);
+    const lighter = this.coarseFlow ? coarsenFlow(capped) : capped;
+    const run = lighter === scene ? json : this.core.validateScene(JSON.stringify(lighter));
     return { json, scene, key, run };
   }
 
-  /** Whether the simulation runs a lighter version of its scene (fewer blobs). */
+  /** Whether the simulation runs a lighter version of its scene (fewer blobs, a coarser flow). */
   get lightened() {
     return Boolean(this.current && this.current.run !== this.current.json);
   }
@@ -266,9 +272,16 @@ export class Session {
     return { sceneJson: next.json, restarted, fieldPending: !ready, fieldMs: this.fieldMs, ...this.#cap(next) };
   }
 
-  /** The blob cap the simulation of `next` runs under: {blobCap (its max_blobs, or null for the scene's own)}. */
+  /**
+   * What the simulation of `next` runs under: {blobCap (its max_blobs, or null for the scene's
+   * own), flowCells (its flow's cells where they are not the scene's, else null)}.
+   */
   #cap(next) {
-    return { blobCap: next.run === next.json ? null : JSON.parse(next.run).gas.max_blobs };
+    if (next.run === next.json) return { blobCap: null, flowCells: null };
+    const run = JSON.parse(next.run);
+    const cells = run.flow?.cells ?? null;
+    const coarser = cells && cells.some((n, i) => n !== next.scene.flow.cells[i]);
+    return { blobCap: overCap(next.scene, this.blobCap) ? run.gas.max_blobs : null, flowCells: coarser ? cells : null };
   }
 
   /** Restarts the current scene at t = 0, on its own field (waiting for one being synthesised). */

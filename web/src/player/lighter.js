@@ -4,14 +4,16 @@
 // The player starts with `startingSettings`, takes the lighter version when its machine draws
 // in software or is measured slow, and goes back to the full version at `showFull`.
 
-import { lightenedWords, LIGHT, SLOW_FPS, startingSettings } from './machine.js';
+import { coarserFlowWords, lightenedWords, LIGHT, SLOW_FPS, startingSettings } from './machine.js';
 
 /** The settings a player starts with on a machine that draws the full version. */
-const FULL = Object.freeze({ view: 'raymarch', quality: 'standard', resolution: 'auto', stepper: 'auto', blobCap: null });
+const FULL = Object.freeze({ view: 'raymarch', quality: 'standard', resolution: 'auto', stepper: 'auto', blobCap: null, flow: 'full' });
 
 export class LighterVersion {
   /** Where each of `FULL`'s settings comes from: 'full', 'light' or 'chosen'. */
-  #from = { view: 'full', quality: 'full', resolution: 'full', stepper: 'full', blobCap: 'full' };
+  #from = { view: 'full', quality: 'full', resolution: 'full', stepper: 'full', blobCap: 'full', flow: 'full' };
+  /** The running scene's flow on the coarser grid: {cells, from (the scene's own)}, or null. */
+  #coarserFlow = null;
   /** Why the lighter version is shown ('software': WebGL drawn on the CPU; 'slow': measured so), or null. */
   #reason = null;
   /** The user's own settings this player started with (`machine.js`, `userChoices`), `full` among them once asked for. */
@@ -60,6 +62,18 @@ export class LighterVersion {
     this.#apply(name, value);
   }
 
+  /**
+   * The running scene's flow runs on `cells` in place of its own `from` (the engine's answer to a
+   * load or an edit; `cells` null: on its own, or no flow). A change the lighter version made
+   * is told as the lighter version is (`onLighter`), naming the grids.
+   */
+  flowRuns(cells, from) {
+    const next = cells && from ? { cells: [...cells], from: [...from] } : null;
+    const same = JSON.stringify(next) === JSON.stringify(this.#coarserFlow);
+    this.#coarserFlow = next;
+    if (!same && next && this.#reason) this.#tell();
+  }
+
   /** `stats().lighter`: why the lighter version is shown and what it gave up, or null. */
   snapshot() {
     return this.#reason ? { reason: this.#reason, gaveUp: this.#gaveUp() } : null;
@@ -94,8 +108,13 @@ export class LighterVersion {
   /** The lighter version is shown because of `reason`: the page hears of it. */
   #shown(reason) {
     this.#reason = reason;
+    this.#tell();
+  }
+
+  /** The page hears why the lighter version is shown and what it gives up now. */
+  #tell() {
     // After the constructor (the page's handle on the player is set by then).
-    const lighter = { reason, gaveUp: this.#gaveUp(), renderer: this.#machine.renderer };
+    const lighter = { reason: this.#reason, gaveUp: this.#gaveUp(), renderer: this.#machine.renderer };
     queueMicrotask(() => this.#onLighter?.(lighter));
   }
 
@@ -115,8 +134,14 @@ export class LighterVersion {
     return this.#rerun();
   }
 
-  /** What the lighter version gave up, in words (empty when it is not shown). */
+  /**
+   * What the lighter version gave up, in words (empty when it is not shown); the flow's grid
+   * named where the running scene's flow is on the coarser one.
+   */
   #gaveUp() {
-    return this.#reason ? lightenedWords(Object.keys(this.#from).filter((name) => this.#from[name] === 'light')) : [];
+    if (!this.#reason) return [];
+    const lightened = Object.keys(this.#from).filter((name) => this.#from[name] === 'light');
+    const flow = this.#coarserFlow;
+    return lightened.flatMap((name) => (name === 'flow' && flow ? [coarserFlowWords(flow.cells, flow.from)] : lightenedWords([name])));
   }
 }

@@ -3,7 +3,8 @@
 // laptops, virtual machines, remote desktops) runs every shader on the CPU, so the full view is
 // a slideshow there; a weak GPU may be as slow. Such a machine gets the lighter version: the
 // points view, `draft` quality, 35 % resolution, the gas stepped by the worker (a GPU stepper
-// in software is many times slower than the worker) and at most `LIGHT.blobCap` blobs. Each
+// in software is many times slower than the worker), at most `LIGHT.blobCap` blobs and a scene's
+// flow on a coarser grid, half the cells along each side (`engine/lighten.js`). Each
 // choice the user makes stands over it for the rest of the session (sessionStorage), and the
 // full version is one choice away.
 
@@ -11,7 +12,7 @@
 const SOFTWARE = /swiftshader|llvmpipe|softpipe|microsoft basic render|software rasterizer|mesa offscreen/i;
 
 /** The lighter version's settings. */
-export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.35, stepper: 'cpu', blobCap: 15_000 });
+export const LIGHT = Object.freeze({ view: 'points', quality: 'draft', resolution: 0.35, stepper: 'cpu', blobCap: 15_000, flow: 'coarse' });
 
 /** Frames a second below which a machine counts as slow once measured (the view at its lightest full settings). */
 export const SLOW_FPS = 10;
@@ -44,7 +45,8 @@ function storage() {
 
 /**
  * The choices the user made this session, each standing over the lighter version: any of
- * `view`, `quality`, `resolution`, `stepper`, `blobCap` (a number, or `null` for none), and
+ * `view`, `quality`, `resolution`, `stepper`, `blobCap` (a number, or `null` for none), `flow`
+ * (`'full'`: a scene's flow on its own cells; `'coarse'`: on the coarser grid), and
  * `full` (true: the full version, whatever the machine).
  */
 export function userChoices() {
@@ -96,6 +98,12 @@ export function lightenedWords(lightened) {
     resolution: `${Math.round(LIGHT.resolution * 100)} % resolution`,
     stepper: 'the gas stepped by the worker',
     blobCap: `at most ${LIGHT.blobCap.toLocaleString('en')} blobs`,
+    flow: 'a scene’s flow on a coarser grid (half the cells along each side)',
   };
   return lightened.map((name) => words[name]).filter(Boolean);
+}
+
+/** The coarser flow in words: the `cells` it runs on in place of the scene's own (`from`). */
+export function coarserFlowWords(cells, from) {
+  return `the flow on a coarser grid: ${cells.join('×')} in place of ${from.join('×')}`;
 }

@@ -137,7 +137,7 @@ export class Player {
     this.#hooks = hooks;
     this.#state = {
       scene: null, playing: hooks.playing ?? true, speed: 1, visible: true,
-      pageVisible: document.visibilityState !== 'hidden', blobCap: null,
+      pageVisible: document.visibilityState !== 'hidden', blobCap: null, flowGrid: 'full',
     };
     this.#stats = {
       blobs: 0, time: 0, fieldMs: 0, stepMs: 0, packMs: 0, frameBytes: 0, frameMs: 0, fps: 0, scale: 1,
@@ -254,7 +254,7 @@ export class Player {
 
   /** Sends the load of `text` to the engine; resolves with its result. */
   #requestLoad(text) {
-    return this.#engine.request('load', { scene: text, blobCap: this.#memory.blobCap(this.#state.blobCap) }, {
+    return this.#engine.request('load', { scene: text, ...this.#holds() }, {
       onProgress: (p) => this.#hooks.onProgress?.(p.progress, `Generating field: ${p.stage}`),
     });
   }
@@ -271,6 +271,14 @@ export class Player {
     return this.#adoptLoad(await request);
   }
 
+  /**
+   * What the engine holds a scene to: the blob cap (the memory budget's or the lighter
+   * version's) and the flow's grid (the lighter version's coarser one, or the scene's own).
+   */
+  #holds() {
+    return { blobCap: this.#memory.blobCap(this.#state.blobCap), flowGrid: this.#state.flowGrid };
+  }
+
   /** Takes a load's result from the engine (`info`) as the running scene; resolves with it. */
   async #adoptLoad(info) {
     this.#captures.refuseIfRecording('load the scene');
@@ -278,6 +286,7 @@ export class Player {
     this.#recovery.loaded();
     this.#stats.sceneBlobCap = info.blobCap;
     const scene = this.#adopt(info.sceneJson);
+    this.#lighter.flowRuns(info.flowCells, scene.flow?.cells);
     this.#tellMemoryCap();
     this.#stats.fieldMs = info.fieldMs;
     this.#view.setCamera(scene.render.camera, scene.render.objects);
@@ -324,12 +333,13 @@ export class Player {
     // A scene the GPU cannot step comes back to the worker before the edit (and so does the gas
     // when the stepper's choice changed to the worker).
     await this.#handoff.leaveFor(JSON.parse(text));
-    const info = await this.#engine.request('edit', { scene: text, blobCap: this.#memory.blobCap(this.#state.blobCap) }, {
+    const info = await this.#engine.request('edit', { scene: text, ...this.#holds() }, {
       onProgress: (p) => this.#hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
     this.#stats.sceneBlobCap = info.blobCap;
     const camera = this.#state.scene?.render.camera;
     const next = this.#adopt(info.sceneJson);
+    this.#lighter.flowRuns(info.flowCells, next.flow?.cells);
     this.#tellMemoryCap();
     const { render } = next;
     if (info.restarted || !sameCamera(camera, render.camera)) this.#view.setCamera(render.camera, render.objects);
@@ -345,7 +355,7 @@ export class Player {
     return next;
   }
 
-  /** The running scene again under the settings as they now are (its stepper, its blob cap). */
+  /** The running scene again under the settings as they now are (its stepper, its blob cap, its flow's grid). */
   #rerun() {
     return this.#state.scene ? this.#exclusive(async () => {
       if (this.#sceneJson) await this.#edit(this.#sceneJson);
@@ -665,6 +675,7 @@ export class Player {
   #apply(name, value) {
     if (name === 'stepper') this.#handoff.choice = value;
     else if (name === 'blobCap') this.#state.blobCap = value;
+    else if (name === 'flow') this.#state.flowGrid = value;
     else this.#settings.apply(name, value);
   }
 
