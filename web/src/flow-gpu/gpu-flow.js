@@ -19,9 +19,13 @@
 import { boundaryOf, faceDims, noSolids } from './boundary.js';
 import { Lattice, Pass } from './gl.js';
 import {
-  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, RELAX, RESIDUAL, SPLAT,
+  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, PROBE, RELAX, RESIDUAL, SPLAT,
 } from './passes.js';
 
+/** How long a stir takes to bring the flow at its centre to its velocity (s, `scene_flow::STIR_TIME`). */
+export const STIR_TIME = 0.05;
+/** A stir's width in cells, fewest and most (`scene_flow::STIR_CELLS`). */
+export const STIR_CELLS = [1.5, 4];
 /** The largest ν·dt/h² of one diffusion substep (the core's `diffuse::STABLE`). */
 const STABLE = 0.125;
 /** Air's kinematic viscosity (m²/s) and an ideal gas's expansion at room temperature (1/K). */
@@ -92,8 +96,9 @@ export class GpuFlow {
     this.b = new Lattice(gl, cells);
     this.phi = new Pair(gl, cells);
     this.cellOut = new Lattice(gl, cells, 4);
+    this.probe = new Lattice(gl, [1, 1, 1], 4);
     this.passes = Object.fromEntries(Object.entries({
-      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES,
+      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE,
     }).map(([name, body]) => [name, new Pass(gl, body)]));
     this.setSolids(noSolids(cells));
     this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
@@ -239,6 +244,26 @@ export class GpuFlow {
     return b === 0 ? 0 : r / b;
   }
 
+  /** The wind u_p + u_g at `x` (m), m/s, read back (one texel). */
+  velocityAt(x) {
+    const [ux, uy, uz] = this.u.map((p) => p.now);
+    const [px, py, pz] = this.up;
+    this.passes.PROBE.draw(this.probe, { ...this.#grid, ux, uy, uz, px, py, pz, point: { vec3: x.map(f32) } });
+    return Array.from(this.probe.read().subarray(0, 3));
+  }
+
+  /**
+   * The force splat of a stir (the pointer's `velocity` (m/s) at `centre` (m) over `radius`
+   * (m), clamped to STIR_CELLS cells): the force (velocity − u)/STIR_TIME, u the wind at the
+   * centre now (`scene_flow::SceneFlow::step`).
+   */
+  splatOf({ centre, velocity, radius }) {
+    const [lo, hi] = STIR_CELLS;
+    const r = Math.min(Math.max(f32(radius), f32(lo * this.h)), f32(hi * this.h));
+    const u = this.velocityAt(centre);
+    return { centre, radius: r, force: velocity.map((v, a) => f32(f32(f32(v) - u[a]) / STIR_TIME)) };
+  }
+
   /** u_g on each component's faces (three Float32Arrays, m/s), read back. */
   faces() {
     return this.u.map((p) => p.now.read());
@@ -255,7 +280,7 @@ export class GpuFlow {
   }
 
   dispose() {
-    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut]) l.dispose();
+    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe]) l.dispose();
     for (const p of Object.values(this.passes)) p.dispose();
   }
 }

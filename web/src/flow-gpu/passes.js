@@ -14,7 +14,8 @@
 // - RELAX: one half sweep (red or black cells) of successive over-relaxation of Σ_f (φ_i − φ_j)
 //   = b_i over the free faces f (φ = 0 beyond an open face).
 // - GRADIENT: each free face loses ∇φ (`project.rs`).
-// - RESIDUAL: b − Aφ per cell (for the solve's check); CENTRES: u_g at the cells' centres.
+// - RESIDUAL: b − Aφ per cell (for the solve's check); CENTRES: u_g at the cells' centres;
+//   PROBE: u_p + u_g at one point (a stir's push is towards the pointer's velocity from it).
 //
 // Every pass starts from `s`, the sample of its texel in the target's lattice, and writes 0 past
 // the lattice's last slice.
@@ -327,4 +328,32 @@ void main() {${SAMPLE}
     0.5 * (fetch1(uy, s, uyL) + fetch1(uy, s + ivec3(0, 1, 0), uyL)),
     0.5 * (fetch1(uz, s, uzL) + fetch1(uz, s + ivec3(0, 0, 1), uzL)),
     0.0);
+}`;
+
+/** The wind u_p + u_g at one point (m), each sampled trilinearly on its faces, into one texel. */
+export const PROBE = /* glsl */ `
+uniform sampler2D ux;
+uniform ivec4 uxL;
+uniform sampler2D uy;
+uniform ivec4 uyL;
+uniform sampler2D uz;
+uniform ivec4 uzL;
+uniform sampler2D px;
+uniform ivec4 pxL;
+uniform sampler2D py;
+uniform ivec4 pyL;
+uniform sampler2D pz;
+uniform ivec4 pzL;
+uniform vec3 point;
+${OUT}
+void main() {
+  vec3 p = vec3(
+    trilinear(px, pxL, vec3(0.0, 0.5, 0.5), point),
+    trilinear(py, pyL, vec3(0.5, 0.0, 0.5), point),
+    trilinear(pz, pzL, vec3(0.5, 0.5, 0.0), point));
+  vec3 q = vec3(
+    trilinear(ux, uxL, vec3(0.0, 0.5, 0.5), point),
+    trilinear(uy, uyL, vec3(0.5, 0.0, 0.5), point),
+    trilinear(uz, uzL, vec3(0.5, 0.5, 0.0), point));
+  outValue = vec4(p + q, 0.0);
 }`;
