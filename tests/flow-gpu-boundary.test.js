@@ -1,0 +1,67 @@
+// The GPU flow's boundary conditions and atlases (web/src/flow-gpu/), worked out on the CPU:
+// each face's kind and fixed normal velocity and each cell's Poisson row, as the core's
+// `wind::flow::boundary` and projection set them, and every lattice sample in its own texel.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { addSolid, boundaryOf, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
+import { atlasOf, atlasTexel } from '../web/src/flow-gpu/gl.js';
+
+const cells = [3, 3, 3];
+const grid = { origin: [0, 0, 0], cells, h: 1 };
+const cell = (i, j, k) => i + 3 * (j + 3 * k);
+/** [kind, v] of face (i, j, k) of component `a`. */
+const faceOf = (kinds, a, i, j, k) => {
+  const d = faceDims(cells, a);
+  const f = 2 * (i + d[0] * (j + d[1] * k));
+  return [kinds[a][f], kinds[a][f + 1]];
+};
+
+test('a 3³ open box round a moving solid centre cell: its faces carry its velocity, the box\'s faces are free', () => {
+  const solids = addSolid(noSolids(cells), grid, (x) => x.every((v) => v === 1.5), [0.25, -0.5, 1]);
+  assert.equal(solids.solid[cell(1, 1, 1)], 1);
+  assert.equal(solids.solid.reduce((s, v) => s + v, 0), 1);
+  const { kinds, rows, definite } = boundaryOf(cells, solids, 'open');
+  assert.equal(definite, true);
+  // The solid cell's six faces: fixed at its velocity's normal component, holding the air.
+  assert.deepEqual(faceOf(kinds, 0, 1, 1, 1), [HOLDING, 0.25]);
+  assert.deepEqual(faceOf(kinds, 0, 2, 1, 1), [HOLDING, 0.25]);
+  assert.deepEqual(faceOf(kinds, 1, 1, 2, 1), [HOLDING, -0.5]);
+  assert.deepEqual(faceOf(kinds, 2, 1, 1, 1), [HOLDING, 1]);
+  // The box's faces and the others inside: free.
+  assert.deepEqual(faceOf(kinds, 0, 0, 1, 1), [FREE, 0]);
+  assert.deepEqual(faceOf(kinds, 1, 0, 0, 0), [FREE, 0]);
+  // A corner cell: six free faces (three open), linked to its three neighbours.
+  assert.equal(rows[4 * cell(0, 0, 0)], 6);
+  assert.equal(rows[4 * cell(0, 0, 0) + 1], 0b000111);
+  // Beside the solid: five free faces, not linked to it.
+  assert.equal(rows[4 * cell(0, 1, 1)], 5);
+  assert.equal(rows[4 * cell(0, 1, 1) + 1] & 1, 0);
+  assert.equal(rows[4 * cell(1, 1, 1)], 0);
+});
+
+test('a 3³ closed box: the walls are fixed at 0 and slip, the system is singular, a corner cell has three free faces', () => {
+  const { kinds, rows, definite } = boundaryOf(cells, noSolids(cells), 'closed');
+  assert.equal(definite, false);
+  assert.deepEqual(faceOf(kinds, 0, 0, 1, 2), [SLIPPING, 0]);
+  assert.deepEqual(faceOf(kinds, 2, 1, 1, 3), [SLIPPING, 0]);
+  assert.deepEqual(faceOf(kinds, 1, 1, 1, 1), [FREE, 0]);
+  assert.equal(rows[4 * cell(0, 0, 0)], 3);
+  assert.equal(rows[4 * cell(1, 1, 1)], 6);
+  assert.equal(rows[4 * cell(2, 2, 2) + 1], 0b111000);
+});
+
+test('every sample of a lattice has a texel of its own in its atlas', () => {
+  for (const dims of [[17, 16, 16], [65, 64, 64], [8, 9, 200]]) {
+    const atlas = atlasOf(dims, 4096);
+    assert.ok(atlas.width <= 4096 && atlas.height <= 4096);
+    const seen = new Set();
+    for (let k = 0; k < dims[2]; k++) {
+      for (let j = 0; j < dims[1]; j++) {
+        for (let i = 0; i < dims[0]; i++) seen.add(atlasTexel(atlas, i, j, k));
+      }
+    }
+    assert.equal(seen.size, dims[0] * dims[1] * dims[2]);
+    for (const t of seen) assert.ok(t < atlas.width * atlas.height);
+  }
+  assert.throws(() => atlasOf([257, 256, 256], 4096), /does not fit/);
+});
