@@ -7,25 +7,32 @@
 //
 // The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ
 // (a warm start, as the core's conjugate gradients take), a fixed number of iterations a step
-// (two passes each): by default 3 × the longest side of cells + 30, which reaches a relative
-// residual max|b − Aφ| / max|b| of 1e-4 or better on the boxes checked (`residual()` measures
-// it; the core's MIC(0) conjugate gradients stop at 1e-5 in f64). Nothing is read back unless
-// asked (`faces`, `cellVelocity`, `residual`).
+// (two passes each): by default 3 × the longest side of cells + 30 with open faces, 5 × + 30
+// with closed ones (the Neumann problem converges slower), which reached a relative residual
+// max|b − Aφ| / max|b| of 1e-4 or better on the boxes checked (`residual()` measures it: at 32³
+// round a sphere in a wind and a stir, 3e-6–7e-7 open, 3e-6–7e-5 closed, where f32 sets the
+// floor: φ is some n times b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop
+// at 1e-5 in f64). With no open face b's mean over the fluid cells is taken out first, as the
+// core does. Nothing is read back unless asked (`faces`, `cellVelocity`, `velocityAt`,
+// `residual`).
 //
 // Cost per step: 3 carrier passes, 6 advection passes (11 trilinear interpolations a face),
-// 3 per diffusion substep, up to 3 for buoyancy and for each splat, 3 to impose, 1 divergence,
-// 2 per SOR iteration, 3 for the gradient.
+// 3 per diffusion substep, up to 3 for buoyancy and for each splat, 3 to impose, 1 divergence
+// (and, closed, a reduction of 3–4 passes and 1 to centre b), 2 per SOR iteration, 3 for the
+// gradient: at 64³ open, 222 iterations, about 460 passes. A multigrid solve would take fewer.
 
 import { boundaryOf, faceDims, noSolids } from './boundary.js';
 import { Lattice, Pass } from './gl.js';
 import {
-  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, PROBE, RELAX, RESIDUAL, SPLAT,
+  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
 } from './passes.js';
 
 /** How long a stir takes to bring the flow at its centre to its velocity (s, `scene_flow::STIR_TIME`). */
 export const STIR_TIME = 0.05;
 /** A stir's width in cells, fewest and most (`scene_flow::STIR_CELLS`). */
 export const STIR_CELLS = [1.5, 4];
+/** Texels a side summed by one reduction pass. */
+const REDUCE_BLOCK = 8;
 /** The largest ν·dt/h² of one diffusion substep (the core's `diffuse::STABLE`). */
 const STABLE = 0.125;
 /** Air's kinematic viscosity (m²/s) and an ideal gas's expansion at room temperature (1/K). */
@@ -81,9 +88,11 @@ export class GpuFlow {
     this.buoyancy = f32(buoyancy);
     this.gravity = gravity.map(f32);
     const longest = Math.max(...cells);
-    this.iterations = iterations ?? 3 * longest + 30;
-    // SOR's best ω for the model problem on the longest side (twice it with no open face).
-    const side = faces === 'closed' ? 2 * longest : longest;
+    this.iterations = iterations ?? (faces === 'closed' ? 5 : 3) * longest + 30;
+    // SOR's best ω for the model problem on a cube of the longest side: 2/(1 + π/n) with the
+    // box's faces open (p = 0 beyond them), 2/(1 + π/(√3 n)) with them closed (the Neumann
+    // problem's smallest eigenvalue but the constant's is a third of the Dirichlet one's).
+    const side = faces === 'closed' ? Math.sqrt(3) * longest : longest;
     this.omega = omega ?? 2 / (1 + Math.sin(Math.PI / side));
     const dims = [0, 1, 2].map((a) => faceDims(cells, a));
     this.u = dims.map((d) => new Pair(gl, d));
@@ -97,8 +106,15 @@ export class GpuFlow {
     this.phi = new Pair(gl, cells);
     this.cellOut = new Lattice(gl, cells, 4);
     this.probe = new Lattice(gl, [1, 1, 1], 4);
+    this.bCentred = new Lattice(gl, cells);
+    // The sums of b, block by block down to one texel.
+    this.sums = [];
+    for (let [w, hh] = [this.b.atlas.width, this.b.atlas.height]; w > 1 || hh > 1;) {
+      [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
+      this.sums.push(new Lattice(gl, [w, hh, 1]));
+    }
     this.passes = Object.fromEntries(Object.entries({
-      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE,
+      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B,
     }).map(([name, body]) => [name, new Pass(gl, body)]));
     this.setSolids(noSolids(cells));
     this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
@@ -129,6 +145,9 @@ export class GpuFlow {
     kinds.forEach((k, a) => this.kind[a].upload(k));
     this.rows.upload(rows);
     this.definite = definite;
+    let fluid = 0;
+    for (let c = 0; c < rows.length; c += 4) if (rows[c] > 0) fluid += 1;
+    this.fluid = fluid;
   }
 
   /** The primitives' wind u_p on each component's faces (three Float32Arrays, m/s). */
@@ -204,10 +223,11 @@ export class GpuFlow {
     const grid = this.#grid;
     const [ux, uy, uz] = this.u.map((p) => p.now);
     this.passes.DIVERGENCE.draw(this.b, { ...grid, ux, uy, uz, rows: this.rows });
+    const b = this.definite || this.fluid === 0 ? this.b : this.#centred();
     const omega = this.omega;
     for (let n = 0; n < this.iterations; n++) {
       for (const parity of [0, 1]) {
-        this.passes.RELAX.draw(this.phi.next, { ...grid, phi: this.phi.now, rows: this.rows, b: this.b, omega, parity: { int: parity } });
+        this.passes.RELAX.draw(this.phi.next, { ...grid, phi: this.phi.now, rows: this.rows, b, omega, parity: { int: parity } });
         this.phi.swap();
       }
     }
@@ -216,32 +236,33 @@ export class GpuFlow {
     }
   }
 
+  /** b less its mean over the fluid cells (with no open face the system is singular). */
+  #centred() {
+    let src = this.b;
+    for (const sum of this.sums) {
+      this.passes.REDUCE.draw(sum, { src, size: { ivec4: [src.atlas.width, src.atlas.height, REDUCE_BLOCK, 0] } });
+      src = sum;
+    }
+    this.passes.CENTRE_B.draw(this.bCentred, { ...this.#grid, b: this.b, rows: this.rows, total: src, fluid: this.fluid });
+    return this.bCentred;
+  }
+
   /**
    * The last projection's relative residual max|b − Aφ| / max|b| over the fluid cells (with no
    * open face, b less its mean over them, as the core solves it), read back.
    */
   residual() {
-    this.passes.RESIDUAL.draw(this.cellOut, { ...this.#grid, phi: this.phi.now, rows: this.rows, b: this.b });
+    const b = this.definite || this.fluid === 0 ? this.b : this.bCentred;
+    this.passes.RESIDUAL.draw(this.cellOut, { ...this.#grid, phi: this.phi.now, rows: this.rows, b });
     const v = this.cellOut.read();
-    let mean = 0;
-    let fluid = 0;
-    if (!this.definite) {
-      for (let c = 0; c < v.length; c += 4) {
-        if (v[c + 2] > 0) {
-          mean += v[c + 1];
-          fluid += 1;
-        }
-      }
-      mean = fluid > 0 ? mean / fluid : 0;
-    }
-    let r = 0;
-    let b = 0;
+    let worst = 0;
+    let scale = 0;
     for (let c = 0; c < v.length; c += 4) {
       if (v[c + 2] === 0) continue;
-      r = Math.max(r, Math.abs(v[c] - mean));
-      b = Math.max(b, Math.abs(v[c + 1] - mean));
+      worst = Math.max(worst, Math.abs(v[c]));
+      scale = Math.max(scale, Math.abs(v[c + 1]));
     }
-    return b === 0 ? 0 : r / b;
+    return scale === 0 ? 0 : worst / scale;
   }
 
   /** The wind u_p + u_g at `x` (m), m/s, read back (one texel). */
@@ -280,7 +301,7 @@ export class GpuFlow {
   }
 
   dispose() {
-    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe]) l.dispose();
+    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, ...this.sums]) l.dispose();
     for (const p of Object.values(this.passes)) p.dispose();
   }
 }

@@ -10,7 +10,9 @@
 // - BUOYANCY: b = −β T g, T averaged onto each face from its two cells (`forces.rs`).
 // - SPLAT: a Gaussian force splat within four widths of its centre (`forces.rs`).
 // - IMPOSE: each fixed face's u_g = v·n − u_p (`boundary.rs`).
-// - DIVERGENCE: the Poisson right-hand side b = −h² ∇·u_g of each fluid cell (`project.rs`).
+// - DIVERGENCE: the Poisson right-hand side b = −h² ∇·u_g of each fluid cell (`project.rs`);
+//   with no open face, REDUCE (sums over blocks, down to one texel) and CENTRE_B take out b's
+//   mean over the fluid cells, which makes the singular system solvable, as the core does.
 // - RELAX: one half sweep (red or black cells) of successive over-relaxation of Σ_f (φ_i − φ_j)
 //   = b_i over the free faces f (φ = 0 beyond an open face).
 // - GRADIENT: each free face loses ∇φ (`project.rs`).
@@ -356,4 +358,36 @@ void main() {
     trilinear(uy, uyL, vec3(0.5, 0.0, 0.5), point),
     trilinear(uz, uzL, vec3(0.5, 0.5, 0.0), point));
   outValue = vec4(p + q, 0.0);
+}`;
+
+/** The sum of `src`'s first channel over blocks of size.z × size.z texels (size.xy: src's). */
+export const REDUCE = /* glsl */ `
+uniform sampler2D src;
+uniform ivec4 size;
+${OUT}
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy) * size.z;
+  float sum = 0.0;
+  for (int y = 0; y < size.z; y++) {
+    for (int x = 0; x < size.z; x++) {
+      ivec2 q = p + ivec2(x, y);
+      if (q.x < size.x && q.y < size.y) sum += texelFetch(src, q, 0).x;
+    }
+  }
+  outValue = vec4(sum, 0.0, 0.0, 0.0);
+}`;
+
+/** b less its mean over the fluid cells (`total`'s texel over `fluid` cells), 0 off them. */
+export const CENTRE_B = /* glsl */ `
+uniform sampler2D b;
+uniform ivec4 bL;
+uniform sampler2D rows;
+uniform ivec4 rowsL;
+uniform sampler2D total;
+uniform float fluid;
+${OUT}
+void main() {${SAMPLE}
+  float diag = texelFetch(rows, texelOf(s, rowsL), 0).x;
+  float mean = texelFetch(total, ivec2(0), 0).x / fluid;
+  outValue = vec4(diag > 0.0 ? fetch1(b, s, bL) - mean : 0.0, 0.0, 0.0, 0.0);
 }`;
