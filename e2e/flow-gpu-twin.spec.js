@@ -1,6 +1,6 @@
 // The flow on the GPU (web/src/flow-gpu/) against the worker's core, in SwiftShader: the same
 // scene given to both — its box, cells, faces, ν, β and g, the primitives' uniform wind u_p on
-// every face, the solid sphere's cells (those whose centre is inside) and, for a hot gas, the
+// every face, the solid objects' cells (those whose centre is inside) and, for a hot gas, the
 // temperature the worker deposited on the cells at each step — and 60 steps on each agree
 // within 1e-3 of max|u_g| at the cells' centres (`exportFlow()`). The GPU's projection reaches
 // the relative residual the twin needs. A stir (a force splat towards the pointer's velocity),
@@ -12,14 +12,17 @@ import { encodeScene } from '../web/src/state/url-codec.js';
 const fixture = (name) => JSON.parse(readFileSync(new URL(`../tests/fixtures/${name}.json`, import.meta.url), 'utf8'));
 const STEPS = 60;
 
-/** A 16³ open box round a solid sphere in a uniform wind; no heat. */
+/** A 16³ open box round a solid sphere and a cylinder across a uniform wind; no heat. */
 function sphereInWind() {
   const scene = fixture('hot-flow');
   scene.wind = [{ type: 'uniform', velocity: [0.5, 0, 0] }];
   scene.emitters[0].temperature = 0;
   scene.emitters[0].center = [-0.4, 0.3, 0];
   scene.flow = { box: [-0.5, -0.5, -0.5, 0.5, 0.5, 0.5], cells: [16, 16, 16], faces: 'open', viscosity: 0.004 };
-  scene.render.objects = [{ type: 'sphere', center: [-0.1, 0.02, 0.01], radius: 0.19, color: [1, 1, 1], solid: true }];
+  scene.render.objects = [
+    { type: 'sphere', center: [-0.1, 0.02, 0.01], radius: 0.19, color: [1, 1, 1], solid: true },
+    { type: 'cylinder', base: [0.26, -0.3, -0.6], axis: [0, 0.1, 1], radius: 0.07, height: 1.2, color: [1, 1, 1], solid: true },
+  ];
   return scene;
 }
 
@@ -58,26 +61,15 @@ async function open(page, scene) {
   await page.evaluate(() => window.windfield.pause());
 }
 
-/** The GPU's flow of `scene`, its solids marked and its uniform wind set (in the page). */
+/** The GPU's flow of `scene` (`gpuFlowOfScene`), in the page. */
 function installGpuFlowOf() {
   window.gpuFlowOf = async (scene) => {
-    const { GpuFlow, addSolid, flowGpuUnsupported, noSolids } = await import('./flow-gpu/index.js');
+    const { flowGpuUnsupported, gpuFlowOfScene } = await import('./flow-gpu/index.js');
     const gl = document.createElement('canvas').getContext('webgl2');
     const unsupported = flowGpuUnsupported(gl);
     if (unsupported) return { unsupported };
-    const f = scene.flow;
-    const cells = f.cells;
-    const origin = f.box.slice(0, 3);
-    const h = [0, 1, 2].map((a) => (f.box[a + 3] - f.box[a]) / cells[a]).reduce((s, v) => s + v) / 3;
-    const flow = new GpuFlow(gl, {
-      origin, cells, h, faces: f.faces, viscosity: f.viscosity, buoyancy: f.buoyancy ?? 1 / 293.15, gravity: f.gravity ?? [0, -9.81, 0],
-    });
-    const solids = noSolids(cells);
-    for (const o of scene.render.objects.filter((o) => o.solid && o.type === 'sphere')) {
-      addSolid(solids, { origin, cells, h }, (x) => Math.hypot(...x.map((v, a) => v - o.center[a])) < o.radius);
-    }
-    flow.setSolids(solids);
-    flow.setUniformWind(scene.wind[0].velocity);
+    const { flow, solids, refused } = gpuFlowOfScene(gl, scene);
+    if (refused) return { unsupported: refused };
     return { flow, solids };
   };
   /** The largest |component| of `cpu` (m/s) and of `gpu` − `cpu`. */
@@ -131,12 +123,12 @@ function twin(page, scene, heated) {
   }, { scene, heated, steps: STEPS });
 }
 
-test('a sphere in a uniform wind, 60 steps in an open box: the GPU\'s flow agrees with the worker\'s within 1e-3 of max|u_g|', async ({ page }) => {
+test('a sphere and a cylinder in a uniform wind, 60 steps in an open box: the GPU\'s flow agrees with the worker\'s within 1e-3 of max|u_g|', async ({ page }) => {
   const scene = sphereInWind();
   await open(page, scene);
   const out = await twin(page, scene, false);
   expect(out.unsupported).toBeUndefined();
-  console.log(`sphere in a wind: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}`);
+  console.log(`a sphere and a cylinder in a wind: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}`);
   expect(out.finite).toBe(true);
   expect(out.solidCells).toBeGreaterThan(100);
   expect(out.otherSolids).toBe(0);

@@ -1,0 +1,65 @@
+// A scene's flow (docs/FORMATS.md, the flow) set up on the GPU as the core's `SceneFlow` sets
+// it up: the grid of `flow.box` and `flow.cells` (cubes of edge h, the mean of the three
+// spacings), its faces and constants (air's ν and β and Earth's g where the scene names none),
+// the solid objects' cells (a cell whose centre is inside: the signed distance of the sphere,
+// the plane or the capped cylinder below 0) and the primitives' wind u_p on the faces. Only
+// uniform winds are taken here (u_p the same on every face); any other primitive, a repulsor's
+// moving sphere among them, needs u_p and the solids set each step from the wind table, and
+// is refused with the reason.
+
+import { GpuFlow } from './gpu-flow.js';
+import { addSolid, noSolids } from './boundary.js';
+
+const f32 = Math.fround;
+
+/** The signed distance (m, negative inside) from `x` (m) of a solid object of the scene format. */
+export function solidDistance(o, x) {
+  const sub = (a, b) => a.map((v, i) => f32(v - b[i]));
+  const dot = (a, b) => f32(a.reduce((s, v, i) => s + v * b[i], 0));
+  const unit = (a) => {
+    const n = Math.hypot(...a);
+    return a.map((v) => f32(v / n));
+  };
+  if (o.type === 'sphere') return f32(Math.hypot(...sub(x, o.center)) - o.radius);
+  if (o.type === 'plane') return dot(sub(x, o.point), unit(o.normal));
+  if (o.type === 'cylinder') {
+    const axis = unit(o.axis);
+    const r = sub(x, o.base);
+    const s = dot(r, axis);
+    const rho = Math.hypot(...r.map((v, i) => v - axis[i] * s));
+    const dr = f32(rho - o.radius);
+    const ds = s > 0.5 * o.height ? f32(s - o.height) : -s;
+    return dr > 0 && ds > 0 ? f32(Math.hypot(dr, ds)) : Math.max(dr, ds);
+  }
+  return Infinity;
+}
+
+/**
+ * The flow of `scene` on the GPU of `gl` at rest (`{flow}`), or why not (`{refused}`): no
+ * enabled flow, or primitives other than uniform winds.
+ */
+export function gpuFlowOfScene(gl, scene, options = {}) {
+  const f = scene.flow;
+  if (!f || f.enabled === false) return { refused: 'the scene has no flow' };
+  const winds = (scene.wind ?? []).filter((p) => p.enabled !== false);
+  const other = winds.find((p) => p.type !== 'uniform' || p.decay !== undefined);
+  if (other) return { refused: `the GPU's flow takes uniform winds only (the scene has a ${other.type}${other.decay !== undefined ? ' with a decay' : ''})` };
+  const cells = f.cells;
+  const origin = f.box.slice(0, 3);
+  const h = [0, 1, 2].map((a) => (f.box[a + 3] - f.box[a]) / cells[a]).reduce((s, v) => s + v) / 3;
+  const flow = new GpuFlow(gl, {
+    origin, cells, h,
+    faces: f.faces ?? 'open',
+    viscosity: f.viscosity ?? 1.5e-5,
+    buoyancy: f.buoyancy ?? 1 / 293.15,
+    gravity: f.gravity ?? [0, -9.81, 0],
+    ...options,
+  });
+  const solids = noSolids(cells);
+  for (const o of (scene.render?.objects ?? []).filter((o) => o.solid)) {
+    addSolid(solids, { origin: flow.origin, cells, h: flow.h }, (x) => solidDistance(o, x) < 0);
+  }
+  flow.setSolids(solids);
+  flow.setUniformWind([0, 1, 2].map((a) => f32(winds.reduce((s, p) => f32(s + p.velocity[a]), 0))));
+  return { flow, solids };
+}
