@@ -1,10 +1,12 @@
 // The GPU flow's boundary conditions and atlases (web/src/flow-gpu/), worked out on the CPU:
 // each face's kind and fixed normal velocity and each cell's Poisson row, as the core's
-// `wind::flow::boundary` and projection set them, and every lattice sample in its own texel.
+// `wind::flow::boundary` and projection set them, every lattice sample in its own texel, the
+// grids too large for a GPU's textures, and the solid objects' signed distances.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { addSolid, boundaryOf, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
-import { atlasOf, atlasTexel } from '../web/src/flow-gpu/gl.js';
+import { atlasOf, atlasTexel, flowGpuRefuses } from '../web/src/flow-gpu/gl.js';
+import { solidDistance } from '../web/src/flow-gpu/scene.js';
 
 const cells = [3, 3, 3];
 const grid = { origin: [0, 0, 0], cells, h: 1 };
@@ -64,4 +66,23 @@ test('every sample of a lattice has a texel of its own in its atlas', () => {
     for (const t of seen) assert.ok(t < atlas.width * atlas.height);
   }
   assert.throws(() => atlasOf([257, 256, 256], 4096), /does not fit/);
+});
+
+test('a grid whose faces do not fit 4096-texel atlases is refused, naming its cells', () => {
+  const gl = { MAX_TEXTURE_SIZE: 0x0d33, getParameter: () => 4096 };
+  assert.equal(flowGpuRefuses(gl, [128, 128, 128]), null);
+  assert.equal(flowGpuRefuses(gl, [64, 64, 64]), null);
+  assert.match(flowGpuRefuses(gl, [256, 256, 256]), /256 × 256 × 256 cells do not fit/);
+});
+
+test('the solid objects\' signed distances: a sphere, a plane, a capped cylinder', () => {
+  const near = (a, b) => assert.ok(Math.abs(a - b) < 1e-6, `${a} against ${b}`);
+  near(solidDistance({ type: 'sphere', center: [1, 0, 0], radius: 0.5 }, [1, 2, 0]), 1.5);
+  near(solidDistance({ type: 'plane', point: [0, 1, 0], normal: [0, 2, 0] }, [3, 0.25, 1]), -0.75);
+  const cylinder = { type: 'cylinder', base: [0, 0, 0], axis: [0, 0, 1], radius: 0.5, height: 2 };
+  near(solidDistance(cylinder, [0.2, 0, 1]), -0.3);
+  near(solidDistance(cylinder, [0, 0, 1.9]), -0.1);
+  near(solidDistance(cylinder, [0, 0, -0.5]), 0.5);
+  near(solidDistance(cylinder, [1.5, 0, 3]), Math.SQRT2);
+  assert.equal(solidDistance({ type: 'box' }, [0, 0, 0]), Infinity);
 });

@@ -19,6 +19,24 @@ export function flowGpuUnsupported(gl) {
 }
 
 /**
+ * Why a flow of `cells` [nx, ny, nz] does not fit `gl`'s textures, or null when it does: every
+ * lattice (each component's faces, one more along its own axis) must fit one atlas.
+ */
+export function flowGpuRefuses(gl, cells) {
+  const size = Math.min(ATLAS_WIDTH, gl.getParameter(gl.MAX_TEXTURE_SIZE));
+  for (let a = 0; a < 3; a++) {
+    const d = [...cells];
+    d[a] += 1;
+    try {
+      atlasOf(d, size);
+    } catch (e) {
+      return `the flow's ${cells.join(' × ')} cells do not fit this GPU's textures: ${e.message}`;
+    }
+  }
+  return null;
+}
+
+/**
  * The atlas of a lattice of `dims` samples (x, y, z): `columns` slices to a row of tiles,
  * `width` × `height` texels, and the uniform the shaders read it by (dims, columns).
  */

@@ -3,5 +3,5 @@
 // and `gpuFlowOfScene` sets one up from a scene as the core does.
 export { GpuFlow, STIR_CELLS, STIR_TIME } from './gpu-flow.js';
 export { addSolid, faceDims, noSolids } from './boundary.js';
-export { flowGpuUnsupported } from './gl.js';
+export { flowGpuRefuses, flowGpuUnsupported } from './gl.js';
 export { gpuFlowOfScene, solidDistance } from './scene.js';

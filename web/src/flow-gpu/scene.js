@@ -9,6 +9,7 @@
 
 import { GpuFlow } from './gpu-flow.js';
 import { addSolid, noSolids } from './boundary.js';
+import { flowGpuRefuses } from './gl.js';
 
 const f32 = Math.fround;
 
@@ -36,7 +37,7 @@ export function solidDistance(o, x) {
 
 /**
  * The flow of `scene` on the GPU of `gl` at rest (`{flow}`), or why not (`{refused}`): no
- * enabled flow, or primitives other than uniform winds.
+ * enabled flow, primitives other than uniform winds, or a grid too large for its textures.
  */
 export function gpuFlowOfScene(gl, scene, options = {}) {
   const f = scene.flow;
@@ -45,6 +46,8 @@ export function gpuFlowOfScene(gl, scene, options = {}) {
   const other = winds.find((p) => p.type !== 'uniform' || p.decay !== undefined);
   if (other) return { refused: `the GPU's flow takes uniform winds only (the scene has a ${other.type}${other.decay !== undefined ? ' with a decay' : ''})` };
   const cells = f.cells;
+  const large = flowGpuRefuses(gl, cells);
+  if (large) return { refused: large };
   const origin = f.box.slice(0, 3);
   const h = [0, 1, 2].map((a) => (f.box[a + 3] - f.box[a]) / cells[a]).reduce((s, v) => s + v) / 3;
   const flow = new GpuFlow(gl, {
