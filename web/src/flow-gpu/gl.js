@@ -129,6 +129,17 @@ function shader(gl, type, source) {
   return s;
 }
 
+/**
+ * Sets the state every pass assumes, whatever else drew with `gl` before (a three.js renderer
+ * sharing the context calls its `resetState()` after): no blending, depth, stencil, scissor or
+ * culling, every channel written, the default vertex array (the passes read no attributes).
+ */
+export function passState(gl) {
+  for (const cap of [gl.BLEND, gl.DEPTH_TEST, gl.STENCIL_TEST, gl.SCISSOR_TEST, gl.CULL_FACE, gl.RASTERIZER_DISCARD]) gl.disable(cap);
+  gl.colorMask(true, true, true, true);
+  gl.bindVertexArray(null);
+}
+
 /** A program drawing every texel of its target with `body` (GLSL 3 after the common header). */
 export class Pass {
   constructor(gl, body) {

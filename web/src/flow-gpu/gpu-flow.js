@@ -13,8 +13,10 @@
 // round a sphere in a wind and a stir, 3e-6–7e-7 open, 3e-6–7e-5 closed, where f32 sets the
 // floor: φ is some n times b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop
 // at 1e-5 in f64). With no open face b's mean over the fluid cells is taken out first, as the
-// core does. Nothing is read back unless asked (`faces`, `cellVelocity`, `velocityAt`,
-// `residual`).
+// core does. Where b is 0 on every cell the core sets φ = 0; the sweeps here relax the last φ
+// towards 0 instead (the same from rest). Nothing is read back unless asked (`faces`,
+// `cellVelocity`, `velocityAt`, `residual`). The passes set the context's state they need (`passState`); a three.js renderer
+// sharing the context calls `resetState()` after them.
 //
 // Cost per step: 3 carrier passes, 6 advection passes (11 trilinear interpolations a face),
 // 3 per diffusion substep, up to 3 for buoyancy and for each splat, 3 to impose, 1 divergence
@@ -22,7 +24,7 @@
 // gradient: at 64³ open, 222 iterations, about 460 passes. A multigrid solve would take fewer.
 
 import { boundaryOf, faceDims, noSolids } from './boundary.js';
-import { Lattice, Pass } from './gl.js';
+import { Lattice, Pass, passState } from './gl.js';
 import {
   ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
 } from './passes.js';
@@ -128,6 +130,7 @@ export class GpuFlow {
 
   /** u_g = 0 and φ = 0. */
   clear() {
+    passState(this.gl);
     const gl = this.gl;
     gl.clearColor(0, 0, 0, 0);
     for (const l of [...this.u.flatMap((p) => p.both), ...this.phi.both]) {
@@ -175,6 +178,7 @@ export class GpuFlow {
    * (m/s²)} each).
    */
   step(dt, temperature = null, splats = []) {
+    passState(this.gl);
     const grid = this.#grid;
     dt = f32(dt);
     const carriers = { cx: this.carrier[0], cy: this.carrier[1], cz: this.carrier[2] };
@@ -252,6 +256,7 @@ export class GpuFlow {
    * open face, b less its mean over them, as the core solves it), read back.
    */
   residual() {
+    passState(this.gl);
     const b = this.definite || this.fluid === 0 ? this.b : this.bCentred;
     this.passes.RESIDUAL.draw(this.cellOut, { ...this.#grid, phi: this.phi.now, rows: this.rows, b });
     const v = this.cellOut.read();
@@ -267,6 +272,7 @@ export class GpuFlow {
 
   /** The wind u_p + u_g at `x` (m), m/s, read back (one texel). */
   velocityAt(x) {
+    passState(this.gl);
     const [ux, uy, uz] = this.u.map((p) => p.now);
     const [px, py, pz] = this.up;
     this.passes.PROBE.draw(this.probe, { ...this.#grid, ux, uy, uz, px, py, pz, point: { vec3: x.map(f32) } });
@@ -287,11 +293,13 @@ export class GpuFlow {
 
   /** u_g on each component's faces (three Float32Arrays, m/s), read back. */
   faces() {
+    passState(this.gl);
     return this.u.map((p) => p.now.read());
   }
 
   /** u_g at the cells' centres (m/s, xyz interleaved, x fastest: as `exportFlow()`), read back. */
   cellVelocity() {
+    passState(this.gl);
     const [ux, uy, uz] = this.u.map((p) => p.now);
     this.passes.CENTRES.draw(this.cellOut, { ...this.#grid, ux, uy, uz });
     const v = this.cellOut.read();
