@@ -6,7 +6,7 @@
 // and the sphere drawn; `axes`: each chart's tick values as drawn; `snapshots`: Figure 1's row
 // filled; `sphere`: the sphere's streamlines; `sideBySide`: the three players, which load as
 // they near the viewport, running their variants; `largeScales`: the two players of the large
-// scales, loaded as they near the viewport; `largeScalesScene(flow)`: their scene).
+// scales, loaded as they near the viewport).
 
 import '../embed.js';
 import init, { Figure1Demo, sphereFlow } from '../../pkg/windfield_full.js';
@@ -297,55 +297,12 @@ async function sideBySide() {
 }
 
 /**
- * Section 5's scene: smoke from a warm disk (60 K above the air) rising in an updraft of
- * 0.4 m/s into a solid ceiling 1 m up, and with `flow` the same under a flow of 24 × 12 × 24
- * cubes of 10 cm (`docs/FORMATS.md`, the flow) over a box reaching 1.2 m to each side.
- */
-function largeScalesScene(flow) {
-  return {
-    version: 1,
-    seed: 23,
-    field: { size: [16, 16, 16, 16], period: [1.2, 1.2, 1.2], time_period: 6, amplitude: 0.25 },
-    wind: [{ type: 'uniform', velocity: [0, 0.4, 0] }],
-    emitters: [{
-      shape: 'disk', center: [0, 0.1, 0], normal: [0, 1, 0], radius: 0.08, rate: 1200, sigma0: 0.02,
-      mass0: 8e-6, velocity: [0, 0, 0], velocity_time: 0.5, temperature: 60,
-    }],
-    ...(flow && { flow: { box: [-1.2, 0, -1.2, 1.2, 1.2, 1.2], cells: [24, 12, 24], cooling: 0.3 } }),
-    gas: { diffusion: 2e-5, dissipation: 0.5, split_sigma: null, max_blobs: 8000, min_mass: 1e-7 },
-    simulation: { dt: 1 / 60, integrator: 'rk2' },
-    render: {
-      camera: { position: [0, 0.55, 3.1], target: [0, 0.55, 0], up: [0, 1, 0], fov_y_deg: 48 },
-      medium: { extinction: 12, albedo: [0.85, 0.85, 0.87], phase: { type: 'henyey-greenstein', g: 0.3 } },
-      lights: [{ type: 'point', position: [-1.6, 0.6, 1.6], color: [1.7, 1.6, 1.45] }],
-      background: [0.05, 0.06, 0.08],
-      objects: [
-        { type: 'plane', solid: true, point: [0, 1, 0], normal: [0, -1, 0], color: [0.3, 0.29, 0.28] },
-        { type: 'cylinder', solid: false, base: [0, 0, 0], axis: [0, 1, 0], radius: 0.1, height: 0.08, color: [0.25, 0.16, 0.12] },
-      ],
-      time: 5,
-    },
-  };
-}
-classroom.largeScalesScene = largeScalesScene;
-
-/**
- * Section 5's two players, made here with their scenes (kinematic: without a flow; physical:
- * with one); each loads as it nears the viewport. Resolves when both are ready.
+ * Section 5's two players (`public/classroom/ceiling-kinematic.json` and
+ * `ceiling-physical.json`: the same scene without and with a flow) load as they near the
+ * viewport. Resolves when both are ready.
  */
 async function largeScales() {
-  const players = [['kinematic', false, 'without a flow: the smoke piles up under the ceiling'],
-    ['physical', true, 'with a flow: the smoke runs out along the ceiling']].map(([id, flow, alt]) => {
-    const player = document.createElement('wind-field');
-    player.id = id;
-    player.setAttribute('autoplay', '');
-    player.setAttribute('alt', `Smoke rising in an updraft under a solid ceiling, ${alt}`);
-    const scene = new Blob([JSON.stringify(largeScalesScene(flow))], { type: 'application/json' });
-    player.src = URL.createObjectURL(scene);
-    $(`#${id}-figure`).prepend(player);
-    return player;
-  });
-  await Promise.all(players.map((p) => p.ready));
+  await Promise.all(['kinematic', 'physical'].map((id) => $(`#${id}`).ready));
 }
 
 const fail = (e) => {
