@@ -14,7 +14,7 @@
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
 use super::grid::Grid;
-use super::mac::{FaceSampler, MacField};
+use super::mac::{FaceSampler, FaceVelocity, MacField};
 use super::sample::Sampler;
 
 /// The point the flow `velocity` (m/s) carries to `x` (m) over `dt` (s) (a midpoint step;
@@ -56,54 +56,103 @@ impl Lattice<'_> {
     }
 }
 
+/// The scratch of one lattice's MacCormack advection, kept between calls: the first pass's
+/// values and bounds, and where the forward trace from each sample lands.
+#[derive(Debug, Clone, Default)]
+pub struct Advection {
+    forward: Vec<f32>,
+    lo: Vec<f32>,
+    hi: Vec<f32>,
+    ahead: Vec<[f32; 3]>,
+}
+
+impl Advection {
+    /// The lattice `q` advected by `velocity` (m/s) over `dt` (s) into `out`, semi-Lagrangian
+    /// with MacCormack's clamped correction, `here(i, j, k)` the velocity at sample (i, j, k).
+    fn maccormack(
+        &mut self,
+        grid: &Grid,
+        q: Lattice,
+        velocity: &MacField,
+        dt: f32,
+        here: impl Fn([usize; 3]) -> [f32; 3],
+        out: &mut Vec<f32>,
+    ) {
+        let d = q.dims;
+        let n = d[0] * d[1] * d[2];
+        let faces = FaceSampler::new(grid);
+        let lattice = Sampler::new(grid.origin, grid.h, d, q.offset);
+        for v in [&mut self.forward, &mut self.lo, &mut self.hi] {
+            v.clear();
+            v.reserve(n);
+        }
+        self.ahead.clear();
+        self.ahead.reserve(n);
+        for k in 0..d[2] {
+            for j in 0..d[1] {
+                for i in 0..d[0] {
+                    let x = q.position(grid, i, j, k);
+                    let v0 = here([i, j, k]);
+                    let back = trace_from(&faces, velocity, x, v0, dt);
+                    let (value, lo, hi) = lattice.value_bounds(q.values, back);
+                    self.forward.push(value);
+                    self.lo.push(lo);
+                    self.hi.push(hi);
+                    self.ahead.push(trace_from(&faces, velocity, x, v0, -dt));
+                }
+            }
+        }
+        out.clear();
+        out.reserve(n);
+        let forward = &self.forward[..n];
+        for s in 0..n {
+            let returned = lattice.value(forward, self.ahead[s]);
+            let corrected = forward[s] + 0.5 * (q.values[s] - returned);
+            out.push(corrected.clamp(self.lo[s], self.hi[s]));
+        }
+    }
+}
+
 /// The lattice advected by `velocity` (m/s) over `dt` (s), semi-Lagrangian with MacCormack's
 /// clamped correction.
 pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<f32> {
-    let d = q.dims;
-    let n = d[0] * d[1] * d[2];
     let faces = FaceSampler::new(grid);
-    let lattice = Sampler::new(grid.origin, grid.h, d, q.offset);
-    let mut forward = vec![0.0; n];
-    let mut lo = vec![0.0; n];
-    let mut hi = vec![0.0; n];
-    let mut here = vec![[0.0; 3]; n];
-    for k in 0..d[2] {
-        for j in 0..d[1] {
-            for i in 0..d[0] {
-                let s = i + d[0] * (j + d[1] * k);
-                let x = q.position(grid, i, j, k);
-                here[s] = faces.at(velocity, x);
-                let back = trace_from(&faces, velocity, x, here[s], dt);
-                (forward[s], lo[s], hi[s]) = lattice.value_bounds(q.values, back);
-            }
-        }
-    }
-    let mut out = vec![0.0; n];
-    for k in 0..d[2] {
-        for j in 0..d[1] {
-            for i in 0..d[0] {
-                let s = i + d[0] * (j + d[1] * k);
-                let x = q.position(grid, i, j, k);
-                let ahead = trace_from(&faces, velocity, x, here[s], -dt);
-                let returned = lattice.value(&forward, ahead);
-                let corrected = forward[s] + 0.5 * (q.values[s] - returned);
-                out[s] = corrected.clamp(lo[s], hi[s]);
-            }
-        }
-    }
+    let mut out = Vec::new();
+    Advection::default().maccormack(
+        grid,
+        q,
+        velocity,
+        dt,
+        |[i, j, k]| faces.at(velocity, q.position(grid, i, j, k)),
+        &mut out,
+    );
     out
 }
 
 /// Each component of `u` advected by `velocity` (m/s) over `dt` (s) ([`maccormack`]).
 pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) -> MacField {
-    MacField {
-        u: std::array::from_fn(|a| {
-            let q = Lattice {
-                values: &u.u[a],
-                dims: grid.face_dims(a),
-                offset: Grid::offset(a),
-            };
-            maccormack(grid, q, velocity, dt)
-        }),
+    let mut out = MacField::zeros(grid);
+    advect_velocity_into(grid, u, velocity, dt, &mut Advection::default(), &mut out);
+    out
+}
+
+/// [`advect_velocity`] into `out`, with `scratch` kept between calls; the velocity at each
+/// face, where the traces start, is read off the faces ([`FaceVelocity`]).
+pub fn advect_velocity_into(
+    grid: &Grid,
+    u: &MacField,
+    velocity: &MacField,
+    dt: f32,
+    scratch: &mut Advection,
+    out: &mut MacField,
+) {
+    for (a, comp) in out.u.iter_mut().enumerate() {
+        let q = Lattice {
+            values: &u.u[a],
+            dims: grid.face_dims(a),
+            offset: Grid::offset(a),
+        };
+        let here = FaceVelocity::new(grid, a);
+        scratch.maccormack(grid, q, velocity, dt, |idx| here.at(velocity, idx), comp);
     }
 }

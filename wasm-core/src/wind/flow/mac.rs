@@ -3,7 +3,7 @@
 //! own lattice, with its discrete divergence and kinetic energy.
 
 use super::grid::Grid;
-use super::sample::{blend, Axis, Layout};
+use super::sample::{Axis, Layout};
 
 /// Face velocities, m/s: `u[a]` holds component a on the faces across axis a.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,6 +50,14 @@ impl MacField {
         }
     }
 
+    /// Sets each face to the sum of two fields' (all three on one grid).
+    pub fn set_sum(&mut self, a: &Self, b: &Self) {
+        for ((out, x), y) in self.u.iter_mut().zip(&a.u).zip(&b.u) {
+            out.clear();
+            out.extend(x.iter().zip(y).map(|(x, y)| x + y));
+        }
+    }
+
     /// The velocity at `x` (m), m/s: each component interpolated trilinearly on its faces
     /// (clamped to the box: outside it, the nearest faces' values).
     pub fn at(&self, grid: &Grid, x: [f32; 3]) -> [f32; 3] {
@@ -64,23 +72,33 @@ impl MacField {
     /// The discrete divergence of each cell, 1/s: the net outward flux through its six faces
     /// over its volume.
     pub fn divergence(&self, grid: &Grid) -> Vec<f32> {
+        let mut out = Vec::new();
+        self.divergence_into(grid, &mut out);
+        out
+    }
+
+    /// [`MacField::divergence`] into `out` (resized to the cells).
+    pub fn divergence_into(&self, grid: &Grid, out: &mut Vec<f32>) {
         let n = grid.cells;
-        let mut out = vec![0.0; grid.cell_count()];
+        out.clear();
+        out.reserve(grid.cell_count());
+        let h = grid.h;
+        let [ux, uy, uz] = &self.u;
+        // Rows of faces: x-faces have n0 + 1 per row, y-faces n1 + 1 rows per plane.
+        let (rx, py) = (n[0] + 1, n[0] * (n[1] + 1));
+        let pz = n[0] * n[1];
         for k in 0..n[2] {
             for j in 0..n[1] {
+                let fx = &ux[rx * (j + n[1] * k)..][..rx];
+                let y0 = &uy[n[0] * j + py * k..][..2 * n[0]];
+                let z0 = &uz[n[0] * j + pz * k..];
+                let z1 = &uz[n[0] * j + pz * (k + 1)..];
                 for i in 0..n[0] {
-                    let mut d = 0.0;
-                    for a in 0..3 {
-                        let mut up = [i, j, k];
-                        up[a] += 1;
-                        d += self.u[a][grid.face(a, up[0], up[1], up[2])]
-                            - self.u[a][grid.face(a, i, j, k)];
-                    }
-                    out[grid.cell(i, j, k)] = d / grid.h;
+                    let d = (fx[i + 1] - fx[i]) + (y0[n[0] + i] - y0[i]) + (z1[i] - z0[i]);
+                    out.push(d / h);
                 }
             }
         }
-        out
     }
 
     /// The kinetic energy per unit density, ½ Σ u² h³ over every face of every component
@@ -128,20 +146,71 @@ impl FaceSampler {
     /// The velocity of `field` at `x` (m), m/s ([`MacField::at`]).
     #[inline(always)]
     pub fn at(&self, field: &MacField, x: [f32; 3]) -> [f32; 3] {
-        let mut wall = [(0, 0.0); 3];
-        let mut centre = [(0, 0.0); 3];
-        for a in 0..3 {
-            let t = (x[a] - self.origin[a]) * self.inv_h;
-            wall[a] = self.walls[a].locate(t);
-            centre[a] = self.centres[a].locate(t);
+        let t = |a: usize| (x[a] - self.origin[a]) * self.inv_h;
+        let (tx, ty, tz) = (t(0), t(1), t(2));
+        let (wx, wy, wz) = (
+            self.walls[0].locate(tx),
+            self.walls[1].locate(ty),
+            self.walls[2].locate(tz),
+        );
+        let (cx, cy, cz) = (
+            self.centres[0].locate(tx),
+            self.centres[1].locate(ty),
+            self.centres[2].locate(tz),
+        );
+        [
+            self.layouts[0].sample(&field.u[0], [wx, cy, cz]),
+            self.layouts[1].sample(&field.u[1], [cx, wy, cz]),
+            self.layouts[2].sample(&field.u[2], [cx, cy, wz]),
+        ]
+    }
+}
+
+/// The velocity at the faces of one component, read off the faces (no interpolation
+/// weights): [`FaceVelocity::at`].
+#[derive(Debug, Clone, Copy)]
+pub struct FaceVelocity {
+    /// The component whose faces these are.
+    axis: usize,
+    /// Its cells along that axis.
+    cells: usize,
+    /// The strides of each component's faces along x, y and z.
+    strides: [[usize; 3]; 3],
+}
+
+impl FaceVelocity {
+    /// The faces of component `axis` of `grid`.
+    pub fn new(grid: &Grid, axis: usize) -> Self {
+        Self {
+            axis,
+            cells: grid.cells[axis],
+            strides: std::array::from_fn(|b| {
+                let d = grid.face_dims(b);
+                [1, d[0], d[0] * d[1]]
+            }),
         }
-        std::array::from_fn(|c| {
-            let at = |a: usize| if a == c { wall[a] } else { centre[a] };
-            let (b0, f0) = at(0);
-            let (b1, f1) = at(1);
-            let (b2, f2) = at(2);
-            let corners = self.layouts[c].corners(&field.u[c], [b0, b1, b2]);
-            blend(&corners, [f0, f1, f2])
-        })
+    }
+
+    /// The velocity of `field` at face `idx`, m/s: its own value, and each other component's
+    /// mean of the four faces nearest (its trilinear sample there, clamped to the box as
+    /// [`MacField::at`]: along the face's axis the two cells either side of it, one at the
+    /// box's faces).
+    #[inline(always)]
+    pub fn at(&self, field: &MacField, idx: [usize; 3]) -> [f32; 3] {
+        let a = self.axis;
+        let mut v = [0.0; 3];
+        for (b, (out, st)) in v.iter_mut().zip(&self.strides).enumerate() {
+            let u = &field.u[b];
+            let base = idx[0] * st[0] + idx[1] * st[1] + idx[2] * st[2];
+            if b == a {
+                *out = u[base];
+                continue;
+            }
+            let below = base - st[a] * usize::from(idx[a] > 0);
+            let above = base - st[a] * usize::from(idx[a] >= self.cells);
+            let next = st[b];
+            *out = 0.25 * ((u[below] + u[above]) + (u[below + next] + u[above + next]));
+        }
+        v
     }
 }

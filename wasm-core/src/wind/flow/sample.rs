@@ -76,8 +76,17 @@ impl Layout {
     }
 }
 
+impl Layout {
+    /// The trilinear sample of `values` at the lower corners and fractions `at` along x, y, z.
+    #[inline(always)]
+    pub fn sample(&self, values: &[f32], at: [(usize, f32); 3]) -> f32 {
+        let c = self.corners(values, [at[0].0, at[1].0, at[2].0]);
+        blend(&c, [at[0].1, at[1].1, at[2].1])
+    }
+}
+
 /// Trilinear blending of the eight corners `c` at fractions `f`.
-#[inline]
+#[inline(always)]
 pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
     let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
     let y0 = lerp(lerp(c[0], c[1], f[0]), lerp(c[2], c[3], f[0]), f[1]);
@@ -86,11 +95,14 @@ pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
 }
 
 /// The least and greatest of eight values.
-#[inline]
+#[inline(always)]
 pub fn bounds(c: &[f32; 8]) -> (f32, f32) {
-    let lo = c.iter().copied().fold(f32::INFINITY, f32::min);
-    let hi = c.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    (lo, hi)
+    let pair = |f: fn(f32, f32) -> f32| {
+        let a = f(f(c[0], c[1]), f(c[2], c[3]));
+        let b = f(f(c[4], c[5]), f(c[6], c[7]));
+        f(a, b)
+    };
+    (pair(f32::min), pair(f32::max))
 }
 
 /// One lattice of samples made ready for many interpolations: `dims` samples at `offset` cells
