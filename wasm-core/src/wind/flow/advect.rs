@@ -14,27 +14,44 @@
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
 use super::grid::Grid;
-use super::mac::{FaceSampler, FaceVelocity, MacField};
+use super::mac::{Centred, FaceSampler, MacField};
 use super::sample::Sampler;
+
+/// A velocity to trace through: [`FaceSampler`] on a [`MacField`], or [`Centred`].
+trait Carrier {
+    /// The velocity at `x` (m), m/s.
+    fn at(&self, x: [f32; 3]) -> [f32; 3];
+}
+
+/// A [`MacField`] with its sampler.
+struct OnFaces<'a>(FaceSampler, &'a MacField);
+
+impl Carrier for OnFaces<'_> {
+    #[inline(always)]
+    fn at(&self, x: [f32; 3]) -> [f32; 3] {
+        self.0.at(self.1, x)
+    }
+}
+
+impl Carrier for Centred {
+    #[inline(always)]
+    fn at(&self, x: [f32; 3]) -> [f32; 3] {
+        Centred::at(self, x)
+    }
+}
 
 /// The point the flow `velocity` (m/s) carries to `x` (m) over `dt` (s) (a midpoint step;
 /// a negative `dt` traces forward).
 pub fn trace(grid: &Grid, velocity: &MacField, x: [f32; 3], dt: f32) -> [f32; 3] {
-    let faces = FaceSampler::new(grid);
-    trace_from(&faces, velocity, x, faces.at(velocity, x), dt)
+    let faces = OnFaces(FaceSampler::new(grid), velocity);
+    trace_from(&faces, x, faces.at(x), dt)
 }
 
 /// [`trace`] with the velocity `v0` (m/s) at `x` already sampled.
 #[inline(always)]
-fn trace_from(
-    faces: &FaceSampler,
-    velocity: &MacField,
-    x: [f32; 3],
-    v0: [f32; 3],
-    dt: f32,
-) -> [f32; 3] {
+fn trace_from(velocity: &impl Carrier, x: [f32; 3], v0: [f32; 3], dt: f32) -> [f32; 3] {
     let mid: [f32; 3] = std::array::from_fn(|a| x[a] - 0.5 * dt * v0[a]);
-    let v1 = faces.at(velocity, mid);
+    let v1 = velocity.at(mid);
     std::array::from_fn(|a| x[a] - dt * v1[a])
 }
 
@@ -73,14 +90,13 @@ impl Advection {
         &mut self,
         grid: &Grid,
         q: Lattice,
-        velocity: &MacField,
+        velocity: &impl Carrier,
         dt: f32,
         here: impl Fn([usize; 3]) -> [f32; 3],
         out: &mut Vec<f32>,
     ) {
         let d = q.dims;
         let n = d[0] * d[1] * d[2];
-        let faces = FaceSampler::new(grid);
         let lattice = Sampler::new(grid.origin, grid.h, d, q.offset);
         for v in [&mut self.forward, &mut self.lo, &mut self.hi] {
             v.clear();
@@ -93,12 +109,12 @@ impl Advection {
                 for i in 0..d[0] {
                     let x = q.position(grid, i, j, k);
                     let v0 = here([i, j, k]);
-                    let back = trace_from(&faces, velocity, x, v0, dt);
+                    let back = trace_from(velocity, x, v0, dt);
                     let (value, lo, hi) = lattice.value_bounds(q.values, back);
                     self.forward.push(value);
                     self.lo.push(lo);
                     self.hi.push(hi);
-                    self.ahead.push(trace_from(&faces, velocity, x, v0, -dt));
+                    self.ahead.push(trace_from(velocity, x, v0, -dt));
                 }
             }
         }
@@ -114,34 +130,38 @@ impl Advection {
 }
 
 /// The lattice advected by `velocity` (m/s) over `dt` (s), semi-Lagrangian with MacCormack's
-/// clamped correction.
+/// clamped correction, the traces through the face velocities ([`MacField::at`]).
 pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<f32> {
-    let faces = FaceSampler::new(grid);
+    let faces = OnFaces(FaceSampler::new(grid), velocity);
     let mut out = Vec::new();
     Advection::default().maccormack(
         grid,
         q,
-        velocity,
+        &faces,
         dt,
-        |[i, j, k]| faces.at(velocity, q.position(grid, i, j, k)),
+        |[i, j, k]| faces.at(q.position(grid, i, j, k)),
         &mut out,
     );
     out
 }
 
-/// Each component of `u` advected by `velocity` (m/s) over `dt` (s) ([`maccormack`]).
+/// Each component of `u` advected by `velocity` (m/s) over `dt` (s), the traces through its
+/// cells' velocity ([`advect_velocity_into`]).
 pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) -> MacField {
+    let mut centred = Centred::new(grid);
+    centred.set_sum(grid, velocity, &MacField::zeros(grid));
     let mut out = MacField::zeros(grid);
-    advect_velocity_into(grid, u, velocity, dt, &mut Advection::default(), &mut out);
+    advect_velocity_into(grid, u, &centred, dt, &mut Advection::default(), &mut out);
     out
 }
 
-/// [`advect_velocity`] into `out`, with `scratch` kept between calls; the velocity at each
-/// face, where the traces start, is read off the faces ([`FaceVelocity`]).
+/// Each component of `u` advected into `out` by the cells' velocity `velocity` (m/s) over
+/// `dt` (s) ([`maccormack`], each trace through [`Centred::at`]), with `scratch` kept
+/// between calls.
 pub fn advect_velocity_into(
     grid: &Grid,
     u: &MacField,
-    velocity: &MacField,
+    velocity: &Centred,
     dt: f32,
     scratch: &mut Advection,
     out: &mut MacField,
@@ -152,7 +172,6 @@ pub fn advect_velocity_into(
             dims: grid.face_dims(a),
             offset: Grid::offset(a),
         };
-        let here = FaceVelocity::new(grid, a);
-        scratch.maccormack(grid, q, velocity, dt, |idx| here.at(velocity, idx), comp);
+        scratch.maccormack(grid, q, velocity, dt, |idx| velocity.at_face(a, idx), comp);
     }
 }

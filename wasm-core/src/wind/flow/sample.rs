@@ -59,7 +59,7 @@ impl Layout {
 
     /// The eight values around lower corner `b`.
     #[inline(always)]
-    pub fn corners(&self, values: &[f32], b: [usize; 3]) -> [f32; 8] {
+    pub fn corners<T: Copy>(&self, values: &[T], b: [usize; 3]) -> [T; 8] {
         let i0 = b[0] + self.row[0] * b[1] + self.row[1] * b[2];
         let [sx, sy, sz] = self.step;
         let v = &values[i0..=i0 + sx + sy + sz];

@@ -15,7 +15,7 @@ use super::boundary::{impose, Faces, Solids};
 use super::diffuse::diffuse;
 use super::forces::{add_buoyancy, add_splat, Splat};
 use super::grid::Grid;
-use super::mac::MacField;
+use super::mac::{Centred, MacField};
 use super::project::{Projection, Projector};
 
 /// Air's kinematic viscosity, m²/s.
@@ -52,11 +52,11 @@ pub struct Flow {
     scratch: Scratch,
 }
 
-/// The storage a step reuses: the carrier u_p + u_g, the advected u_g, the advection's and
+/// The storage a step reuses: the carrier u_p + u_g at the cells' centres, the advected u_g, the advection's and
 /// the projection's own.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
-    carrier: Option<MacField>,
+    carrier: Option<Centred>,
     advected: Option<MacField>,
     advection: Advection,
     projector: Projector,
@@ -92,8 +92,8 @@ impl Flow {
     ) -> Projection {
         let g = &self.grid;
         let scratch = &mut self.scratch;
-        let carrier = scratch.carrier.get_or_insert_with(|| MacField::zeros(g));
-        carrier.set_sum(u_p, &self.u_g);
+        let carrier = scratch.carrier.get_or_insert_with(|| Centred::new(g));
+        carrier.set_sum(g, u_p, &self.u_g);
         let u = scratch.advected.get_or_insert_with(|| MacField::zeros(g));
         advect_velocity_into(g, &self.u_g, carrier, dt, &mut scratch.advection, u);
         diffuse(g, &self.solids, self.faces, u, self.viscosity, dt);
