@@ -3,7 +3,7 @@
 //! own lattice, with its discrete divergence and kinetic energy.
 
 use super::grid::Grid;
-use super::sample::{Axis, Layout};
+use super::sample::{Axis, Lanes, Layout};
 use glam::Vec4;
 
 /// Face velocities, m/s: `u[a]` holds component a on the faces across axis a.
@@ -169,31 +169,30 @@ impl FaceSampler {
 
 /// A velocity at the cells' centres, m/s, for the advection's traces: each component the mean
 /// of its two faces across the cell, and between the centres trilinear interpolation of the
-/// three components at once (one lattice: a point is located once per axis, and its eight
-/// corners blend four lanes wide), clamped to the box like [`MacField::at`]. Against that
-/// sample it loses a quarter of each component's second difference along its own axis (the
-/// two means), an error of order h² where the velocity is smooth.
+/// three components at once (one lattice: a point is located once, and its eight corners
+/// blend four lanes wide), clamped to the box like [`MacField::at`]. Against that sample it
+/// loses a quarter of each component's second difference along its own axis (the two means),
+/// an error of order h² where the velocity is smooth.
 #[derive(Debug, Clone)]
 pub struct Centred {
     /// The velocity of each cell, laid out as [`Grid::cell`] (the fourth lane 0).
     values: Vec<Vec4>,
-    origin: [f32; 3],
+    origin: Vec4,
     inv_h: f32,
     cells: [usize; 3],
-    axes: [Axis; 3],
-    layout: Layout,
+    lanes: Lanes,
 }
 
 impl Centred {
     /// At rest on `grid`.
     pub fn new(grid: &Grid) -> Self {
+        let o = grid.origin;
         Self {
             values: vec![Vec4::ZERO; grid.cell_count()],
-            origin: grid.origin,
+            origin: Vec4::new(o[0], o[1], o[2], 0.0),
             inv_h: 1.0 / grid.h,
             cells: grid.cells,
-            axes: std::array::from_fn(|a| Axis::new(grid.cells[a], 0.5)),
-            layout: Layout::new(grid.cells),
+            lanes: Lanes::new(grid.cells, [0.5; 3]),
         }
     }
 
@@ -221,33 +220,28 @@ impl Centred {
         }
     }
 
-    /// The velocity at `x` (m), m/s.
+    /// The velocity at `t`, in cells from the grid's origin, m/s (the fourth lane 0).
     #[inline(always)]
+    pub fn at_cells(&self, t: Vec4) -> Vec4 {
+        self.lanes.value4(&self.values, t)
+    }
+
+    /// The velocity at `x` (m), m/s.
     pub fn at(&self, x: [f32; 3]) -> [f32; 3] {
-        let mut b = [0; 3];
-        let mut f = [0.0; 3];
-        for a in 0..3 {
-            (b[a], f[a]) = self.axes[a].locate((x[a] - self.origin[a]) * self.inv_h);
-        }
-        let c = self.layout.corners(&self.values, b);
-        let lerp = |p: Vec4, q: Vec4, t: f32| p + (q - p) * t;
-        let y0 = lerp(lerp(c[0], c[1], f[0]), lerp(c[2], c[3], f[0]), f[1]);
-        let y1 = lerp(lerp(c[4], c[5], f[0]), lerp(c[6], c[7], f[0]), f[1]);
-        lerp(y0, y1, f[2]).truncate().to_array()
+        let t = (Vec4::new(x[0], x[1], x[2], 0.0) - self.origin) * self.inv_h;
+        self.at_cells(t).truncate().to_array()
     }
 
     /// The velocity at face `idx` of component `axis`, m/s ([`Centred::at`] there: the mean of
     /// the two cells either side, the one cell at the box's faces).
     #[inline(always)]
-    pub fn at_face(&self, axis: usize, idx: [usize; 3]) -> [f32; 3] {
+    pub fn at_face(&self, axis: usize, idx: [usize; 3]) -> Vec4 {
         let n = self.cells;
         let stride = [1, n[0], n[0] * n[1]][axis];
         let mut c = idx;
         c[axis] = c[axis].min(n[axis] - 1);
         let above = c[0] + n[0] * (c[1] + n[1] * c[2]);
         let below = above - stride * usize::from(idx[axis] > 0 && idx[axis] < n[axis]);
-        ((self.values[below] + self.values[above]) * 0.5)
-            .truncate()
-            .to_array()
+        (self.values[below] + self.values[above]) * 0.5
     }
 }

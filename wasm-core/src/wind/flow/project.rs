@@ -211,19 +211,33 @@ impl System {
 
     /// z = M⁻¹ r by MIC(0)'s two triangular sweeps (padded vectors; `q` is scratch), and r·z.
     fn precondition(&self, r: &[f64], q: &mut [f64], z: &mut [f64]) -> f64 {
+        let pad = self.pad();
+        let mut last = 0.0;
+        for c in 0..self.lower.len() {
+            last = self.lower_sweep(c, r[pad + c], q, last);
+        }
+        self.upper_sweep(r, q, z)
+    }
+
+    /// MIC(0)'s forward sweep at cell `c`, `rc` its r and `last` the previous cell's q:
+    /// q_c = e_c (r_c + Σ e_b q_b) over the linked cells b before c, the previous cell along x
+    /// carried in a register (the sweep's only serial dependence). Returns q_c.
+    #[inline(always)]
+    fn lower_sweep(&self, c: usize, rc: f64, q: &mut [f64], last: f64) -> f64 {
+        let [_, sy, sz] = self.stride;
+        let p = self.pad() + c;
+        let w = self.lower[c];
+        let t = f64::from(w[0]) * rc + f64::from(w[2]) * q[p - sy] + f64::from(w[3]) * q[p - sz];
+        let qc = t + f64::from(w[1]) * last;
+        q[p] = qc;
+        qc
+    }
+
+    /// MIC(0)'s backward sweep, z_c = e_c (q_c + e_c Σ z_a) over the linked cells a after c;
+    /// returns r·z.
+    fn upper_sweep(&self, r: &[f64], q: &[f64], z: &mut [f64]) -> f64 {
         let [_, sy, sz] = self.stride;
         let pad = self.pad();
-        // q_c = e_c (r_c + Σ e_b q_b) over the linked cells b before c; the previous cell
-        // along x is carried in a register (the sweep's only serial dependence).
-        let mut last = 0.0;
-        for (c, w) in self.lower.iter().enumerate() {
-            let p = pad + c;
-            let t =
-                f64::from(w[0]) * r[p] + f64::from(w[2]) * q[p - sy] + f64::from(w[3]) * q[p - sz];
-            last = t + f64::from(w[1]) * last;
-            q[p] = last;
-        }
-        // z_c = e_c (q_c + e_c Σ z_a) over the linked cells a after c.
         let mut last = 0.0;
         let mut rz = 0.0;
         for (c, w) in self.upper.iter().enumerate().rev() {
@@ -337,18 +351,24 @@ impl Projector {
                 while report.iterations < max_iterations {
                     report.iterations += 1;
                     let alpha = sigma / system.apply(s, a_s);
+                    // φ += α s and r −= α A s, and MIC(0)'s forward sweep of the new r.
                     let mut worst = 0.0f64;
+                    let mut last = 0.0;
                     for (c, p) in phi.iter_mut().enumerate() {
                         let i = pad + c;
                         *p += alpha * s[i];
-                        r[i] -= alpha * a_s[i];
-                        worst = worst.max(r[i].abs());
+                        let rc = r[i] - alpha * a_s[i];
+                        r[i] = rc;
+                        if rc.abs() > worst {
+                            worst = rc.abs();
+                        }
+                        last = system.lower_sweep(c, rc, q, last);
                     }
                     report.residual = worst / scale;
                     if report.residual <= tolerance {
                         break;
                     }
-                    let next = system.precondition(r, q, z);
+                    let next = system.upper_sweep(r, q, z);
                     let beta = next / sigma;
                     sigma = next;
                     for (sc, &zc) in s[inside.clone()].iter_mut().zip(&z[inside.clone()]) {
@@ -363,7 +383,8 @@ impl Projector {
 }
 
 fn max_abs(a: &[f64]) -> f64 {
-    a.iter().fold(0.0f64, |m, &v| m.max(v.abs()))
+    a.iter()
+        .fold(0.0f64, |m, &v| if v.abs() > m { v.abs() } else { m })
 }
 
 /// Makes `u_g` (m/s) divergence-free on the fluid cells, its fixed faces as they are (set them
