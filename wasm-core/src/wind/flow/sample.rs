@@ -181,12 +181,19 @@ pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
 /// The least and greatest of eight values.
 #[inline(always)]
 pub fn bounds(c: &[f32; 8]) -> (f32, f32) {
-    let pair = |f: fn(f32, f32) -> f32| {
-        let a = f(f(c[0], c[1]), f(c[2], c[3]));
-        let b = f(f(c[4], c[5]), f(c[6], c[7]));
-        f(a, b)
-    };
-    (pair(f32::min), pair(f32::max))
+    // Comparisons, not f32::min and max: their NaN rule costs a call to libm's fminf and
+    // fmaxf in WebAssembly (the samples are never NaN).
+    let min = |a: f32, b: f32| if b < a { b } else { a };
+    let max = |a: f32, b: f32| if b > a { b } else { a };
+    let lo = min(
+        min(min(c[0], c[1]), min(c[2], c[3])),
+        min(min(c[4], c[5]), min(c[6], c[7])),
+    );
+    let hi = max(
+        max(max(c[0], c[1]), max(c[2], c[3])),
+        max(max(c[4], c[5]), max(c[6], c[7])),
+    );
+    (lo, hi)
 }
 
 /// One lattice of samples made ready for many interpolations: `dims` samples at `offset` cells
