@@ -6,10 +6,16 @@
 //! clamped to the eight samples the first trace blended, so the scheme stays unconditionally
 //! stable and makes no new extrema.
 //!
-//! Cost per sample: two traces sharing their first velocity sample (three velocity samples in
-//! all, 3 trilinear interpolations apiece) and two value interpolations, 11 trilinear
-//! interpolations; a MAC velocity has three samples per cell. What it loses: plain semi-Lagrangian advection smears as a diffusion of order
-//! h·|u| (its numerical viscosity); the correction makes the scheme second order where the
+//! The flow's own velocity is advected through its cells' velocity ([`Centred`]: each
+//! component the mean of the cell's two faces across its axis, between the centres one
+//! trilinear blend of the three components four lanes wide; [`maccormack`] of any other
+//! lattice traces through the faces themselves), the traces in cells from the grid's origin.
+//! Cost per face: the
+//! velocity where it starts (two cells' mean), the two traces' midpoints (a four-lane blend
+//! each), the value and its bounds where the backward trace lands and, in a second pass, the
+//! first pass's value where the forward trace lands (a scalar blend each); a MAC velocity has
+//! three faces per cell. What it loses: plain semi-Lagrangian advection smears as a diffusion
+//! of order h·|u| (its numerical viscosity); the correction makes the scheme second order where the
 //! field is smooth, and the clamp brings back first-order smearing at extrema and sharp fronts
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
