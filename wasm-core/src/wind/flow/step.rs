@@ -52,8 +52,8 @@ pub struct Flow {
     scratch: Scratch,
 }
 
-/// The storage a step reuses: the carrier u_p + u_g at the cells' centres, the advected u_g, the advection's and
-/// the projection's own.
+/// The storage a step reuses: the carrier u_p + u_g at the cells' centres, the advected u_g,
+/// the advection's and the projection's own.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     carrier: Option<Centred>,
