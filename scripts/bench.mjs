@@ -5,6 +5,7 @@
 // table. `--no-browser` skips the browser part.
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
+import { resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { loadCore } from '../tests/support/core.js';
 import { benchBrowser, gzipKiB } from './bench-browser.mjs';
@@ -157,6 +158,28 @@ const value = (name) => results.find((r) => r.name === name)?.value;
 const nativeMs = value('field_generate_32x32x32x32_native_ms');
 const wasmMs = value('field_generate_32x32x32x32_wasm_ms');
 if (nativeMs && wasmMs) emit('field_generate_wasm_over_native', wasmMs / nativeMs, 'ratio');
+
+// The flow's step in WebAssembly, the case of examples/bench.rs's flow rows: the module of
+// examples/flow-wasm.rs (raw exports, in no page), built as the core is and put through
+// wasm-opt -O3 as the core's modules are. The core's bindings come with it: their imports are
+// never called by the flow, so each is a stand-in that throws.
+{
+  execFileSync('cargo', ['build', '--quiet', '--profile', 'wasm', '--target', 'wasm32-unknown-unknown',
+    '--no-default-features', '--example', 'flow-wasm'], quiet);
+  const raw = resolve(`${root}wasm-core`, process.env.CARGO_TARGET_DIR ?? 'target', 'wasm32-unknown-unknown/wasm/examples/flow_wasm.wasm');
+  execFileSync(`${root}node_modules/.bin/wasm-opt`, ['-O3', raw, '-o', `${raw}.opt`], { stdio: ['ignore', 'ignore', 'inherit'] });
+  const module = new WebAssembly.Module(readFileSync(`${raw}.opt`));
+  const imports = {};
+  for (const { module: from, name, kind } of WebAssembly.Module.imports(module)) {
+    imports[from] ??= {};
+    if (kind === 'function') imports[from][name] = () => { throw new Error(`flow-wasm: ${from}.${name} called`); };
+  }
+  const flow = new WebAssembly.Instance(module, imports).exports;
+  for (const [n, runs] of [[32, 7], [64, 3]]) {
+    flow.flow_new(n);
+    emit(`flow_step_${n}_wasm_ms`, median(runs, () => flow.flow_step()), 'ms');
+  }
+}
 
 // The largest lattice (2^24 points), and the WASM memory it takes, each in an instance of its
 // own (linear memory only grows, so an instance's size is its peak).

@@ -84,6 +84,24 @@ fn main() {
         solid_objects();
         return;
     }
+    // `cargo run --release --example bench -- flow [N ...]`: the flow's step alone, at 32³ and
+    // 64³ or at each N³ given.
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|a| a == "flow") {
+        let sizes: Vec<usize> = args[at + 1..]
+            .iter()
+            .filter_map(|a| a.parse().ok())
+            .collect();
+        let sizes = if sizes.is_empty() {
+            vec![32, 64]
+        } else {
+            sizes
+        };
+        for n in sizes {
+            flow_step(n, if n <= 32 { 7 } else { 3 });
+        }
+        return;
+    }
     field_generate(32, 7);
     let mut sim =
         Simulation::new(Scene::from_json(BLOB_STEP_SCENE).expect("valid")).expect("valid");

@@ -6,36 +6,81 @@
 //! clamped to the eight samples the first trace blended, so the scheme stays unconditionally
 //! stable and makes no new extrema.
 //!
-//! Cost per sample: two traces sharing their first velocity sample (three velocity samples in
-//! all, 3 trilinear interpolations apiece) and two value interpolations, 11 trilinear
-//! interpolations; a MAC velocity has three samples per cell. What it loses: plain semi-Lagrangian advection smears as a diffusion of order
-//! h·|u| (its numerical viscosity); the correction makes the scheme second order where the
+//! The flow's own velocity is advected through its cells' velocity ([`Centred`]: each
+//! component the mean of the cell's two faces across its axis, between the centres one
+//! trilinear blend of the three components four lanes wide; [`maccormack`] of any other
+//! lattice traces through the faces themselves), the traces in cells from the grid's origin.
+//! Cost per face: the
+//! velocity where it starts (two cells' mean), the two traces' midpoints (a four-lane blend
+//! each), the value and its bounds where the backward trace lands and, in a second pass, the
+//! first pass's value where the forward trace lands (a scalar blend each); a MAC velocity has
+//! three faces per cell. What it loses: plain semi-Lagrangian advection smears as a diffusion
+//! of order h·|u| (its numerical viscosity); the correction makes the scheme second order where the
 //! field is smooth, and the clamp brings back first-order smearing at extrema and sharp fronts
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
 use super::grid::Grid;
-use super::mac::{FaceSampler, MacField};
-use super::sample::Sampler;
+use super::mac::{Centred, FaceSampler, MacField};
+use super::sample::Lanes;
+use glam::Vec4;
+
+/// A velocity to trace through: [`FaceSampler`] on a [`MacField`], or [`Centred`].
+trait Carrier {
+    /// The velocity at `t`, in cells from the grid's origin, m/s (four lanes, the fourth 0).
+    fn at_cells(&self, t: Vec4) -> Vec4;
+}
+
+/// A [`MacField`] with its sampler, on `grid`.
+struct OnFaces<'a> {
+    faces: FaceSampler,
+    field: &'a MacField,
+    origin: Vec4,
+    h: f32,
+}
+
+impl<'a> OnFaces<'a> {
+    fn new(grid: &Grid, field: &'a MacField) -> Self {
+        let o = grid.origin;
+        Self {
+            faces: FaceSampler::new(grid),
+            field,
+            origin: Vec4::new(o[0], o[1], o[2], 0.0),
+            h: grid.h,
+        }
+    }
+}
+
+impl Carrier for OnFaces<'_> {
+    #[inline(always)]
+    fn at_cells(&self, t: Vec4) -> Vec4 {
+        let x = self.origin + t * self.h;
+        let v = self.faces.at(self.field, [x.x, x.y, x.z]);
+        Vec4::new(v[0], v[1], v[2], 0.0)
+    }
+}
+
+impl Carrier for Centred {
+    #[inline(always)]
+    fn at_cells(&self, t: Vec4) -> Vec4 {
+        Centred::at_cells(self, t)
+    }
+}
 
 /// The point the flow `velocity` (m/s) carries to `x` (m) over `dt` (s) (a midpoint step;
 /// a negative `dt` traces forward).
 pub fn trace(grid: &Grid, velocity: &MacField, x: [f32; 3], dt: f32) -> [f32; 3] {
-    let faces = FaceSampler::new(grid);
-    trace_from(&faces, velocity, x, faces.at(velocity, x), dt)
+    let faces = OnFaces::new(grid, velocity);
+    let t = (Vec4::new(x[0], x[1], x[2], 0.0) - faces.origin) / grid.h;
+    let back = trace_from(&faces, t, faces.at_cells(t), dt / grid.h);
+    (faces.origin + back * grid.h).truncate().to_array()
 }
 
-/// [`trace`] with the velocity `v0` (m/s) at `x` already sampled.
+/// The point `velocity` (m/s) carries to `t` (in cells from the origin) over `k` = dt/h
+/// (s/m), the velocity `v0` at `t` already sampled: a midpoint step.
 #[inline(always)]
-fn trace_from(
-    faces: &FaceSampler,
-    velocity: &MacField,
-    x: [f32; 3],
-    v0: [f32; 3],
-    dt: f32,
-) -> [f32; 3] {
-    let mid: [f32; 3] = std::array::from_fn(|a| x[a] - 0.5 * dt * v0[a]);
-    let v1 = faces.at(velocity, mid);
-    std::array::from_fn(|a| x[a] - dt * v1[a])
+fn trace_from(velocity: &impl Carrier, t: Vec4, v0: Vec4, k: f32) -> Vec4 {
+    let v1 = velocity.at_cells(t - v0 * (0.5 * k));
+    t - v1 * k
 }
 
 /// One lattice of samples: `values` on `dims` samples at `offset` cells from the grid's origin.
@@ -49,61 +94,117 @@ pub struct Lattice<'a> {
     pub offset: [f32; 3],
 }
 
-impl Lattice<'_> {
-    fn position(&self, grid: &Grid, i: usize, j: usize, k: usize) -> [f32; 3] {
-        let idx = [i, j, k];
-        std::array::from_fn(|a| grid.origin[a] + grid.h * (idx[a] as f32 + self.offset[a]))
+/// The scratch of one lattice's MacCormack advection, kept between calls: the first pass's
+/// values and bounds, and where the forward trace from each sample lands.
+#[derive(Debug, Clone, Default)]
+pub struct Advection {
+    forward: Vec<f32>,
+    lo: Vec<f32>,
+    hi: Vec<f32>,
+    ahead: Vec<Vec4>,
+}
+
+impl Advection {
+    /// The lattice `q` advected by `velocity` (m/s) over `dt` (s) into `out`, semi-Lagrangian
+    /// with MacCormack's clamped correction, `here(i, j, k)` the velocity at sample (i, j, k).
+    /// The traces run in cells from the grid's origin.
+    fn maccormack(
+        &mut self,
+        grid: &Grid,
+        q: Lattice,
+        velocity: &impl Carrier,
+        dt: f32,
+        here: impl Fn([usize; 3]) -> Vec4,
+        out: &mut Vec<f32>,
+    ) {
+        let d = q.dims;
+        let n = d[0] * d[1] * d[2];
+        let k = dt / grid.h;
+        let lattice = Lanes::new(d, q.offset);
+        let offset = Vec4::new(q.offset[0], q.offset[1], q.offset[2], 0.0);
+        self.forward.resize(n, 0.0);
+        self.lo.resize(n, 0.0);
+        self.hi.resize(n, 0.0);
+        self.ahead.resize(n, Vec4::ZERO);
+        let rows = self
+            .forward
+            .chunks_exact_mut(d[0])
+            .zip(self.lo.chunks_exact_mut(d[0]))
+            .zip(self.hi.chunks_exact_mut(d[0]))
+            .zip(self.ahead.chunks_exact_mut(d[0]));
+        for (row, (((forward, lo), hi), ahead)) in rows.enumerate() {
+            let (j, l) = (row % d[1], row / d[1]);
+            let samples = forward
+                .iter_mut()
+                .zip(lo.iter_mut())
+                .zip(hi.iter_mut())
+                .zip(ahead.iter_mut());
+            for (i, (((forward, lo), hi), ahead)) in samples.enumerate() {
+                let t = offset + Vec4::new(i as f32, j as f32, l as f32, 0.0);
+                let v0 = here([i, j, l]);
+                let back = trace_from(velocity, t, v0, k);
+                (*forward, *lo, *hi) = lattice.value_bounds(q.values, back);
+                *ahead = trace_from(velocity, t, v0, -k);
+            }
+        }
+        out.clear();
+        out.extend(
+            (q.values[..n].iter())
+                .zip(&self.forward)
+                .zip(self.lo.iter().zip(&self.hi))
+                .zip(&self.ahead)
+                .map(|(((&was, &forward), (&lo, &hi)), &ahead)| {
+                    let returned = lattice.value(&self.forward, ahead);
+                    (forward + 0.5 * (was - returned)).clamp(lo, hi)
+                }),
+        );
     }
 }
 
 /// The lattice advected by `velocity` (m/s) over `dt` (s), semi-Lagrangian with MacCormack's
-/// clamped correction.
+/// clamped correction, the traces through the face velocities ([`MacField::at`]).
 pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<f32> {
-    let d = q.dims;
-    let n = d[0] * d[1] * d[2];
-    let faces = FaceSampler::new(grid);
-    let lattice = Sampler::new(grid.origin, grid.h, d, q.offset);
-    let mut forward = vec![0.0; n];
-    let mut lo = vec![0.0; n];
-    let mut hi = vec![0.0; n];
-    let mut here = vec![[0.0; 3]; n];
-    for k in 0..d[2] {
-        for j in 0..d[1] {
-            for i in 0..d[0] {
-                let s = i + d[0] * (j + d[1] * k);
-                let x = q.position(grid, i, j, k);
-                here[s] = faces.at(velocity, x);
-                let back = trace_from(&faces, velocity, x, here[s], dt);
-                (forward[s], lo[s], hi[s]) = lattice.value_bounds(q.values, back);
-            }
-        }
-    }
-    let mut out = vec![0.0; n];
-    for k in 0..d[2] {
-        for j in 0..d[1] {
-            for i in 0..d[0] {
-                let s = i + d[0] * (j + d[1] * k);
-                let x = q.position(grid, i, j, k);
-                let ahead = trace_from(&faces, velocity, x, here[s], -dt);
-                let returned = lattice.value(&forward, ahead);
-                let corrected = forward[s] + 0.5 * (q.values[s] - returned);
-                out[s] = corrected.clamp(lo[s], hi[s]);
-            }
-        }
-    }
+    let faces = OnFaces::new(grid, velocity);
+    let offset = Vec4::new(q.offset[0], q.offset[1], q.offset[2], 0.0);
+    let mut out = Vec::new();
+    Advection::default().maccormack(
+        grid,
+        q,
+        &faces,
+        dt,
+        |[i, j, k]| faces.at_cells(offset + Vec4::new(i as f32, j as f32, k as f32, 0.0)),
+        &mut out,
+    );
     out
 }
 
-/// Each component of `u` advected by `velocity` (m/s) over `dt` (s) ([`maccormack`]).
+/// Each component of `u` advected by `velocity` (m/s) over `dt` (s), the traces through its
+/// cells' velocity ([`advect_velocity_into`]).
 pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) -> MacField {
-    MacField {
-        u: std::array::from_fn(|a| {
-            let q = Lattice {
-                values: &u.u[a],
-                dims: grid.face_dims(a),
-                offset: Grid::offset(a),
-            };
-            maccormack(grid, q, velocity, dt)
-        }),
+    let mut centred = Centred::new(grid);
+    centred.set_sum(grid, velocity, &MacField::zeros(grid));
+    let mut out = MacField::zeros(grid);
+    advect_velocity_into(grid, u, &centred, dt, &mut Advection::default(), &mut out);
+    out
+}
+
+/// Each component of `u` advected into `out` by the cells' velocity `velocity` (m/s) over
+/// `dt` (s) ([`maccormack`], each trace through [`Centred::at`]), with `scratch` kept
+/// between calls.
+pub fn advect_velocity_into(
+    grid: &Grid,
+    u: &MacField,
+    velocity: &Centred,
+    dt: f32,
+    scratch: &mut Advection,
+    out: &mut MacField,
+) {
+    for (a, comp) in out.u.iter_mut().enumerate() {
+        let q = Lattice {
+            values: &u.u[a],
+            dims: grid.face_dims(a),
+            offset: Grid::offset(a),
+        };
+        scratch.maccormack(grid, q, velocity, dt, |idx| velocity.at_face(a, idx), comp);
     }
 }

@@ -2,6 +2,8 @@
 //! centres), clamped to the lattice: beyond the outermost samples the value is the nearest
 //! one's, a zero normal derivative at the box's faces. 8 samples and 7 lerps per call.
 
+use glam::{IVec4, Vec4};
+
 /// Where a point falls along one axis of a lattice of samples.
 #[derive(Debug, Clone, Copy)]
 pub struct Axis {
@@ -37,6 +39,77 @@ impl Axis {
     }
 }
 
+/// Where a point falls on a lattice of samples, the three axes at once in four lanes (the
+/// fourth unused): [`Axis::locate`] for a point given in cells from the grid's origin.
+#[derive(Debug, Clone, Copy)]
+pub struct Lanes {
+    /// Where the samples lie, in cells from the origin.
+    offset: Vec4,
+    /// The last sample's coordinate along each axis, in cells from the first (0 along an
+    /// axis of one sample, whose fraction is then 0).
+    top: Vec4,
+    /// The last lower corner along each axis.
+    last: IVec4,
+    layout: Layout,
+}
+
+impl Lanes {
+    /// The lattice of `dims` samples at `offset` cells from the origin.
+    pub fn new(dims: [usize; 3], offset: [f32; 3]) -> Self {
+        let top = |a: usize| (dims[a] - 1) as f32;
+        let last = |a: usize| dims[a].saturating_sub(2) as i32;
+        Self {
+            offset: Vec4::new(offset[0], offset[1], offset[2], 0.0),
+            top: Vec4::new(top(0), top(1), top(2), 0.0),
+            last: IVec4::new(last(0), last(1), last(2), 0),
+            layout: Layout::new(dims),
+        }
+    }
+
+    /// The index of the lower corner of the point `t` (in cells from the origin) and its
+    /// fractions along x, y and z, clamped to the samples.
+    #[inline(always)]
+    pub fn locate(&self, t: Vec4) -> (usize, Vec4) {
+        let p = (t - self.offset).max(Vec4::ZERO).min(self.top);
+        // p ≥ 0, so truncation is the floor.
+        let i = p.as_ivec4().min(self.last);
+        let [x, y, z, _] = i.to_array().map(|v| v as usize);
+        (self.layout.index([x, y, z]), p - i.as_vec4())
+    }
+
+    /// The eight values around `t` (cells from the origin) and the fractions within their cell.
+    #[inline(always)]
+    pub fn corners<T: Copy>(&self, values: &[T], t: Vec4) -> ([T; 8], Vec4) {
+        let (i0, f) = self.locate(t);
+        (self.layout.corners_from(values, i0), f)
+    }
+
+    /// The value of `values` at `t` (cells from the origin).
+    #[inline(always)]
+    pub fn value(&self, values: &[f32], t: Vec4) -> f32 {
+        let (c, f) = self.corners(values, t);
+        blend(&c, [f.x, f.y, f.z])
+    }
+
+    /// [`Lanes::value`] with the least and greatest of the eight samples it blends.
+    #[inline(always)]
+    pub fn value_bounds(&self, values: &[f32], t: Vec4) -> (f32, f32, f32) {
+        let (c, f) = self.corners(values, t);
+        let (lo, hi) = bounds(&c);
+        (blend(&c, [f.x, f.y, f.z]), lo, hi)
+    }
+
+    /// The four-lane value of `values` at `t` (cells from the origin).
+    #[inline(always)]
+    pub fn value4(&self, values: &[Vec4], t: Vec4) -> Vec4 {
+        let (c, f) = self.corners(values, t);
+        let lerp = |p: Vec4, q: Vec4, t: f32| p + (q - p) * t;
+        let y0 = lerp(lerp(c[0], c[1], f.x), lerp(c[2], c[3], f.x), f.y);
+        let y1 = lerp(lerp(c[4], c[5], f.x), lerp(c[6], c[7], f.x), f.y);
+        lerp(y0, y1, f.z)
+    }
+}
+
 /// How a lattice's samples are laid out in memory: the index of a lower corner and the steps
 /// to its seven other corners (0 along an axis of one sample).
 #[derive(Debug, Clone, Copy)]
@@ -59,8 +132,19 @@ impl Layout {
 
     /// The eight values around lower corner `b`.
     #[inline(always)]
-    pub fn corners(&self, values: &[f32], b: [usize; 3]) -> [f32; 8] {
-        let i0 = b[0] + self.row[0] * b[1] + self.row[1] * b[2];
+    pub fn corners<T: Copy>(&self, values: &[T], b: [usize; 3]) -> [T; 8] {
+        self.corners_from(values, self.index(b))
+    }
+
+    /// The index of sample `b`.
+    #[inline(always)]
+    pub fn index(&self, b: [usize; 3]) -> usize {
+        b[0] + self.row[0] * b[1] + self.row[1] * b[2]
+    }
+
+    /// The eight values around the lower corner of index `i0`.
+    #[inline(always)]
+    pub fn corners_from<T: Copy>(&self, values: &[T], i0: usize) -> [T; 8] {
         let [sx, sy, sz] = self.step;
         let v = &values[i0..=i0 + sx + sy + sz];
         [
@@ -76,8 +160,17 @@ impl Layout {
     }
 }
 
+impl Layout {
+    /// The trilinear sample of `values` at the lower corners and fractions `at` along x, y, z.
+    #[inline(always)]
+    pub fn sample(&self, values: &[f32], at: [(usize, f32); 3]) -> f32 {
+        let c = self.corners(values, [at[0].0, at[1].0, at[2].0]);
+        blend(&c, [at[0].1, at[1].1, at[2].1])
+    }
+}
+
 /// Trilinear blending of the eight corners `c` at fractions `f`.
-#[inline]
+#[inline(always)]
 pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
     let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
     let y0 = lerp(lerp(c[0], c[1], f[0]), lerp(c[2], c[3], f[0]), f[1]);
@@ -86,10 +179,20 @@ pub fn blend(c: &[f32; 8], f: [f32; 3]) -> f32 {
 }
 
 /// The least and greatest of eight values.
-#[inline]
+#[inline(always)]
 pub fn bounds(c: &[f32; 8]) -> (f32, f32) {
-    let lo = c.iter().copied().fold(f32::INFINITY, f32::min);
-    let hi = c.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    // Comparisons, not f32::min and max: their NaN rule costs a call to libm's fminf and
+    // fmaxf in WebAssembly (the samples are never NaN).
+    let min = |a: f32, b: f32| if b < a { b } else { a };
+    let max = |a: f32, b: f32| if b > a { b } else { a };
+    let lo = min(
+        min(min(c[0], c[1]), min(c[2], c[3])),
+        min(min(c[4], c[5]), min(c[6], c[7])),
+    );
+    let hi = max(
+        max(max(c[0], c[1]), max(c[2], c[3])),
+        max(max(c[4], c[5]), max(c[6], c[7])),
+    );
     (lo, hi)
 }
 

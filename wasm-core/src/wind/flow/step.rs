@@ -10,13 +10,13 @@
 //! dt); nothing in it limits dt for stability, but an accurate step keeps |u|·dt within a
 //! cell or two. No threads and no hashing: the same inputs give the same bytes.
 
-use super::advect::advect_velocity;
+use super::advect::{advect_velocity_into, Advection};
 use super::boundary::{impose, Faces, Solids};
 use super::diffuse::diffuse;
 use super::forces::{add_buoyancy, add_splat, Splat};
 use super::grid::Grid;
-use super::mac::MacField;
-use super::project::{project, Projection};
+use super::mac::{Centred, MacField};
+use super::project::{Projection, Projector};
 
 /// Air's kinematic viscosity, m²/s.
 pub const AIR_VISCOSITY: f32 = 1.5e-5;
@@ -48,6 +48,18 @@ pub struct Flow {
     pub u_g: MacField,
     /// The last projection's potential φ = p·dt/ρ, m²/s, per cell.
     pub phi: Vec<f64>,
+    /// What a step keeps for the next one: its fields' storage and the projection's system.
+    scratch: Scratch,
+}
+
+/// The storage a step reuses: the carrier u_p + u_g at the cells' centres, the advected u_g,
+/// the advection's and the projection's own.
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    carrier: Option<Centred>,
+    advected: Option<MacField>,
+    advection: Advection,
+    projector: Projector,
 }
 
 impl Flow {
@@ -64,6 +76,7 @@ impl Flow {
             gravity: [0.0, -9.81, 0.0],
             tolerance: TOLERANCE,
             max_iterations: iterations,
+            scratch: Scratch::default(),
             grid,
         }
     }
@@ -78,26 +91,29 @@ impl Flow {
         splats: &[Splat],
     ) -> Projection {
         let g = &self.grid;
-        let carrier = u_p.plus(&self.u_g);
-        let mut u = advect_velocity(g, &self.u_g, &carrier, dt);
-        diffuse(g, &self.solids, self.faces, u_p, &mut u, self.viscosity, dt);
+        let scratch = &mut self.scratch;
+        let carrier = scratch.carrier.get_or_insert_with(|| Centred::new(g));
+        carrier.set_sum(g, u_p, &self.u_g);
+        let u = scratch.advected.get_or_insert_with(|| MacField::zeros(g));
+        advect_velocity_into(g, &self.u_g, carrier, dt, &mut scratch.advection, u);
+        diffuse(g, &self.solids, self.faces, u_p, u, self.viscosity, dt);
         if let Some(t) = temperature {
-            add_buoyancy(g, &mut u, t, self.buoyancy, self.gravity, dt);
+            add_buoyancy(g, u, t, self.buoyancy, self.gravity, dt);
         }
         for s in splats {
-            add_splat(g, &mut u, s, dt);
+            add_splat(g, u, s, dt);
         }
-        impose(g, &self.solids, self.faces, u_p, &mut u);
-        let report = project(
+        impose(g, &self.solids, self.faces, u_p, u);
+        let report = scratch.projector.project(
             g,
             &self.solids,
             self.faces,
-            &mut u,
+            u,
             self.tolerance,
             self.max_iterations,
             &mut self.phi,
         );
-        self.u_g = u;
+        std::mem::swap(&mut self.u_g, u);
         report
     }
 
