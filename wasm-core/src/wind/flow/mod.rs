@@ -15,7 +15,8 @@
 //! - [`advect`]: semi-Lagrangian advection with MacCormack's clamped correction.
 //! - [`diffuse`]: ν∇²u_g; [`forces`]: the buoyancy b = −β T g and force splats.
 //! - [`project`]: the pressure projection.
-//! - [`step`]: one step of them all ([`Flow`]).
+//! - [`step`]: one step of them all ([`Flow`]); [`subgrid`]: Smagorinsky's eddy viscosity, the
+//!   statistical model of the small scales LES adds (off unless a scene's flow asks).
 //! - [`heat`]: the gas's heat on the cells; [`scene_flow`]: a scene's flow stepped under its
 //!   primitives, solids and stirs; [`frozen_flow`]: u_g as the blobs read it, faded beyond
 //!   the box.
@@ -38,6 +39,7 @@ pub mod project;
 pub mod sample;
 pub mod scene_flow;
 pub mod step;
+pub mod subgrid;
 
 pub use boundary::{Faces, Solids};
 pub use forces::Splat;

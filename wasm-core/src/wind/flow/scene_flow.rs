@@ -81,6 +81,7 @@ impl SceneFlow {
             FlowFaces::Closed => Faces::Closed,
         };
         let mut flow = Flow::new(grid.clone(), faces);
+        flow.eddies = true;
         let mut fixed = Solids::none(&grid);
         for body in scene.render.objects.iter().filter(|o| o.solid()) {
             if let Some(b) = Body::of(body) {

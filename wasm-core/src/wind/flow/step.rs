@@ -17,6 +17,7 @@ use super::forces::{add_buoyancy, add_splat, Splat};
 use super::grid::Grid;
 use super::mac::{Centred, MacField};
 use super::project::{Projection, Projector};
+use super::subgrid::{diffuse_eddies, eddy_viscosity};
 
 /// Air's kinematic viscosity, m²/s.
 pub const AIR_VISCOSITY: f32 = 1.5e-5;
@@ -50,6 +51,10 @@ pub struct Flow {
     pub phi: Vec<f64>,
     /// What a step keeps for the next one: its fields' storage and the projection's system.
     scratch: Scratch,
+    /// Whether Smagorinsky's eddy viscosity acts beside ν ([`super::subgrid`]).
+    pub eddies: bool,
+    /// ν_t of the last step, m²/s per cell (empty without eddies).
+    pub eddy_viscosity: Vec<f32>,
 }
 
 /// The storage a step reuses: the carrier u_p + u_g at the cells' centres, the advected u_g,
@@ -77,6 +82,8 @@ impl Flow {
             tolerance: TOLERANCE,
             max_iterations: iterations,
             scratch: Scratch::default(),
+            eddies: false,
+            eddy_viscosity: Vec::new(),
             grid,
         }
     }
@@ -97,6 +104,10 @@ impl Flow {
         let u = scratch.advected.get_or_insert_with(|| MacField::zeros(g));
         advect_velocity_into(g, &self.u_g, carrier, dt, &mut scratch.advection, u);
         diffuse(g, &self.solids, self.faces, u_p, u, self.viscosity, dt);
+        if self.eddies {
+            eddy_viscosity(g, &self.u_g, dt, &mut self.eddy_viscosity);
+            diffuse_eddies(g, &self.solids, self.faces, u, &self.eddy_viscosity, dt);
+        }
         if let Some(t) = temperature {
             add_buoyancy(g, u, t, self.buoyancy, self.gravity, dt);
         }
