@@ -2,7 +2,8 @@
 // scene given to both — its box, cells, faces, ν, β and g, the primitives' uniform wind u_p on
 // every face, the solid objects' cells (those whose centre is inside) and, for a hot gas, the
 // temperature the worker deposited on the cells at each step — and 60 steps on each agree
-// within 1e-3 of max|u_g| at the cells' centres (`exportFlow()`). The GPU's projection reaches
+// within 1e-3 of max|u_g| at the cells' centres (`exportFlow()`), Smagorinsky's eddy viscosity
+// acting in both (a scene's flow has it). The GPU's projection reaches
 // the relative residual the twin needs. A stir (a force splat towards the pointer's velocity),
 // given to the core's SceneSimulation in the page and to the GPU alike, agrees the same way.
 import { readFileSync } from 'node:fs';
@@ -112,6 +113,7 @@ function twin(page, scene, heated) {
       if (n === 0 || n === steps - 1) residuals.push(flow.residual());
     }
     const gpu = flow.cellVelocity();
+    const eddies = Math.max(...flow.eddyViscosity());
     flow.dispose();
     const { largest, apart, finite } = window.apartOf(gpu, cpu.velocity);
     // The worker's solid cells: both faces across the wind fixed, u_g = −u_p at the centre.
@@ -119,7 +121,7 @@ function twin(page, scene, heated) {
     const otherSolids = u === 0 ? 0 : solids.solid.filter((v, c) => (cpu.velocity[3 * c] === -u ? 1 : 0) !== v).length;
     const solidCells = solids.solid.reduce((s, v) => s + v, 0);
     const warmest = temperatures.length ? Math.max(...temperatures[steps - 1]) : 0;
-    return { largest, apart, residuals, otherSolids, solidCells, warmest, time: cpu.time, finite };
+    return { largest, apart, residuals, otherSolids, solidCells, warmest, eddies, time: cpu.time, finite };
   }, { scene, heated, steps: STEPS });
 }
 
@@ -128,8 +130,9 @@ test('a sphere and a cylinder in a uniform wind, 60 steps in an open box: the GP
   await open(page, scene);
   const out = await twin(page, scene, false);
   expect(out.unsupported).toBeUndefined();
-  console.log(`a sphere and a cylinder in a wind: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}`);
+  console.log(`a sphere and a cylinder in a wind: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}, max ν_t ${out.eddies.toExponential(2)} m²/s`);
   expect(out.finite).toBe(true);
+  expect(out.eddies).toBeGreaterThan(0);
   expect(out.solidCells).toBeGreaterThan(100);
   expect(out.otherSolids).toBe(0);
   expect(out.time).toBeCloseTo(STEPS * scene.simulation.dt, 9);
@@ -143,8 +146,9 @@ test('a hot gas in a closed box, 60 steps: the GPU\'s buoyant flow agrees with t
   await open(page, scene);
   const out = await twin(page, scene, true);
   expect(out.unsupported).toBeUndefined();
-  console.log(`hot gas in a closed box: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}, warmest cell ${out.warmest.toFixed(1)} K`);
+  console.log(`hot gas in a closed box: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}, warmest cell ${out.warmest.toFixed(1)} K, max ν_t ${out.eddies.toExponential(2)} m²/s`);
   expect(out.finite).toBe(true);
+  expect(out.eddies).toBeGreaterThan(0);
   expect(out.warmest).toBeGreaterThan(1);
   expect(out.largest).toBeGreaterThan(0.01);
   for (const r of out.residuals) expect(r).toBeLessThanOrEqual(1e-4);
@@ -179,12 +183,14 @@ test('a stir in a closed box, 20 steps stirred and 40 after: the GPU\'s flow agr
     for (let n = 0; n < steps; n++) flow.step(scene.simulation.dt, null, n < stirred ? [flow.splatOf(stir)] : []);
     const gpu = flow.cellVelocity();
     const residual = flow.residual();
+    const eddies = Math.max(...flow.eddyViscosity());
     flow.dispose();
-    return { ...window.apartOf(gpu, cpu.velocity), residual };
+    return { ...window.apartOf(gpu, cpu.velocity), residual, eddies };
   }, { scene, steps: STEPS });
   expect(out.unsupported).toBeUndefined();
-  console.log(`a stir in a closed box: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − core ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residual ${out.residual.toExponential(1)}`);
+  console.log(`a stir in a closed box: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − core ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residual ${out.residual.toExponential(1)}, max ν_t ${out.eddies.toExponential(2)} m²/s`);
   expect(out.finite).toBe(true);
+  expect(out.eddies).toBeGreaterThan(0);
   expect(out.largest).toBeGreaterThan(0.05);
   expect(out.residual).toBeLessThanOrEqual(1e-4);
   expect(out.apart).toBeLessThanOrEqual(1e-3 * out.largest);

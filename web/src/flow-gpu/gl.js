@@ -81,10 +81,10 @@ void locate(float t, int n, float o, out int i, out float f) {
   i = min(int(p), max(n - 2, 0));
   f = n <= 1 ? 0.0 : p - float(i);
 }
-// The eight corners around x (m) of the lattice L at offset o (cells), and the fractions.
-void corners(highp sampler2D t, ivec4 L, vec3 o, vec3 x, out float c[8], out vec3 f) {
+// The eight corners around q (cells from the origin) of the lattice L at offset o (cells),
+// and the fractions.
+void cornersCells(highp sampler2D t, ivec4 L, vec3 o, vec3 q, out float c[8], out vec3 f) {
   ivec3 b;
-  vec3 q = (x - origin) * invH;
   locate(q.x, L.x, o.x, b.x, f.x);
   locate(q.y, L.y, o.y, b.y, f.y);
   locate(q.z, L.z, o.z, b.z, f.z);
@@ -94,8 +94,15 @@ void corners(highp sampler2D t, ivec4 L, vec3 o, vec3 x, out float c[8], out vec
     c[n] = fetch1(t, b + e, L);
   }
 }
+// The eight corners around x (m) of the lattice L at offset o (cells), and the fractions.
+void corners(highp sampler2D t, ivec4 L, vec3 o, vec3 x, out float c[8], out vec3 f) {
+  cornersCells(t, L, o, (x - origin) * invH, c, f);
+}
 // a + (b − a)·t, as the core blends (not mix's a·(1 − t) + b·t).
 float lerp(float a, float b, float t) {
+  return a + (b - a) * t;
+}
+vec3 mix3(vec3 a, vec3 b, float t) {
   return a + (b - a) * t;
 }
 float blend(float c[8], vec3 f) {

@@ -1,32 +1,36 @@
-// The flow stepped on the GPU (DESIGN of the flow, paper §7): the grid's velocity u_g (m/s) on
-// a MAC grid, each component's faces in an R32F atlas (`gl.js`), stepped by the core's laws
-// in the core's order (`wind::flow::step`): advect u_g by u_p + u_g (semi-Lagrangian with
-// MacCormack's clamped correction), diffuse it (explicit substeps, ν·dt_sub/h² ≤ 1/8), add the
-// buoyancy −β T g and the force splats, set the fixed faces so that (u_p + u_g)·n = v·n, and
-// project: the divergence, a Poisson solve for φ = p·dt/ρ, and the free faces lose ∇φ.
+// The flow stepped on the GPU (DESIGN of the flow, paper §7): the grid's velocity u_g (m/s) on a
+// MAC grid, each component's faces in an R32F atlas (`gl.js`), stepped by the core's laws in the
+// core's order (`wind::flow::step`): advect u_g by u_p + u_g (semi-Lagrangian with MacCormack's
+// clamped correction, the traces in cells through the cells' velocity), diffuse it (explicit
+// substeps, ν·dt_sub/h² ≤ 1/8), with `eddies` let Smagorinsky's eddy viscosity ν_t act on it
+// (`wind::flow::subgrid`: ν_t from the step's first u_g, one explicit pass on the free faces),
+// add the buoyancy −β T g and the force splats, set the fixed faces so that (u_p + u_g)·n = v·n,
+// and project: the divergence, a Poisson solve for φ = p·dt/ρ, and the free faces lose ∇φ.
 //
-// The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ
-// (a warm start, as the core's conjugate gradients take), a fixed number of iterations a step
-// (two passes each): by default 3 × the longest side of cells + 30 with open faces, 5 × + 30
-// with closed ones (the Neumann problem converges slower), which reached a relative residual
-// max|b − Aφ| / max|b| of 1e-4 or better on the boxes checked (`residual()` measures it: at 32³
-// round a sphere in a wind and a stir, 3e-6–7e-7 open, 3e-6–7e-5 closed, where f32 sets the
-// floor: φ is some n times b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop
-// at 1e-5 in f64). With no open face b's mean over the fluid cells is taken out first, as the
-// core does. Where b is 0 on every cell the core sets φ = 0; the sweeps here relax the last φ
-// towards 0 instead (the same from rest). Nothing is read back unless asked (`faces`,
-// `cellVelocity`, `velocityAt`, `residual`). The passes set the context's state they need (`passState`); a three.js renderer
-// sharing the context calls `resetState()` after them.
+// The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ (a warm
+// start, as the core's conjugate gradients take), a fixed number of iterations a step (two passes
+// each): by default 3 × the longest side of cells + 30 with open faces, 5 × + 30 with closed ones
+// (the Neumann problem converges slower), which reached a relative residual max|b − Aφ| / max|b|
+// of 1e-4 or better on the boxes checked (`residual()` measures it: at 32³ round a sphere in a
+// wind and a stir, 3e-6–7e-7 open, 3e-6–7e-5 closed, where f32 sets the floor: φ is some n times
+// b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop at 1e-5 in f64). With no
+// open face b's mean over the fluid cells is taken out first, as the core does. Where b is 0 on
+// every cell the core sets φ = 0; the sweeps here relax the last φ towards 0 instead (the same
+// from rest). Nothing is read back unless asked (`faces`, `cellVelocity`, `velocityAt`,
+// `residual`, `eddyViscosity`). The passes set the context's state they need (`passState`); a
+// three.js renderer sharing the context calls `resetState()` after them.
 //
-// Cost per step: 3 carrier passes, 6 advection passes (11 trilinear interpolations a face),
-// 3 per diffusion substep, up to 3 for buoyancy and for each splat, 3 to impose, 1 divergence
-// (and, closed, a reduction of 3–4 passes and 1 to centre b), 2 per SOR iteration, 3 for the
-// gradient: at 64³ open, 222 iterations, about 460 passes. A multigrid solve would take fewer.
+// Cost per step: 1 carrier pass (u_p + u_g at the cells' centres), 6 advection passes (a face's
+// two traces blend the carrier's three components at once at their midpoints, and its value
+// where each lands), 3 per diffusion substep, with eddies 2 for ν_t and 3 for its diffusion, up
+// to 3 for buoyancy and for each splat, 3 to impose, 1 divergence (and, closed, a reduction of
+// 3–4 passes and 1 to centre b), 2 per SOR iteration, 3 for the gradient: at 64³ open, 222
+// iterations, about 460 passes. A multigrid solve would take fewer.
 
 import { boundaryOf, faceDims, noSolids } from './boundary.js';
 import { Lattice, Pass, passState } from './gl.js';
 import {
-  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
+  ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, EDDY_DIFFUSE, EDDY_VISCOSITY, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
 } from './passes.js';
 
 /** How long a stir takes to bring the flow at its centre to its velocity (s, `scene_flow::STIR_TIME`). */
@@ -39,6 +43,8 @@ const REDUCE_BLOCK = 8;
 const STABLE = 0.125;
 /** Air's kinematic viscosity (m²/s) and an ideal gas's expansion at room temperature (1/K). */
 const AIR = { viscosity: 1.5e-5, buoyancy: 1 / 293.15 };
+/** Smagorinsky's constant C_s (`subgrid::SMAGORINSKY`). */
+export const SMAGORINSKY = 0.17;
 
 const f32 = Math.fround;
 
@@ -77,18 +83,21 @@ export class GpuFlow {
   /**
    * The flow at rest on the grid of `origin` (m), `cells` [nx, ny, nz] and cube edge `h` (m)
    * with `faces` 'open' or 'closed', ν `viscosity` (m²/s), β `buoyancy` (1/K), `gravity`
-   * (m/s²), and the SOR's `iterations` a step and `omega`, on the WebGL2 context `gl`
+   * (m/s²), Smagorinsky's eddy viscosity when `eddies` (a scene's flow has it, the core's bare
+   * `Flow` not), and the SOR's `iterations` a step and `omega`, on the WebGL2 context `gl`
    * (float render targets: `flowGpuUnsupported`).
    */
-  constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], iterations, omega }) {
+  constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], eddies = false, iterations, omega }) {
     this.gl = gl;
     this.origin = origin.map(f32);
     this.cells = [...cells];
     this.h = f32(h);
-    this.faces = faces;
+    // The box's faces, 'open' or 'closed' (`faces()` reads u_g back).
+    this.boxFaces = faces;
     this.viscosity = f32(viscosity);
     this.buoyancy = f32(buoyancy);
     this.gravity = gravity.map(f32);
+    this.eddies = eddies;
     const longest = Math.max(...cells);
     this.iterations = iterations ?? (faces === 'closed' ? 5 : 3) * longest + 30;
     // SOR's best ω for the model problem on a cube of the longest side: 2/(1 + π/n) with the
@@ -99,7 +108,7 @@ export class GpuFlow {
     const dims = [0, 1, 2].map((a) => faceDims(cells, a));
     this.u = dims.map((d) => new Pair(gl, d));
     this.up = dims.map((d) => new Lattice(gl, d, 1, false));
-    this.carrier = dims.map((d) => new Lattice(gl, d));
+    this.carrier = new Lattice(gl, cells, 4);
     this.back = dims.map((d) => new Lattice(gl, d, 4));
     this.kind = dims.map((d) => new Lattice(gl, d, 2, false));
     this.rows = new Lattice(gl, cells, 4, false);
@@ -109,6 +118,8 @@ export class GpuFlow {
     this.cellOut = new Lattice(gl, cells, 4);
     this.probe = new Lattice(gl, [1, 1, 1], 4);
     this.bCentred = new Lattice(gl, cells);
+    this.centred = new Lattice(gl, cells, 4);
+    this.nuT = new Lattice(gl, cells);
     // The sums of b, block by block down to one texel.
     this.sums = [];
     for (let [w, hh] = [this.b.atlas.width, this.b.atlas.height]; w > 1 || hh > 1;) {
@@ -116,7 +127,7 @@ export class GpuFlow {
       this.sums.push(new Lattice(gl, [w, hh, 1]));
     }
     this.passes = Object.fromEntries(Object.entries({
-      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B,
+      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, EDDY_VISCOSITY, EDDY_DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B,
     }).map(([name, body]) => [name, new Pass(gl, body)]));
     this.setSolids(noSolids(cells));
     this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
@@ -128,12 +139,12 @@ export class GpuFlow {
     return { origin: { vec3: this.origin }, invH: f32(1 / this.h), h: this.h, cells: { ivec3: this.cells } };
   }
 
-  /** u_g = 0 and φ = 0. */
+  /** u_g = 0, φ = 0 and ν_t = 0. */
   clear() {
     passState(this.gl);
     const gl = this.gl;
     gl.clearColor(0, 0, 0, 0);
-    for (const l of [...this.u.flatMap((p) => p.both), ...this.phi.both]) {
+    for (const l of [...this.u.flatMap((p) => p.both), ...this.phi.both, this.nuT]) {
       gl.bindFramebuffer(gl.FRAMEBUFFER, l.framebuffer);
       gl.clear(gl.COLOR_BUFFER_BIT);
     }
@@ -144,7 +155,7 @@ export class GpuFlow {
    * cell) and `slip` (one byte a cell: the air slips along it), as `boundary.js` builds them.
    */
   setSolids(solids) {
-    const { kinds, rows, definite } = boundaryOf(this.cells, solids, this.faces);
+    const { kinds, rows, definite } = boundaryOf(this.cells, solids, this.boxFaces);
     kinds.forEach((k, a) => this.kind[a].upload(k));
     this.rows.upload(rows);
     this.definite = definite;
@@ -181,14 +192,17 @@ export class GpuFlow {
     passState(this.gl);
     const grid = this.#grid;
     dt = f32(dt);
-    const carriers = { cx: this.carrier[0], cy: this.carrier[1], cz: this.carrier[2] };
-    for (let a = 0; a < 3; a++) this.passes.CARRIER.draw(this.carrier[a], { ...grid, up: this.up[a], ug: this.u[a].now });
+    if (this.eddies) this.#eddyViscosity(dt);
+    const [px, py, pz] = this.up;
+    const [ux, uy, uz] = this.u.map((p) => p.now);
+    this.passes.CARRIER.draw(this.carrier, { ...grid, px, py, pz, ux, uy, uz });
     for (let a = 0; a < 3; a++) {
-      const offset = { vec3: offsetOf(a) };
-      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...carriers, dt, offset, q: this.u[a].now });
-      this.#update(a, 'ADVECT_CORRECT', { ...carriers, dt, offset, q: this.u[a].now, back: this.back[a] });
+      const trace = { carrier: this.carrier, dt, offset: { vec3: offsetOf(a) }, axis: { int: a } };
+      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...trace, q: this.u[a].now });
+      this.#update(a, 'ADVECT_CORRECT', { ...trace, q: this.u[a].now, back: this.back[a] });
     }
     this.#diffuse(dt);
+    if (this.eddies) this.#diffuseEddies(dt);
     if (temperature) {
       this.temperature.upload(temperature);
       const dtBeta = f32(dt * this.buoyancy);
@@ -222,6 +236,25 @@ export class GpuFlow {
     }
   }
 
+  /** ν_t (m²/s per cell) of u_g as the step finds it, capped at h²/(8 dt). */
+  #eddyViscosity(dt) {
+    const grid = this.#grid;
+    const [ux, uy, uz] = this.u.map((p) => p.now);
+    this.passes.CENTRES.draw(this.centred, { ...grid, ux, uy, uz });
+    const h2 = f32(this.h * this.h);
+    const cap = f32(h2 / f32(8 * Math.max(dt, 2 ** -126)));
+    const scale = f32(f32(f32(SMAGORINSKY) * this.h) ** 2);
+    this.passes.EDDY_VISCOSITY.draw(this.nuT, { ...grid, centred: this.centred, scale, cap });
+  }
+
+  /** ν_t's diffusion of u_g for `dt` (s): one explicit pass on each component's free faces. */
+  #diffuseEddies(dt) {
+    const invH2 = f32(1 / f32(this.h * this.h));
+    for (let a = 0; a < 3; a++) {
+      this.#update(a, 'EDDY_DIFFUSE', { old: this.u[a].now, kind: this.kind[a], nuT: this.nuT, axis: { int: a }, dt, invH2 });
+    }
+  }
+
   /** The projection: b = −h²∇·u_g, SOR sweeps from the last φ, the free faces lose ∇φ. */
   #project() {
     const grid = this.#grid;
@@ -236,7 +269,7 @@ export class GpuFlow {
       }
     }
     for (let a = 0; a < 3; a++) {
-      this.#update(a, 'GRADIENT', { u: this.u[a].now, phi: this.phi.now, rows: this.rows, axis: { int: a }, open: this.faces === 'open' });
+      this.#update(a, 'GRADIENT', { u: this.u[a].now, phi: this.phi.now, rows: this.rows, axis: { int: a }, open: this.boxFaces === 'open' });
     }
   }
 
@@ -291,6 +324,12 @@ export class GpuFlow {
     return { centre, radius: r, force: velocity.map((v, a) => f32(f32(f32(v) - u[a]) / STIR_TIME)) };
   }
 
+  /** The last step's eddy viscosity ν_t (m²/s per cell, x fastest; 0 without eddies), read back. */
+  eddyViscosity() {
+    passState(this.gl);
+    return this.nuT.read();
+  }
+
   /** u_g on each component's faces (three Float32Arrays, m/s), read back. */
   faces() {
     passState(this.gl);
@@ -309,7 +348,7 @@ export class GpuFlow {
   }
 
   dispose() {
-    for (const l of [...this.u, ...this.up, ...this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, ...this.sums]) l.dispose();
+    for (const l of [...this.u, ...this.up, this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, this.centred, this.nuT, ...this.sums]) l.dispose();
     for (const p of Object.values(this.passes)) p.dispose();
   }
 }

@@ -1,12 +1,19 @@
 // The flow's passes on the GPU, each a per-texel map over one lattice (a velocity component's
 // faces, or the cells), the same laws as the core's `wind::flow` step by step:
 //
-// - CARRIER: u_p + u_g on one component's faces (the advecting velocity).
-// - ADVECT_BACK, ADVECT_CORRECT: semi-Lagrangian advection by a midpoint trace back, then
-//   MacCormack's correction from a trace forward, clamped to the eight samples the first trace
-//   blended (`advect.rs`: Selle et al. 2008).
+// - CARRIER: u_p + u_g at the cells' centres (the advecting velocity, the core's `Centred`:
+//   each component the mean of the cell's two faces, trilinear between the centres).
+// - ADVECT_BACK, ADVECT_CORRECT: semi-Lagrangian advection by a midpoint trace back in cells
+//   from the face's carrier (its two cells' mean), then MacCormack's correction from a trace
+//   forward, clamped to the eight samples the first trace blended (`advect.rs`: Selle et al.
+//   2008).
 // - DIFFUSE: one explicit substep of ν∇² on one component's faces, with the core's stencil at
 //   the box's faces, fixed faces and no-slip or slipping solids (`diffuse.rs`).
+// - EDDY_VISCOSITY: Smagorinsky's ν_t = (C_s h)² √(2 S_ij S_ij) per cell, capped at h²/(8 dt),
+//   S from u_g's central differences at the cells' centres (CENTRES), one-sided at the box's
+//   faces (`subgrid.rs`).
+// - EDDY_DIFFUSE: one explicit pass of ν_t's diffusion on one component's free faces, ν_f the
+//   mean of its two cells' ν_t, over its free neighbours only (no eddy flux through walls).
 // - BUOYANCY: b = −β T g, T averaged onto each face from its two cells (`forces.rs`).
 // - SPLAT: a Gaussian force splat within four widths of its centre (`forces.rs`).
 // - IMPOSE: each fixed face's u_g = v·n − u_p (`boundary.rs`).
@@ -31,38 +38,73 @@ const SAMPLE = /* glsl */ `
 
 const OUT = 'layout(location = 0) out vec4 outValue;';
 
-/** The carrier on one component's faces: u_p + u_g. */
+/** The carrier at the cells' centres: each component of u_p + u_g the mean of the cell's two faces. */
 export const CARRIER = /* glsl */ `
-uniform sampler2D up;
-uniform ivec4 upL;
-uniform sampler2D ug;
-uniform ivec4 ugL;
+uniform sampler2D px;
+uniform ivec4 pxL;
+uniform sampler2D py;
+uniform ivec4 pyL;
+uniform sampler2D pz;
+uniform ivec4 pzL;
+uniform sampler2D ux;
+uniform ivec4 uxL;
+uniform sampler2D uy;
+uniform ivec4 uyL;
+uniform sampler2D uz;
+uniform ivec4 uzL;
 ${OUT}
+float face(sampler2D p, ivec4 pL, sampler2D u, ivec4 uL, ivec3 m) {
+  return fetch1(p, m, pL) + fetch1(u, m, uL);
+}
 void main() {${SAMPLE}
-  outValue = vec4(fetch1(up, s, upL) + fetch1(ug, s, ugL), 0.0, 0.0, 0.0);
+  outValue = vec4(
+    0.5 * (face(px, pxL, ux, uxL, s) + face(px, pxL, ux, uxL, s + ivec3(1, 0, 0))),
+    0.5 * (face(py, pyL, uy, uyL, s) + face(py, pyL, uy, uyL, s + ivec3(0, 1, 0))),
+    0.5 * (face(pz, pzL, uz, uzL, s) + face(pz, pzL, uz, uzL, s + ivec3(0, 0, 1))),
+    0.0);
 }`;
 
 const TRACE = /* glsl */ `
-uniform sampler2D cx;
-uniform ivec4 cxL;
-uniform sampler2D cy;
-uniform ivec4 cyL;
-uniform sampler2D cz;
-uniform ivec4 czL;
+// The carrier at the cells' centres (xyz per cell).
+uniform sampler2D carrier;
+uniform ivec4 carrierL;
 uniform float dt;
-// Where this lattice's samples lie, in cells from the origin.
+// Where this lattice's samples lie, in cells from the origin, and its component.
 uniform vec3 offset;
-vec3 carrier(vec3 x) {
-  return vec3(
-    trilinear(cx, cxL, vec3(0.0, 0.5, 0.5), x),
-    trilinear(cy, cyL, vec3(0.5, 0.0, 0.5), x),
-    trilinear(cz, czL, vec3(0.5, 0.5, 0.0), x));
+uniform int axis;
+// The carrier at t (cells from the origin): one trilinear blend of its three components
+// between the cells' centres, clamped to them (the core's Centred::at_cells).
+vec3 carried(vec3 t) {
+  ivec3 b;
+  vec3 f;
+  locate(t.x, carrierL.x, 0.5, b.x, f.x);
+  locate(t.y, carrierL.y, 0.5, b.y, f.y);
+  locate(t.z, carrierL.z, 0.5, b.z, f.z);
+  ivec3 st = ivec3(carrierL.x > 1 ? 1 : 0, carrierL.y > 1 ? 1 : 0, carrierL.z > 1 ? 1 : 0);
+  vec3 c[8];
+  for (int n = 0; n < 8; n++) {
+    ivec3 e = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1) * st;
+    c[n] = texelFetch(carrier, texelOf(b + e, carrierL), 0).xyz;
+  }
+  vec3 y0 = mix3(mix3(c[0], c[1], f.x), mix3(c[2], c[3], f.x), f.y);
+  vec3 y1 = mix3(mix3(c[4], c[5], f.x), mix3(c[6], c[7], f.x), f.y);
+  return mix3(y0, y1, f.z);
 }
-// The point the carrier takes to x over dt (a midpoint step; a negative dt traces forward),
-// v0 the carrier at x.
-vec3 traceFrom(vec3 x, vec3 v0, float dt) {
-  vec3 mid = x - 0.5 * dt * v0;
-  return x - dt * carrier(mid);
+// The carrier at face s of component axis: the mean of the two cells either side, the one
+// cell at the box's faces (the core's Centred::at_face).
+vec3 atFace(ivec3 s) {
+  int n = carrierL[axis];
+  ivec3 c = s;
+  c[axis] = min(s[axis], n - 1);
+  ivec3 below = c;
+  if (s[axis] > 0 && s[axis] < n) below[axis] -= 1;
+  return (texelFetch(carrier, texelOf(below, carrierL), 0).xyz + texelFetch(carrier, texelOf(c, carrierL), 0).xyz) * 0.5;
+}
+// The point the carrier takes to t (cells) over k = dt/h (a midpoint step; a negative k
+// traces forward), v0 the carrier at t.
+vec3 traceFrom(vec3 t, vec3 v0, float k) {
+  vec3 v1 = carried(t - v0 * (0.5 * k));
+  return t - v1 * k;
 }`;
 
 /** The first trace: the value found where the carrier brought the sample from, and its bounds. */
@@ -72,11 +114,12 @@ uniform sampler2D q;
 uniform ivec4 qL;
 ${OUT}
 void main() {${SAMPLE}
-  vec3 x = origin + h * (vec3(s) + offset);
-  vec3 back = traceFrom(x, carrier(x), dt);
+  vec3 t = offset + vec3(s);
+  float k = dt / h;
+  vec3 back = traceFrom(t, atFace(s), k);
   float c[8];
   vec3 f;
-  corners(q, qL, offset, back, c, f);
+  cornersCells(q, qL, offset, back, c, f);
   float lo = c[0];
   float hi = c[0];
   for (int n = 1; n < 8; n++) {
@@ -96,9 +139,13 @@ uniform sampler2D back;
 uniform ivec4 backL;
 ${OUT}
 void main() {${SAMPLE}
-  vec3 x = origin + h * (vec3(s) + offset);
-  vec3 ahead = traceFrom(x, carrier(x), -dt);
-  float returned = trilinear(back, backL, offset, ahead);
+  vec3 t = offset + vec3(s);
+  float k = dt / h;
+  vec3 ahead = traceFrom(t, atFace(s), -k);
+  float c[8];
+  vec3 f;
+  cornersCells(back, backL, offset, ahead, c, f);
+  float returned = blend(c, f);
   vec4 first = texelFetch(back, texelOf(s, backL), 0);
   float corrected = first.x + 0.5 * (fetch1(q, s, qL) - returned);
   outValue = vec4(clamp(corrected, first.y, first.z), 0.0, 0.0, 0.0);
@@ -144,6 +191,77 @@ void main() {${SAMPLE}
     lap += below + above - 2.0 * o;
   }
   outValue = vec4(o + r * lap, 0.0, 0.0, 0.0);
+}`;
+
+/**
+ * ν_t (m²/s) per cell: min(scale·√(2 S_ij S_ij), cap), scale = (C_s h)², cap = h²/(8 dt), S the
+ * strain rate of u_g at the cells' centres (`centred`), central differences over the cells
+ * either side, one-sided at the box's faces, none along an axis of one cell.
+ */
+export const EDDY_VISCOSITY = /* glsl */ `
+uniform sampler2D centred;
+uniform ivec4 centredL;
+uniform float scale;
+uniform float cap;
+${OUT}
+void main() {${SAMPLE}
+  // grad[b] = ∂u/∂x_b.
+  vec3 grad[3];
+  for (int b = 0; b < 3; b++) {
+    ivec3 lo = s;
+    ivec3 hi = s;
+    lo[b] = max(s[b] - 1, 0);
+    hi[b] = min(s[b] + 1, cells[b] - 1);
+    grad[b] = vec3(0.0);
+    if (hi[b] == lo[b]) continue;
+    float span = float(hi[b] - lo[b]) * h;
+    grad[b] = (texelFetch(centred, texelOf(hi, centredL), 0).xyz - texelFetch(centred, texelOf(lo, centredL), 0).xyz) / span;
+  }
+  float ss = 0.0;
+  for (int a = 0; a < 3; a++) {
+    for (int b = 0; b < 3; b++) {
+      float sab = 0.5 * (grad[b][a] + grad[a][b]);
+      ss += sab * sab;
+    }
+  }
+  outValue = vec4(min(scale * sqrt(2.0 * ss), cap), 0.0, 0.0, 0.0);
+}`;
+
+/**
+ * One pass of ν_t's diffusion on component `axis`'s free faces: u += dt·ν_f/h²·Σ(u_n − u)
+ * over the free neighbours within the lattice, ν_f the mean of the face's two cells' ν_t
+ * (a box face its one cell's); fixed faces as they are.
+ */
+export const EDDY_DIFFUSE = /* glsl */ `
+${KINDS}
+uniform sampler2D old;
+uniform ivec4 oldL;
+uniform sampler2D nuT;
+uniform ivec4 nuTL;
+uniform int axis;
+uniform float dt;
+uniform float invH2;
+${OUT}
+float nuAt(ivec3 s, int m) {
+  ivec3 c = s;
+  c[axis] = min(m, cells[axis] - 1);
+  return fetch1(nuT, c, nuTL);
+}
+void main() {${SAMPLE}
+  float o = fetch1(old, s, oldL);
+  int k = s[axis];
+  float nu = k == 0 ? nuAt(s, 0) : 0.5 * (nuAt(s, k - 1) + nuAt(s, k));
+  if (kindOf(s).x != 0.0 || nu == 0.0) {
+    outValue = vec4(o, 0.0, 0.0, 0.0);
+    return;
+  }
+  float sum = 0.0;
+  for (int b = 0; b < 3; b++) {
+    ivec3 e = ivec3(b == 0 ? 1 : 0, b == 1 ? 1 : 0, b == 2 ? 1 : 0);
+    if (s[b] > 0 && kindOf(s - e).x == 0.0) sum += fetch1(old, s - e, oldL) - o;
+    if (s[b] + 1 < target[b] && kindOf(s + e).x == 0.0) sum += fetch1(old, s + e, oldL) - o;
+  }
+  outValue = vec4(o + dt * nu * invH2 * sum, 0.0, 0.0, 0.0);
 }`;
 
 /** u −= (dt·β)·T·g on component `axis`'s faces, T on the cells. */

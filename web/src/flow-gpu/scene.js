@@ -1,11 +1,12 @@
 // A scene's flow (docs/FORMATS.md, the flow) set up on the GPU as the core's `SceneFlow` sets
 // it up: the grid of `flow.box` and `flow.cells` (cubes of edge h, the mean of the three
 // spacings), its faces and constants (air's ν and β and Earth's g where the scene names none),
-// the solid objects' cells (a cell whose centre is inside: the signed distance of the sphere,
-// the plane or the capped cylinder below 0) and the primitives' wind u_p on the faces. Only
-// uniform winds are taken here (u_p the same on every face); any other primitive, a repulsor's
-// moving sphere among them, needs u_p and the solids set each step from the wind table, and
-// is refused with the reason.
+// Smagorinsky's eddy viscosity (a scene's flow always has it; `options.eddies` false leaves it
+// out), the solid objects' cells (a cell whose centre is inside: the signed distance of the
+// sphere, the plane or the capped cylinder below 0) and the primitives' wind u_p on the faces.
+// Only uniform winds are taken here (u_p the same on every face); any other primitive, a
+// repulsor's moving sphere among them, needs u_p and the solids set each step from the wind
+// table, and is refused with the reason.
 
 import { GpuFlow } from './gpu-flow.js';
 import { addSolid, noSolids } from './boundary.js';
@@ -38,6 +39,7 @@ export function solidDistance(o, x) {
 /**
  * The flow of `scene` on the GPU of `gl` at rest (`{flow}`), or why not (`{refused}`): no
  * enabled flow, primitives other than uniform winds, or a grid too large for its textures.
+ * `options` override GpuFlow's settings (`eddies: false`, the SOR's `iterations`, ...).
  */
 export function gpuFlowOfScene(gl, scene, options = {}) {
   const f = scene.flow;
@@ -56,6 +58,7 @@ export function gpuFlowOfScene(gl, scene, options = {}) {
     viscosity: f.viscosity ?? 1.5e-5,
     buoyancy: f.buoyancy ?? 1 / 293.15,
     gravity: f.gravity ?? [0, -9.81, 0],
+    eddies: true,
     ...options,
   });
   const solids = noSolids(cells);
