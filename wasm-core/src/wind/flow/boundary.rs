@@ -141,6 +141,59 @@ pub fn holds(grid: &Grid, solids: &Solids, axis: usize, idx: [usize; 3]) -> bool
     (s > 0 && holding(s - 1)) || (s < n && holding(s))
 }
 
+/// What a face is to the steps that read it: free (the projection sets it), or fixed at the
+/// total normal velocity `v` (m/s) it carries, `holds` where a no-slip solid holds it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FaceKind {
+    Free,
+    Fixed { v: f32, holds: bool },
+}
+
+/// Every face's [`FaceKind`], per component (laid out as [`Grid::face`]): worked out once for
+/// a set of solids and faces, and read by the viscosity, the eddies and [`FaceKinds::impose`]
+/// each step while they stay.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FaceKinds {
+    pub kind: [Vec<FaceKind>; 3],
+}
+
+impl FaceKinds {
+    /// The faces of `grid` with `solids` and the box's `faces`.
+    pub fn new(grid: &Grid, solids: &Solids, faces: Faces) -> Self {
+        Self {
+            kind: std::array::from_fn(|a| {
+                let d = grid.face_dims(a);
+                let mut kind = vec![FaceKind::Free; grid.face_count(a)];
+                for k in 0..d[2] {
+                    for j in 0..d[1] {
+                        for i in 0..d[0] {
+                            if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
+                                kind[grid.face(a, i, j, k)] = FaceKind::Fixed {
+                                    v,
+                                    holds: holds(grid, solids, a, [i, j, k]),
+                                };
+                            }
+                        }
+                    }
+                }
+                kind
+            }),
+        }
+    }
+
+    /// Sets u_g on every fixed face so that u_p + u_g carries its fixed normal velocity there
+    /// ([`impose`]).
+    pub fn impose(&self, u_p: &MacField, u_g: &mut MacField) {
+        for (a, kinds) in self.kind.iter().enumerate() {
+            for (f, kind) in kinds.iter().enumerate() {
+                if let FaceKind::Fixed { v, .. } = *kind {
+                    u_g.u[a][f] = v - u_p.u[a][f];
+                }
+            }
+        }
+    }
+}
+
 /// Sets u_g on every fixed face so that u_p + u_g carries its fixed normal velocity there.
 pub fn impose(grid: &Grid, solids: &Solids, faces: Faces, u_p: &MacField, u_g: &mut MacField) {
     for a in 0..3 {

@@ -19,33 +19,16 @@
 //! of order h² in the fluid (a wave of k loses (4/h²)·sin²(kh/2) in place of k²) and of order h
 //! at a staircase surface.
 
-use super::boundary::{fixed_normal, holds, Faces, Solids};
+use super::boundary::{FaceKind as Face, FaceKinds};
 use super::grid::Grid;
 use super::mac::MacField;
 
 /// The largest ν·dt/h² of one substep.
 const STABLE: f32 = 0.125;
 
-/// What a face is to its neighbours' stencil.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Face {
-    /// Free: its own value.
-    Free,
-    /// Fixed, carrying the total normal velocity v (m/s); `holds`: a no-slip solid's.
-    Fixed { v: f32, holds: bool },
-}
-
 /// `u` (u_g, m/s) after ν∇²(u_p + u_g) has acted for `dt` (s) at viscosity `nu` (m²/s), `u_p`
 /// the primitives' wind on the faces (m/s).
-pub fn diffuse(
-    grid: &Grid,
-    solids: &Solids,
-    faces: Faces,
-    u_p: &MacField,
-    u: &mut MacField,
-    nu: f32,
-    dt: f32,
-) {
+pub fn diffuse(grid: &Grid, kinds: &FaceKinds, u_p: &MacField, u: &mut MacField, nu: f32, dt: f32) {
     if nu <= 0.0 || dt <= 0.0 {
         return;
     }
@@ -54,19 +37,7 @@ pub fn diffuse(
     let r = r / substeps as f32;
     for a in 0..3 {
         let d = grid.face_dims(a);
-        let mut kind = vec![Face::Free; u.u[a].len()];
-        for k in 0..d[2] {
-            for j in 0..d[1] {
-                for i in 0..d[0] {
-                    if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
-                        kind[grid.face(a, i, j, k)] = Face::Fixed {
-                            v,
-                            holds: holds(grid, solids, a, [i, j, k]),
-                        };
-                    }
-                }
-            }
-        }
+        let kind = &kinds.kind[a];
         let up = &u_p.u[a];
         let stride = [1, d[0], d[0] * d[1]];
         for _ in 0..substeps {

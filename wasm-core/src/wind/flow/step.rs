@@ -11,7 +11,7 @@
 //! cell or two. No threads and no hashing: the same inputs give the same bytes.
 
 use super::advect::{advect_velocity_into, Advection};
-use super::boundary::{impose, Faces, Solids};
+use super::boundary::{FaceKinds, Faces, Solids};
 use super::diffuse::diffuse;
 use super::forces::{add_buoyancy, add_splat, Splat};
 use super::grid::Grid;
@@ -61,6 +61,8 @@ pub struct Flow {
 /// the advection's and the projection's own.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
+    /// The faces' kinds for the solids and faces they were worked out for.
+    kinds: Option<(Solids, Faces, FaceKinds)>,
     carrier: Option<Centred>,
     advected: Option<MacField>,
     advection: Advection,
@@ -99,14 +101,23 @@ impl Flow {
     ) -> Projection {
         let g = &self.grid;
         let scratch = &mut self.scratch;
+        let stale =
+            !matches!(&scratch.kinds, Some((s, f, _)) if *s == self.solids && *f == self.faces);
+        if stale {
+            let kinds = FaceKinds::new(g, &self.solids, self.faces);
+            scratch.kinds = Some((self.solids.clone(), self.faces, kinds));
+        }
+        let Some((_, _, kinds)) = &scratch.kinds else {
+            unreachable!("the faces' kinds were just worked out")
+        };
         let carrier = scratch.carrier.get_or_insert_with(|| Centred::new(g));
         carrier.set_sum(g, u_p, &self.u_g);
         let u = scratch.advected.get_or_insert_with(|| MacField::zeros(g));
         advect_velocity_into(g, &self.u_g, carrier, dt, &mut scratch.advection, u);
-        diffuse(g, &self.solids, self.faces, u_p, u, self.viscosity, dt);
+        diffuse(g, kinds, u_p, u, self.viscosity, dt);
         if self.eddies {
             eddy_viscosity(g, &self.u_g, dt, &mut self.eddy_viscosity);
-            diffuse_eddies(g, &self.solids, self.faces, u, &self.eddy_viscosity, dt);
+            diffuse_eddies(g, kinds, u, &self.eddy_viscosity, dt);
         }
         if let Some(t) = temperature {
             add_buoyancy(g, u, t, self.buoyancy, self.gravity, dt);
@@ -114,7 +125,7 @@ impl Flow {
         for s in splats {
             add_splat(g, u, s, dt);
         }
-        impose(g, &self.solids, self.faces, u_p, u);
+        kinds.impose(u_p, u);
         let report = scratch.projector.project(
             g,
             &self.solids,

@@ -10,7 +10,7 @@
 //! flux through walls). ν_t is capped at h²/(8 dt), the explicit step's stable bound, so one
 //! pass always holds: where the cap binds the model mixes less than it asks.
 
-use super::boundary::{fixed_normal, Faces, Solids};
+use super::boundary::{FaceKind, FaceKinds};
 use super::grid::Grid;
 use super::mac::MacField;
 
@@ -75,27 +75,13 @@ pub fn eddy_viscosity(grid: &Grid, u: &MacField, dt: f32, out: &mut Vec<f32>) {
 }
 
 /// `u` (u_g, m/s) after the eddy viscosity `nu_t` (m²/s per cell) has acted for `dt` (s).
-pub fn diffuse_eddies(
-    grid: &Grid,
-    solids: &Solids,
-    faces: Faces,
-    u: &mut MacField,
-    nu_t: &[f32],
-    dt: f32,
-) {
+pub fn diffuse_eddies(grid: &Grid, kinds: &FaceKinds, u: &mut MacField, nu_t: &[f32], dt: f32) {
     let n = grid.cells;
     let inv_h2 = 1.0 / (grid.h * grid.h);
     for a in 0..3 {
         let d = grid.face_dims(a);
         let old = u.u[a].clone();
-        let free: Vec<bool> = (0..old.len())
-            .map(|f| {
-                let i = f % d[0];
-                let j = (f / d[0]) % d[1];
-                let k = f / (d[0] * d[1]);
-                fixed_normal(grid, solids, faces, a, [i, j, k]).is_none()
-            })
-            .collect();
+        let free: Vec<bool> = kinds.kind[a].iter().map(|k| *k == FaceKind::Free).collect();
         let stride = [1, d[0], d[0] * d[1]];
         for k in 0..d[2] {
             for j in 0..d[1] {
