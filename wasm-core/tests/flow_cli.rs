@@ -3,31 +3,14 @@
 //! without a flow; `windfield wind --frames A..B --fps F` is one simulation, each frame the
 //! bytes of `--seconds k/F`, the flow included.
 
-use std::path::{Path, PathBuf};
+use crate::support::{bin, Scratch};
+use std::path::Path;
 use std::process::{Command, Output};
 use windfield::field::npy;
 use windfield::{Scene, Simulation};
 
-fn bin() -> PathBuf {
-    std::env::var_os("WINDFIELD_TEST_BIN")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_windfield")))
-}
-
-struct Scratch(PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 fn scratch(name: &str) -> Scratch {
-    let dir =
-        std::env::temp_dir().join(format!("windfield-flow-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    Scratch(dir)
+    crate::support::scratch("flow-cli", name)
 }
 
 fn run(args: &[&str]) -> Output {

@@ -26,5 +26,6 @@ mod render_volume;
 mod scene_format;
 mod shapes;
 mod solids;
+mod support;
 mod vector_potential;
 mod wind_command;

@@ -2,29 +2,13 @@
 //! over a box, read back with the formats' own readers and held to the potential flow around
 //! a solid sphere; bad input refused naming the flag or the file, and no file left behind.
 
-use std::path::{Path, PathBuf};
+use crate::support::{bin, Scratch};
+use std::path::Path;
 use std::process::{Command, Output};
 use windfield::field::npy;
 
-fn bin() -> PathBuf {
-    std::env::var_os("WINDFIELD_TEST_BIN")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_windfield")))
-}
-
-struct Scratch(PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 fn scratch(name: &str) -> Scratch {
-    let dir = std::env::temp_dir().join(format!("windfield-wind-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    Scratch(dir)
+    crate::support::scratch("wind", name)
 }
 
 fn run(args: &[&str]) -> Output {
