@@ -156,11 +156,11 @@ impl WindFrame {
             Some(f) => {
                 // Within the flow's box u_p + u_g replaces the solids' closed forms for the
                 // large scales; across its fade layer the two blend.
-                let weight = f.weight(x);
+                let (weight, u_g) = f.weighted(x);
                 if weight == 0.0 {
                     return (large, small, clear);
                 }
-                let solved = self.primitive_wind(x) + f.velocity(x) / weight;
+                let solved = self.primitive_wind(x) + u_g;
                 (large + (solved - large) * weight, small, clear)
             }
         }

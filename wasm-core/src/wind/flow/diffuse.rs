@@ -22,9 +22,10 @@
 use super::boundary::{FaceKind as Face, FaceKinds};
 use super::grid::Grid;
 use super::mac::MacField;
+use crate::scene::limits::FLOW_VISCOSITY_STEP;
 
-/// The largest ν·dt/h² of one substep.
-const STABLE: f32 = 0.125;
+/// The largest ν·dt/h² of one substep (the scene's budget counts the same substeps).
+const STABLE: f32 = FLOW_VISCOSITY_STEP as f32;
 
 /// `u` (u_g, m/s) after ν∇²(u_p + u_g) has acted for `dt` (s) at viscosity `nu` (m²/s), `u_p`
 /// the primitives' wind on the faces (m/s).

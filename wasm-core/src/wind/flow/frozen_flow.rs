@@ -51,11 +51,22 @@ impl FrozenFlow {
     /// u_g at `x` (m), m/s, faded outside the box.
     #[inline]
     pub fn velocity(&self, x: Vec3A) -> Vec3A {
+        let (w, u) = self.weighted(x);
+        u * w
+    }
+
+    /// [`Self::weight`] at `x` (m) and u_g unfaded there (m/s, the value at the box's nearest
+    /// point; zero where the weight is).
+    #[inline]
+    pub fn weighted(&self, x: Vec3A) -> (f32, Vec3A) {
         let w = self.weight(x);
         if w == 0.0 {
-            return Vec3A::ZERO;
+            return (0.0, Vec3A::ZERO);
         }
         let inside = x.clamp(self.lo, self.hi);
-        Vec3A::from_array(self.sampler.at(&self.u_g, inside.to_array())) * w
+        (
+            w,
+            Vec3A::from_array(self.sampler.at(&self.u_g, inside.to_array())),
+        )
     }
 }

@@ -65,6 +65,26 @@ impl MacField {
         FaceSampler::new(grid).at(self, x)
     }
 
+    /// The velocity at each cell's centre (m/s, laid out as [`Grid::cell`]): each component the
+    /// mean of the cell's two faces across its axis.
+    pub fn cell_means(&self, grid: &Grid) -> Vec<[f32; 3]> {
+        let n = grid.cells;
+        let mut out = Vec::with_capacity(grid.cell_count());
+        for k in 0..n[2] {
+            for j in 0..n[1] {
+                for i in 0..n[0] {
+                    out.push(std::array::from_fn(|a| {
+                        let mut up = [i, j, k];
+                        up[a] += 1;
+                        let f = &self.u[a];
+                        0.5 * (f[grid.face(a, i, j, k)] + f[grid.face(a, up[0], up[1], up[2])])
+                    }));
+                }
+            }
+        }
+        out
+    }
+
     /// The largest |component| on any face, m/s.
     pub fn max_abs(&self) -> f32 {
         self.u.iter().flatten().fold(0.0f32, |m, &v| m.max(v.abs()))

@@ -151,12 +151,18 @@ impl SceneFlow {
         self.u_p = MacField::from_fn(&grid, |x| {
             frame.primitive_wind(Vec3A::from_array(x)).to_array()
         });
-        let mut solids = self.fixed.clone();
-        for (centre, radius, velocity) in wind.repulsor_spheres(t) {
-            solids.add_sphere(&grid, centre.to_array(), radius, velocity.to_array());
-        }
-        if solids != self.flow.solids {
-            self.flow.solids = solids;
+        let spheres = wind.repulsor_spheres(t);
+        if !spheres.is_empty() {
+            let mut solids = self.fixed.clone();
+            for (centre, radius, velocity) in spheres {
+                solids.add_sphere(&grid, centre.to_array(), radius, velocity.to_array());
+            }
+            if solids != self.flow.solids {
+                self.flow.solids = solids;
+            }
+        } else if self.flow.solids != self.fixed {
+            // The repulsors an edit removed leave no solid cells behind.
+            self.flow.solids = self.fixed.clone();
         }
         let heated = heat.iter().any(|&q| q != 0.0);
         if heated {
@@ -203,21 +209,11 @@ impl SceneFlow {
     /// u_g at the cells' centres (m/s, xyz interleaved, x fastest, then y, then z): each
     /// component the mean of its cell's two faces.
     pub fn cell_velocity(&self) -> Vec<f32> {
-        let g = &self.flow.grid;
-        let n = g.cells;
-        let mut out = Vec::with_capacity(3 * g.cell_count());
-        for k in 0..n[2] {
-            for j in 0..n[1] {
-                for i in 0..n[0] {
-                    for a in 0..3 {
-                        let mut up = [i, j, k];
-                        up[a] += 1;
-                        let u = &self.flow.u_g.u[a];
-                        out.push(0.5 * (u[g.face(a, i, j, k)] + u[g.face(a, up[0], up[1], up[2])]));
-                    }
-                }
-            }
-        }
-        out
+        self.flow
+            .u_g
+            .cell_means(&self.flow.grid)
+            .into_iter()
+            .flatten()
+            .collect()
     }
 }

@@ -18,11 +18,12 @@ use super::grid::Grid;
 use super::mac::{Centred, MacField};
 use super::project::{Projection, Projector};
 use super::subgrid::{diffuse_eddies, eddy_viscosity};
+use crate::scene::flow_settings;
 
-/// Air's kinematic viscosity, m²/s.
-pub const AIR_VISCOSITY: f32 = 1.5e-5;
+/// Air's kinematic viscosity, m²/s (the scene's default, `flow.viscosity`).
+pub const AIR_VISCOSITY: f32 = flow_settings::AIR_VISCOSITY as f32;
 /// An ideal gas's expansion coefficient at room temperature, 1/K.
-pub const AIR_EXPANSION: f32 = 1.0 / 293.15;
+pub const AIR_EXPANSION: f32 = flow_settings::AIR_EXPANSION as f32;
 /// The projection's relative residual by default.
 pub const TOLERANCE: f64 = 1e-5;
 
@@ -80,7 +81,7 @@ impl Flow {
             faces,
             viscosity: AIR_VISCOSITY,
             buoyancy: AIR_EXPANSION,
-            gravity: [0.0, -9.81, 0.0],
+            gravity: flow_settings::EARTH_GRAVITY.map(|g| g as f32),
             tolerance: TOLERANCE,
             max_iterations: iterations,
             scratch: Scratch::default(),

@@ -22,21 +22,7 @@ pub fn eddy_viscosity(grid: &Grid, u: &MacField, dt: f32, out: &mut Vec<f32>) {
     let n = grid.cells;
     let h = grid.h;
     let count = grid.cell_count();
-    let mut centred = vec![[0.0f32; 3]; count];
-    for k in 0..n[2] {
-        for j in 0..n[1] {
-            for i in 0..n[0] {
-                let c = grid.cell(i, j, k);
-                for a in 0..3 {
-                    let mut up = [i, j, k];
-                    up[a] += 1;
-                    let f = &u.u[a];
-                    centred[c][a] =
-                        0.5 * (f[grid.face(a, i, j, k)] + f[grid.face(a, up[0], up[1], up[2])]);
-                }
-            }
-        }
-    }
+    let centred = u.cell_means(grid);
     let cap = h * h / (8.0 * dt.max(f32::MIN_POSITIVE));
     let scale = (SMAGORINSKY * h).powi(2);
     out.clear();
@@ -81,13 +67,14 @@ pub fn diffuse_eddies(grid: &Grid, kinds: &FaceKinds, u: &mut MacField, nu_t: &[
     for a in 0..3 {
         let d = grid.face_dims(a);
         let old = u.u[a].clone();
-        let free: Vec<bool> = kinds.kind[a].iter().map(|k| *k == FaceKind::Free).collect();
+        let kind = &kinds.kind[a];
+        let free = |f: usize| kind[f] == FaceKind::Free;
         let stride = [1, d[0], d[0] * d[1]];
         for k in 0..d[2] {
             for j in 0..d[1] {
                 for i in 0..d[0] {
                     let f = grid.face(a, i, j, k);
-                    if !free[f] {
+                    if !free(f) {
                         continue;
                     }
                     let idx = [i, j, k];
@@ -106,10 +93,10 @@ pub fn diffuse_eddies(grid: &Grid, kinds: &FaceKinds, u: &mut MacField, nu_t: &[
                     }
                     let mut sum = 0.0;
                     for b in 0..3 {
-                        if idx[b] > 0 && free[f - stride[b]] {
+                        if idx[b] > 0 && free(f - stride[b]) {
                             sum += old[f - stride[b]] - old[f];
                         }
-                        if idx[b] + 1 < d[b] && free[f + stride[b]] {
+                        if idx[b] + 1 < d[b] && free(f + stride[b]) {
                             sum += old[f + stride[b]] - old[f];
                         }
                     }
