@@ -3,9 +3,22 @@
 //! and the file names a pattern gives in its folder (what a manifest claims: `claim`).
 
 use std::path::{Path, PathBuf};
+use windfield::scene::limits::MAX_FPS;
 
 /// Most frames one range may hold (at 24 fps, eleven and a half hours).
 pub const MAX_FRAMES: u64 = 1_000_000;
+
+/// A frame rate `--fps` (frames a second): greater than 0 and at most [`MAX_FPS`].
+pub fn check_fps(fps: f64) -> Result<f64, String> {
+    if fps.is_finite() && fps > 0.0 && fps <= MAX_FPS {
+        Ok(fps)
+    } else {
+        Err(format!(
+            "--fps: must be a number greater than 0 and at most {MAX_FPS} (got {})",
+            windfield::error::number(fps)
+        ))
+    }
+}
 
 /// The frames A..B (half-open, A < B, at most [`MAX_FRAMES`]).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -27,7 +27,7 @@
 use super::atomic::{create_parent, write_atomically};
 use super::claim::{self, Manifest};
 use super::failure::Failure;
-use super::frames::{FrameRange, Pattern, Shard};
+use super::frames::{check_fps, FrameRange, Pattern, Shard};
 use super::summary::{grouped, wall};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -40,7 +40,6 @@ use windfield::export::still::{self, StillFormat};
 use windfield::export::vdb;
 use windfield::export::volume::GasVolume;
 use windfield::render::{RenderOptions, Renderer};
-use windfield::scene::limits::MAX_FPS;
 use windfield::{Scene, Simulation};
 
 /// What `--help` says of each sequence flag, in one command's words (`render` renders
@@ -118,12 +117,7 @@ impl Sequence {
         let fps = args.fps.ok_or_else(|| {
             input("--fps: required with --frames (frames per second of the sequence)".into())
         })?;
-        if !(fps.is_finite() && fps > 0.0 && fps <= MAX_FPS) {
-            return Err(input(format!(
-                "--fps: must be a number greater than 0 and at most {MAX_FPS} (got {})",
-                windfield::error::number(fps)
-            )));
-        }
+        let fps = check_fps(fps).map_err(input)?;
         let text = out
             .to_str()
             .ok_or_else(|| input("--out: the pattern must be valid UTF-8".into()))?;

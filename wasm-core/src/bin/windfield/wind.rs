@@ -12,7 +12,7 @@
 
 use super::atomic::write_atomically;
 use super::failure::Failure;
-use super::frames::FrameRange;
+use super::frames::{check_fps, FrameRange};
 use super::input::{read_scene, read_text};
 use super::moment::check_seconds;
 use super::summary::{grouped, wall};
@@ -24,7 +24,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use windfield::export::vector_grid::VectorGrid;
 use windfield::field::{npy, TurbulentField};
-use windfield::scene::limits::{MAX_COORD, MAX_FPS};
+use windfield::scene::limits::MAX_COORD;
 use windfield::wind::Wind;
 use windfield::{Scene, Simulation};
 
@@ -304,13 +304,7 @@ impl Moments {
                         "--fps: required with --frames (frames per second of the series)".into(),
                     )
                 })?;
-                if !(fps.is_finite() && fps > 0.0 && fps <= MAX_FPS) {
-                    return Err(Failure::Input(format!(
-                        "--fps: must be a number greater than 0 and at most {MAX_FPS} (got {})",
-                        windfield::error::number(fps)
-                    )));
-                }
-                Ok(Self::Frames(range, fps))
+                Ok(Self::Frames(range, check_fps(fps).map_err(Failure::Input)?))
             }
             (None, None) => Err(Failure::Input(
                 "give --seconds T, or --frames A..B with --fps F".into(),
