@@ -1,7 +1,8 @@
 // The playground's panel edits the flow (paper §7, the large scales solved on a coarse grid):
 // switching it on adds a flow round the emitters, its cells, cooling and faces change the
 // scene the page reports, an emitter's temperature is edited with the emitter, and switching
-// it off keeps it in the scene without effect. The presets that carry a flow load with it.
+// it off keeps it in the scene without effect. The presets that carry a flow load with it, and
+// their flow goes to the GPU with their gas.
 import { readFileSync } from 'node:fs';
 import { expect, test, collectErrors, openFolder, presetFile, setNumber } from './helpers.js';
 import { encodeScene } from '../web/src/state/url-codec.js';
@@ -67,15 +68,21 @@ test('the panel switches the flow on and off and edits its cells, cooling, faces
 });
 
 for (const name of FLOW_PRESETS) {
-  test(`preset ${name} loads with its flow and steps without an error`, async ({ page }) => {
+  test(`preset ${name} loads with its flow and steps without an error, in the worker and on the GPU`, async ({ page }) => {
     const errors = collectErrors(page);
     await open(page, `./?preset=${name}&view=points`);
     await page.evaluate(() => window.windfield.pause());
     const loaded = await page.evaluate(async () => {
       const w = window.windfield;
       await w.step(30);
-      return { scene: w.getScene(), blobs: w.stats().blobs };
+      // The GPU takes the gas and its flow, and steps both.
+      const stepper = await w.setStepper('gpu');
+      await w.step(5);
+      const grid = await w.exportFlow();
+      const onGpu = { stepper, flowStepper: w.stats().flowStepper, finite: grid.velocity.every(Number.isFinite), blobs: w.stats().blobs };
+      return { scene: w.getScene(), blobs: w.stats().blobs, onGpu };
     });
+    expect(loaded.onGpu).toEqual({ stepper: 'gpu', flowStepper: 'gpu', finite: true, blobs: loaded.blobs });
     const file = presetFile(name);
     expect(loaded.scene.seed).toBe(file.seed);
     expect(loaded.scene.flow.box).toEqual(file.flow.box);

@@ -1,8 +1,10 @@
 // The flow in the browser (docs/FORMATS.md, the browser API): a scene with a flow hands out its
-// grid (`exportFlow`: u_g (nz, ny, nx, 3) and T (nz, ny, nx), whole Float32Arrays from the
-// worker), warm where a hot emitter's gas is; `stats()` says the worker steps it
-// (`flowStepper: 'cpu'`) and times its last step (`flowMs`); the GPU stepper leaves such a scene
-// to the worker without a fault, also when an edit adds a flow to a GPU-stepped scene; a scene
+// grid (`exportFlow`: u_g (nz, ny, nx, 3) and T (nz, ny, nx), whole Float32Arrays), warm where a
+// hot emitter's gas is; `stats()` says who steps it (`flowStepper`: the worker, 'cpu', where it
+// steps the gas, and 'gpu' once the GPU stepper takes the gas and the flow with it) and times its
+// last step (`flowMs`); a flow the GPU cannot step (a primitive other than uniform winds) keeps
+// the gas in the worker, and says why, also when an edit brings one to a GPU-stepped scene; an
+// edit that adds a flow the GPU can step leaves the gas and the new flow on the GPU; a scene
 // without a flow hands out null. The same on a <wind-field> element.
 import { readFileSync } from 'node:fs';
 import { test, expect, bare, collectErrors } from './helpers.js';
@@ -69,7 +71,7 @@ function expectHotGrid(s, time) {
 
 const emitterAt = hotFlow.emitters[0].center;
 
-test('a scene with a flow: exportFlow hands out its grid, warm near the hot emitter; the worker steps it', async ({ page }) => {
+test('a scene with a flow: exportFlow hands out its grid, warm near the hot emitter, from the worker and, once the GPU takes the gas, from the GPU', async ({ page }) => {
   const errors = collectErrors(page);
   await page.addInitScript(installSummary);
   await open(page, hotFlow);
@@ -78,24 +80,33 @@ test('a scene with a flow: exportFlow hands out its grid, warm near the hot emit
     await w.step(20);
     const grid = await w.exportFlow();
     const stats = w.stats();
-    // The GPU is asked for: the worker keeps the gas, and says why.
+    // The GPU is asked for: the gas and its flow go to it, and exportFlow reads the GPU's.
     const stepper = await w.setStepper('gpu');
     await w.step(1);
-    return { summary: window.flowSummary(grid, near), stats, stepper, after: w.stats() };
+    const onGpu = { summary: window.flowSummary(await w.exportFlow(), near), stats: w.stats() };
+    // A flow among a source's wind: the GPU's flow takes uniform winds only.
+    const sourced = structuredClone(w.getScene());
+    sourced.wind.push({ type: 'source', position: [0.2, 0.6, 0], strength: 0.05 });
+    await w.setScene(sourced);
+    await w.step(1);
+    return { summary: window.flowSummary(grid, near), stats, stepper, onGpu, sourced: w.stats() };
   }, emitterAt);
   expectHotGrid(out.summary, out.stats.time);
   expect(out.stats.flowStepper).toBe('cpu');
   expect(out.stats.flowMs).toBeGreaterThanOrEqual(0);
   expect(out.stats.stepper).toBe('cpu');
-  expect(out.stats.stepperReason).toMatch(/flow/);
-  expect(out.stepper).toBe('cpu');
-  expect(out.after.stepper).toBe('cpu');
-  expect(out.after.flowStepper).toBe('cpu');
-  expect(out.after.stepperReason).toMatch(/flow/);
+  expect(out.stepper).toBe('gpu');
+  expect(out.onGpu.stats.stepper).toBe('gpu');
+  expect(out.onGpu.stats.flowStepper).toBe('gpu');
+  expect(out.onGpu.stats.flowMs).toBeGreaterThan(0);
+  expectHotGrid(out.onGpu.summary, out.onGpu.stats.time);
+  expect(out.sourced.stepper).toBe('cpu');
+  expect(out.sourced.flowStepper).toBe('cpu');
+  expect(out.sourced.stepperReason).toMatch(/flow.*uniform winds only/);
   expect(errors).toEqual([]);
 });
 
-test('a scene without a flow hands out null; an edit that adds one brings the gas back from the GPU', async ({ page }) => {
+test('a scene without a flow hands out null; an edit that adds one takes the flow to the GPU with the gas, one the GPU cannot step brings both back', async ({ page }) => {
   const errors = collectErrors(page);
   await page.addInitScript(installSummary);
   await open(page, smallPlume);
@@ -112,7 +123,14 @@ test('a scene without a flow hands out null; an edit that adds one brings the ga
     const kept = w.stats();
     await w.step(20);
     const grid = await w.exportFlow();
-    return { stepper, plain, kept, grid: window.flowSummary(grid, near), stats: w.stats() };
+    const stats = w.stats();
+    // A source joins the wind: the gas and the flow come back to the worker, u_g as it was.
+    const sourced = structuredClone(edited);
+    sourced.wind.push({ type: 'source', position: [0.2, 0.6, 0], strength: 0.05 });
+    await w.editScene(sourced);
+    const back = { stats: w.stats(), grid: await w.exportFlow() };
+    const same = back.grid.velocity.every((v, i) => Math.abs(v - grid.velocity[i]) <= 1e-7);
+    return { stepper, plain, kept, grid: window.flowSummary(grid, near), stats, back: back.stats, same };
   }, { scene: smallPlume, flow: hotFlow.flow, temperature: hotFlow.emitters[0].temperature, near: smallPlume.emitters[0].center });
   expect(out.stepper).toBe('gpu');
   expect(out.plain.grid).toBeNull();
@@ -120,10 +138,14 @@ test('a scene without a flow hands out null; an edit that adds one brings the ga
   expect(out.plain.stats.flowMs).toBe(0);
   expect(out.plain.stats.stepper).toBe('gpu');
   expect(out.kept.time).toBe(out.plain.stats.time);
-  expect(out.kept.stepper).toBe('cpu');
-  expect(out.kept.flowStepper).toBe('cpu');
-  expect(out.stats.stepperReason).toMatch(/flow/);
+  expect(out.kept.stepper).toBe('gpu');
+  expect(out.kept.flowStepper).toBe('gpu');
+  expect(out.stats.flowStepper).toBe('gpu');
   expectHotGrid(out.grid, out.stats.time);
+  expect(out.back.stepper).toBe('cpu');
+  expect(out.back.flowStepper).toBe('cpu');
+  expect(out.back.stepperReason).toMatch(/flow/);
+  expect(out.same).toBe(true);
   expect(errors).toEqual([]);
 });
 

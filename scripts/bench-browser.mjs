@@ -28,6 +28,43 @@ export function gzipKiB(dir, pattern, skip = []) {
   return total / 1024;
 }
 
+/**
+ * In the page: the preset `name` 3 s in, its worker step and flow times (ms, medians of seven
+ * steps) and, once the GPU stepper takes it, one step there with the flow read back (ms, the
+ * median of five); `stepper` says who took it.
+ */
+async function flowPresetSteps(name) {
+  const w = window.windfield;
+  const scene = await (await fetch(`./scenes/${name}.json`)).json();
+  await w.pause();
+  await w.setStepper('cpu');
+  await w.setScene(scene);
+  await w.step(Math.round(3 / scene.simulation.dt));
+  w.setView('points');
+  const steps = [];
+  const flows = [];
+  for (let i = 0; i < 7; i++) {
+    await new Promise((r) => setTimeout(r, 500));
+    await w.step(1);
+    steps.push(w.stats().stepMs);
+    flows.push(w.stats().flowMs);
+  }
+  const stepper = await w.setStepper('gpu');
+  await w.step(1);
+  await w.exportFlow();
+  const gpu = [];
+  for (let i = 0; i < 5; i++) {
+    const t0 = performance.now();
+    await w.step(1);
+    await w.exportFlow();
+    gpu.push(performance.now() - t0);
+  }
+  await w.setStepper('cpu');
+  w.setView('raymarch');
+  const mid = (t) => t.sort((a, b) => a - b)[Math.floor(t.length / 2)];
+  return { step: mid(steps), flow: mid(flows), stepper, gpu: mid(gpu) };
+}
+
 /** Runs the benchmarks against the built site; returns the results. */
 export async function benchBrowser() {
   const results = [];
@@ -121,6 +158,16 @@ export async function benchBrowser() {
     emit('worker_step_256_solids_over_none', solidSteps[256].worker / (worker.step + worker.pack), 'ratio');
     if (gpu100.ms !== null && solidSteps[256].gpu !== null) {
       emit('gpu_step_256_solids_over_none', solidSteps[256].gpu / gpu100.ms, 'ratio');
+    }
+    // The flow presets, 3 s in: the worker's step with its flow's part (medians of seven steps),
+    // and the step on the GPU beside the blobs, flow and all (medians of five, each finished by
+    // reading the flow back: in SwiftShader how it scales, not what a GPU does).
+    for (const name of ['candle', 'ceiling-smoke', 'cylinder-wake']) {
+      const out = await page.evaluate(flowPresetSteps, name);
+      const key = name.replace('-', '_');
+      emit(`flow_${key}_worker_step_ms`, out.step, 'ms');
+      emit(`flow_${key}_worker_flow_ms`, out.flow, 'ms');
+      if (out.stepper === 'gpu') emit(`flow_${key}_gpu_step_and_readback_ms`, out.gpu, 'ms');
     }
     await plumeOf(100_000);
 

@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { addSolid, boundaryOf, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
 import { atlasOf, atlasTexel, flowGpuRefuses } from '../web/src/flow-gpu/gl.js';
-import { solidDistance } from '../web/src/flow-gpu/scene.js';
+import { gpuFlowRefusesScene, solidDistance } from '../web/src/flow-gpu/scene.js';
 
 const cells = [3, 3, 3];
 const grid = { origin: [0, 0, 0], cells, h: 1 };
@@ -85,4 +85,16 @@ test('the solid objects\' signed distances: a sphere, a plane, a capped cylinder
   near(solidDistance(cylinder, [0, 0, -0.5]), 0.5);
   near(solidDistance(cylinder, [1.5, 0, 3]), Math.SQRT2);
   assert.equal(solidDistance({ type: 'box' }, [0, 0, 0]), Infinity);
+});
+
+test('the GPU takes a scene\'s flow under uniform winds without a decay, and says why it does not take any other', () => {
+  const flow = { box: [0, 0, 0, 1, 1, 1], cells: [8, 8, 8] };
+  const uniform = { type: 'uniform', velocity: [0.5, 0, 0], decay: null };
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [uniform, { ...uniform, velocity: [0, 0.1, 0] }] }), null);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [] }), null);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'source', position: [0, 0, 0], strength: 1, enabled: false }] }), null);
+  assert.match(gpuFlowRefusesScene({ flow, wind: [{ ...uniform, decay: 0.5 }] }), /uniform winds only \(the scene has a uniform with a decay\)/);
+  assert.match(gpuFlowRefusesScene({ flow, wind: [uniform, { type: 'repulsor', radius: 0.1 }] }), /uniform winds only \(the scene has a repulsor\)/);
+  assert.match(gpuFlowRefusesScene({ flow: { ...flow, enabled: false }, wind: [] }), /no flow/);
+  assert.match(gpuFlowRefusesScene({ wind: [] }), /no flow/);
 });

@@ -48,10 +48,10 @@ export interface WindFieldStats {
   stepper: WindFieldStepper;
   /** Why the worker steps the gas where the GPU was asked for (`setStepper('gpu' | 'auto')`); absent otherwise. */
   stepperReason?: string;
-  /** The last flow step's time (ms); 0 for a scene without a flow. */
+  /** The last flow step's time (ms: the worker's, or on the GPU the page's time to issue its passes); 0 for a scene without a flow. */
   flowMs: number;
-  /** What steps the scene's flow: the engine worker's core; null for a scene without a flow. */
-  flowStepper: 'cpu' | null;
+  /** What steps the scene's flow: the engine worker's core ('cpu', where it steps the gas) or the GPU beside the GPU stepper's blobs ('gpu'); null for a scene without a flow. */
+  flowStepper: 'cpu' | 'gpu' | null;
   /** With the playground's `?profile`: the real-time view's passes on the GPU (ms). */
   passes?: Record<string, number>;
   /** How each pass stores its floats: 16-bit where the GPU cannot render to, blend or filter 32-bit ones. Absent before the scene is loaded. */

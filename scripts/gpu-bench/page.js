@@ -13,7 +13,10 @@
 // `views=0` leaves the frames out. `solids=16,64,256` then steps the plume of each count among
 // that many solid spheres (as `npm run bench`), with each stepper (each figure says which stepper
 // stepped), and `widths` the layers' widths (m, 0.02 by default) it steps them with. `flow=32,64`
-// times the flow's GPU step at those cells a side (flow.js here), and only that.
+// times the flow's GPU step at those cells a side (flow.js here), and only that. `presets=candle`
+// plays each named preset (its flow stepped where its gas is) for `live` seconds (10 by
+// default) with each stepper, filling the window, and reports the frame rate it holds, who
+// stepped the flow and its step's time.
 import { centreStatistics, distances, everyKind, totalMass, withSolids } from './gas-twin.js';
 import { plumeSpheres } from './plume-spheres.js';
 import { flowBench } from './flow-bench.js';
@@ -21,7 +24,8 @@ import { flowBench } from './flow-bench.js';
 const log = (o) => console.log(`GPUBENCH ${JSON.stringify(o)}`);
 const query = new URLSearchParams(location.search);
 const frames = Number(query.get('frames') || 10);
-const counts = (query.get('counts') || '10000,100000').split(',').map(Number);
+// With `presets` and no `counts`, only the presets.
+const counts = (query.get('counts') || (query.has('presets') ? '' : '10000,100000')).split(',').filter(Boolean).map(Number);
 const qualities = (query.get('qualities') || 'standard,high').split(',');
 // Without `steppers` the page keeps its own choice ('auto': the GPU where it can).
 const steppers = (query.get('steppers') || 'auto').split(',');
@@ -97,9 +101,20 @@ async function main() {
       }
     }
   }
+  for (const name of (query.get('presets') || '').split(',').filter(Boolean)) {
+    const preset = await (await fetch(`./scenes/${name}.json`)).json();
+    fillWindow();
+    for (const stepper of steppers) {
+      await w.setStepper(stepper);
+      w.pause();
+      await w.setScene(preset);
+      await w.step(Math.round(3 / preset.simulation.dt));
+      await playFor(w, Number(query.get('live') || 10), { preset: name, blobs: w.stats().blobs });
+    }
+  }
   const seconds = Number(query.get('live') || 0);
-  if (seconds > 0) {
-    document.head.insertAdjacentHTML('beforeend', '<style>#view { position: fixed !important; inset: 0; z-index: 9; border-radius: 0; }</style>');
+  if (seconds > 0 && !query.has('presets')) {
+    fillWindow();
     for (const n of counts) {
       for (const stepper of steppers) {
         await w.setStepper(stepper);
@@ -181,8 +196,18 @@ async function stepTimes(w) {
  * The playground playing the plume of `n` blobs for `seconds`, one step a display frame (dt =
  * 1/60 s, so every frame rebuilds the volumes): its last 5 s of frame rate and step time.
  */
+/** The playground's view over the whole window. */
+function fillWindow() {
+  document.head.insertAdjacentHTML('beforeend', '<style>#view { position: fixed !important; inset: 0; z-index: 9; border-radius: 0; }</style>');
+}
+
 async function live(w, plume, n, seconds) {
   const blobs = await plumeOf(w, { ...plume, simulation: { ...plume.simulation, dt: 1 / 60 } }, n);
+  await playFor(w, seconds, { blobs });
+}
+
+/** Plays the scene in the view for `seconds` and reports the rate it held, with `about`. */
+async function playFor(w, seconds, about) {
   const view = query.get('liveView') || 'raymarch';
   w.setView(view);
   w.play();
@@ -198,9 +223,11 @@ async function live(w, plume, n, seconds) {
   log({
     live: true,
     view,
-    blobs,
+    ...about,
     quality: query.get('quality') || 'standard',
     stepper: w.stats().stepper,
+    flowStepper: w.stats().flowStepper,
+    flowMs: last.reduce((a, s) => a + s.flowMs, 0) / last.length,
     box: [canvas.clientWidth, canvas.clientHeight],
     canvas: [canvas.width, canvas.height],
     fps: last.reduce((a, s) => a + s.fps, 0) / last.length,

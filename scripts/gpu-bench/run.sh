@@ -4,7 +4,7 @@
 # served by Python, and scripts/gpu-bench/page.js reporting through the console. Needs no Node
 # on the GPU machine.
 #   CHROMIUM=/path/to/chromium scripts/gpu-bench/run.sh [query]   e.g. "frames=10&counts=10000"
-# (query: frames, counts, qualities, steppers, solids, profile, live, liveView, twin, flow; TIMEOUT seconds,
+# (query: frames, counts, qualities, steppers, solids, profile, live, liveView, twin, flow, presets; TIMEOUT seconds,
 # 600 by default).
 # Prints one JSON object per line (the renderer's name first). docs/BENCHMARKS.md records a run.
 # On a machine with no browser: pack-browser.sh here, on-device.sh there.

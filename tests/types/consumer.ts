@@ -44,7 +44,7 @@ if (player) {
     const limit: 'worker' | 'view' | 'display' | 'paused' = stats.limitedBy;
     console.log(time, stepper, stats.stepper, stats.frames, limit);
     const grid = await el.exportFlow();
-    const flowStepper: 'cpu' | null = stats.flowStepper;
+    const flowStepper: 'cpu' | 'gpu' | null = stats.flowStepper;
     if (grid) console.log(grid.cells[0] * grid.cells[1] * grid.cells[2], grid.velocity.length, grid.temperature[0], grid.box[3], grid.time);
     console.log(flowStepper, stats.flowMs.toFixed(2));
   })();

@@ -114,7 +114,7 @@ pub fn sections() -> Vec<Section> {
     ];
     let gpu_stepper = vec![
         shared!(BLOB_FLOATS in "frame::gpu_steps":
-            "Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0."),
+            "Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, heat at birth h0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0."),
         shared!(WIND_TABLE_HEADER in "wind::wind_table":
             "Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets."),
         shared!(WIND_TABLE_PRIMITIVE in "wind::wind_table":

@@ -52,17 +52,20 @@ export interface ViewFrame { words: Uint32Array; info: Float32Array; spheres: Fl
 /** The exact march's frame (`frame::MarchFrame`): the merged blobs packed, their description
  *  and the shadow grid (`frame::shadow_grid`). */
 export interface MarchFrame { words: Uint32Array; info: Float32Array; grid: Float32Array; }
-/** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
- *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
- *  slot and σ range after the last step. */
 /** The flow's grid at one time (`exportFlow`): the box (m), the cells, the time (s), u_g at the
  *  cells' centres (m/s, (nz, ny, nx, 3), x fastest) and the temperature excess (K, (nz, ny, nx)). */
 export interface FlowGrid { box: number[]; cells: Uint32Array; time: number;
   velocity: Float32Array; temperature: Float32Array; }
+/** The flow's u_g on each component's faces (`flowFaces`, m/s, x fastest): `u` across x,
+ *  `v` across y, `w` across z. */
+export interface FlowFaces { u: Float32Array; v: Float32Array; w: Float32Array; }
 /** Streamlines past a solid sphere (`classroom::sphere_flow`): the core's wind and the closed form,
  *  `lines × points` (x, y) pairs each, in radii, and the largest gap between them. */
 export interface SphereFlow { core: Float32Array; closedForm: Float32Array; lines: number;
   points: number; largestGap: number; }
+/** Steps for the GPU stepper (`frame::gpu_steps::GpuSteps`): newborn records and their slots,
+ *  the emptied slots, per-step ranges, the frozen wind tables, and the gas's count, highest
+ *  slot and σ range after the last step. */
 export interface GpuSteps { births: Float32Array; birthSlots: Uint32Array; freed: Uint32Array;
   ranges: Uint32Array; wind: Float32Array; windOffsets: Uint32Array; solidGrid: Float32Array; count: number;
   highWater: number; sigmaRange: Float32Array; spheres: Float32Array; emissive: boolean;

@@ -248,10 +248,31 @@ impl SceneSimulation {
     }
 
     /// Takes the GPU's centres (xyz per slot, m) as the blobs' own; with `keepOnGpu` false the
-    /// core steps them again from now on.
+    /// core steps them again from now on, with the GPU's carried `offsets` (per slot phase a
+    /// xyz, phase b xyz, m) where given.
     #[wasm_bindgen(js_name = takeCentres)]
-    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool) {
-        self.inner.take_centres(centres, keep_on_gpu);
+    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool, offsets: Option<Vec<f32>>) {
+        self.inner
+            .take_centres(centres, keep_on_gpu, offsets.as_deref());
+    }
+
+    /// Takes the flow the GPU stepped, u_g on each component's faces (m/s; `u` across x, `v`
+    /// across y, `w` across z, each x fastest: `Simulation::take_flow`). Throws for a scene
+    /// without a flow and for arrays of the wrong size.
+    #[wasm_bindgen(js_name = takeFlow)]
+    pub fn take_flow(&mut self, u: &[f32], v: &[f32], w: &[f32]) -> Result<(), JsError> {
+        self.inner.take_flow([u, v, w]).map_err(js_error)
+    }
+
+    /// The flow's u_g on each component's faces (m/s, `{u, v, w}`, each x fastest: what the
+    /// GPU starts its flow from), or undefined without a flow.
+    #[wasm_bindgen(js_name = flowFaces, unchecked_return_type = "FlowFaces | undefined")]
+    pub fn flow_faces(&self) -> JsValue {
+        let Some(flow) = self.inner.flow() else {
+            return JsValue::UNDEFINED;
+        };
+        let [u, v, w] = flow.faces().clone();
+        object(vec![("u", u.into()), ("v", v.into()), ("w", w.into())])
     }
 
     /// Whether the GPU advects the centres.

@@ -8,12 +8,18 @@
 //! | vec4 | content |
 //! |---|---|
 //! | 0 | centre x, y, z (m), σ² (m²) |
-//! | 1 | mass, age (s), τ of the own velocity (s), 0 |
+//! | 1 | mass, age (s), τ of the own velocity (s), heat at birth h0 (K·m³; 0 without heat) |
 //! | 2 | own velocity at birth v0 x, y, z (m/s), 0 |
 //! | 3 | albedo Ω r, g, b (a negative r: the medium's), 0 |
 //! | 4 | emission Q r, g, b, 0 |
 //! | 5 | carried offset of phase a x, y, z (m), 0 (zeros unless the field is carried) |
 //! | 6 | carried offset of phase b x, y, z (m), 0 |
+//!
+//! While the GPU steps a flow, newborns are left at their birth places
+//! ([`crate::gas::blob_gas::Gas::newborns_elsewhere`]): the GPU advances each by its age
+//! (vec4 1's second float) through its own u_g, as the core would through its own, and
+//! their vec4 5 holds the carried phases' ages at the step's end (s; a, b, 0, 0) from which
+//! the GPU makes their offsets; vec4 6 is zeros.
 
 use crate::frame::views::sphere_floats;
 use crate::gas::blobs::Blobs;
@@ -66,7 +72,7 @@ pub fn write_blob(blobs: &Blobs, i: usize, t: f64, out: &mut Vec<f32>) {
         blobs.mass[i],
         (t - blobs.birth[i]) as f32,
         blobs.velocity_time[i],
-        0.0,
+        blobs.heat0[i],
     ]);
     out.extend_from_slice(&rgb(&blobs.velocity0));
     out.extend_from_slice(&rgb(&blobs.albedo));
@@ -109,8 +115,24 @@ impl GpuSteps {
                 freed.len() as u32,
             ]);
             let b = &sim.gas.blobs;
+            // Newborns the GPU advances (through its flow) take their phases' ages at the
+            // step's end in place of offsets: the GPU makes their offsets as the core would.
+            let ages = sim.wind.phases().map(|p| p.ages(t)).unwrap_or_default();
             for &i in &filled {
+                let at = out.births.len();
                 write_blob(b, i, t, &mut out.births);
+                if sim.gas.newborns_elsewhere {
+                    out.births[at + 20..at + 28].copy_from_slice(&[
+                        ages[0] as f32,
+                        ages[1] as f32,
+                        0.0,
+                        0.0,
+                        0.0,
+                        0.0,
+                        0.0,
+                        0.0,
+                    ]);
+                }
                 out.birth_slots.push(b.slot[i]);
             }
             out.freed.extend_from_slice(&freed);

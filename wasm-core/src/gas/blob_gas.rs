@@ -88,6 +88,10 @@ pub struct Gas {
     /// Whether the centres are advected elsewhere (on the GPU, [`crate::gas::slots`]): a step
     /// then leaves them as they are and does the rest.
     pub centres_elsewhere: bool,
+    /// Whether newborns are advanced elsewhere too (the GPU, which steps the flow whose u_g
+    /// their first part-step needs): a birth then stays where it is born, not pushed out of a
+    /// solid, and its record carries its age to advance by ([`crate::frame::gpu_steps`]).
+    pub newborns_elsewhere: bool,
     /// c (1/s), how fast each blob's heat is lost: h = h0·exp(−c·age) (the scene's
     /// `flow.cooling`; 0 without a flow).
     pub cooling: f64,
@@ -116,6 +120,7 @@ impl Gas {
             decayed: Vec::new(),
             diffusion_epoch: f64::NEG_INFINITY,
             centres_elsewhere: false,
+            newborns_elsewhere: false,
             cooling: 0.0,
         }
     }
@@ -398,7 +403,8 @@ impl Gas {
 
     /// Births in (t1 − dt, t1]: each blob is advanced from its birth time to `t1` by one
     /// Euler step in `frame`, put back outside a solid it was born in or carried into, and
-    /// given carried offsets as the large-scale wind at its birth place makes them.
+    /// given carried offsets as the large-scale wind at its birth place makes them (with
+    /// [`Self::newborns_elsewhere`] it stays at its birth place: the GPU advances it).
     fn emit(&mut self, t1: f64, wind: &Wind, frame: &WindFrame) {
         let phases = wind.phases().copied();
         let walls = frame.walls();
@@ -423,7 +429,9 @@ impl Gas {
                     Vec3::from(l + s)
                 };
                 let mut position = x + (u + v0) * age;
-                if let Some(w) = walls {
+                if self.newborns_elsewhere {
+                    position = x;
+                } else if let Some(w) = walls {
                     position = w.solids.push_out(position.into(), w.gap()).into();
                 }
                 let blob = Blob {

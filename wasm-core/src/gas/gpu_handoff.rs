@@ -12,8 +12,10 @@ use std::sync::Arc;
 impl Simulation {
     /// Hands the centres to the GPU: from now on a step leaves them where they are (the GPU
     /// advects them, Eq. 14) and does the rest (births, σ, mass, removal, the cap), and every
-    /// blob has a slot in the GPU's state ([`crate::gas::slots`]). Refused for a scene that
-    /// splits blobs or plays a shape in reverse: those are stepped here.
+    /// blob has a slot in the GPU's state ([`crate::gas::slots`]). A scene's flow goes with
+    /// them: the GPU steps it beside the blobs (it needs their centres for the heat), and the
+    /// flow here stays as it was until [`Self::take_flow`] brings the GPU's back. Refused for a
+    /// scene that splits blobs or plays a shape in reverse: those are stepped here.
     pub fn hand_centres_to_gpu(&mut self) -> Result<(), ParamError> {
         if self.scene.gas.split_sigma.is_some() {
             return Err(ParamError::new(
@@ -27,13 +29,8 @@ impl Simulation {
                 "a scene that plays a shape in reverse is stepped by the worker, not on the GPU",
             ));
         }
-        if self.scene.active_flow().is_some() {
-            return Err(ParamError::new(
-                "flow",
-                "a scene with a flow is stepped by the worker, not on the GPU",
-            ));
-        }
         self.gas.centres_elsewhere = true;
+        self.gas.newborns_elsewhere = self.flow.is_some();
         self.slots = Some(SlotTable::new(&mut self.gas.blobs));
         self.gpu_walls = None;
         Ok(())
@@ -65,8 +62,9 @@ impl Simulation {
 
     /// Takes the GPU's centres (`xyz` per slot, m) as the blobs' own: for an export, a still, or
     /// to step here again (`keep_on_gpu` false). Slots beyond `centres` leave their blob as it
-    /// is.
-    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool) {
+    /// is. Stepping here again, a carried field takes the GPU's carried `offsets` (per slot
+    /// phase a xyz then phase b xyz, m) where given, else starts each blob's as a newborn's.
+    pub fn take_centres(&mut self, centres: &[f32], keep_on_gpu: bool, offsets: Option<&[f32]>) {
         let b = &mut self.gas.blobs;
         for (i, &s) in b.slot.iter().enumerate() {
             let s = s as usize;
@@ -77,12 +75,41 @@ impl Simulation {
         if !keep_on_gpu {
             self.slots = None;
             self.gas.centres_elsewhere = false;
+            self.gas.newborns_elsewhere = false;
+            let from_gpu = offsets.filter(|_| self.wind.phases().is_some()).map(|o| {
+                b.slot
+                    .iter()
+                    .map(|&s| {
+                        let at = 6 * s as usize;
+                        o.get(at..at + 6)
+                            .map_or([0.0; 6], |v| std::array::from_fn(|k| v[k]))
+                    })
+                    .collect::<Vec<[f32; 6]>>()
+            });
             b.slot.iter_mut().for_each(|s| *s = NO_SLOT);
-            // The GPU kept the carried offsets: start them again here as a newborn's.
-            let t = self.time();
-            let frame = self.wind.large_frame(t);
-            self.gas.offsets_as_newborn(&self.wind, t, &frame);
+            match from_gpu {
+                Some(o) => b.set_carries(true, |i| o[i]),
+                None => {
+                    // Without the GPU's offsets: start them again here as a newborn's.
+                    let t = self.time();
+                    let frame = self.wind.large_frame(t);
+                    self.gas.offsets_as_newborn(&self.wind, t, &frame);
+                }
+            }
         }
+    }
+
+    /// Takes the flow the GPU stepped (`u_g` on each component's faces, m/s,
+    /// [`crate::wind::flow::SceneFlow::take_u_g`]) as this scene's flow now, to step it here again or to edit
+    /// it. Refused for a scene without a flow, and for arrays of the wrong size.
+    pub fn take_flow(&mut self, u_g: [&[f32]; 3]) -> Result<(), ParamError> {
+        let t = self.time();
+        let Some(flow) = &mut self.flow else {
+            return Err(ParamError::new("flow", "the scene has no flow to take"));
+        };
+        flow.take_u_g(u_g, t)?;
+        self.wind.set_flow(Some(flow.frozen()));
+        Ok(())
     }
 
     /// One fixed step while the GPU advects the centres: what changed in the GPU's slots (the

@@ -43,7 +43,7 @@ pub struct Simulation {
     /// The solids whose grid the GPU was last handed ([`Simulation::solid_grid_for_gpu`], in [`crate::gas::gpu_handoff`]).
     pub(super) gpu_walls: Option<Arc<WallSet>>,
     /// The physical large scales (paper §7), when the scene has an enabled `flow`.
-    flow: Option<SceneFlow>,
+    pub(super) flow: Option<SceneFlow>,
     /// Each blob's heat at the last flow step (K·m³), scratch.
     heat: Vec<f32>,
     /// The last flow step's projection.
@@ -188,6 +188,8 @@ impl Simulation {
         if let Some(f) = &mut self.flow {
             f.stir = stir;
         }
+        // While the GPU holds the gas, it advances the newborns through its flow.
+        self.gas.newborns_elsewhere = self.slots.is_some() && self.flow.is_some();
         self.gas.cooling = scene.active_flow().map_or(0.0, |f| f.cooling);
     }
 
@@ -373,10 +375,12 @@ impl Simulation {
         self.budgeted_steps(steps * self.scene.simulation.dt)
     }
 
-    /// One fixed step: the flow's (if any, [`Self::step_flow`]), then the gas's
-    /// ([`Self::step_gas`]).
+    /// One fixed step: the flow's (if any, [`Self::step_flow`]; not while the GPU holds the
+    /// centres, and with them the flow), then the gas's ([`Self::step_gas`]).
     pub fn step(&mut self) {
-        self.step_flow();
+        if !self.centres_on_gpu() {
+            self.step_flow();
+        }
         self.step_gas();
     }
 

@@ -154,6 +154,23 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
    * consume it (`stirred`), however long they are in coming.
    */
   let stir = null;
+  /** The stir the last steps took ({centre, velocity, radius}, as the core's flow splats it), or null. */
+  let lastStir = null;
+  /** The scene text whose flow the GPU was last told of (`flowOfRun`). */
+  let toldRun = null;
+  /**
+   * What the GPU needs of the running scene's flow, when it changed since it was last told: the
+   * flow, the primitives and the render objects of the scene the simulation runs (its lighter
+   * version's grid where it runs that), or null (no flow). Undefined: nothing new.
+   */
+  const flowRunNews = () => {
+    const run = session.current?.run ?? null;
+    if (run === toldRun) return undefined;
+    toldRun = run;
+    const scene = run ? JSON.parse(run) : null;
+    if (!scene?.flow || scene.flow.enabled === false) return null;
+    return { flow: scene.flow, wind: scene.wind, objects: scene.render.objects };
+  };
   /**
    * Runs `fn` (which takes `steps` steps) with the pending stir acting on those steps: a wind at
    * the pointer of the pointer's displacement over the steps' duration (so the gas near it moves
@@ -161,6 +178,7 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
    * is used up by them.
    */
   const stirred = (steps, fn) => {
+    lastStir = null;
     if (!stir || !(steps > 0)) return fn();
     const s = sim();
     const seconds = steps * session.current.scene.simulation.dt;
@@ -170,6 +188,7 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
     const velocity = new Float32Array([dx, dy, dz].map((d) => (d / seconds) * scale));
     s.stir(new Float32Array(stir.position), velocity, stir.radius);
     session.stirred({ position: [...stir.position], velocity: [...velocity], radius: stir.radius }, steps);
+    lastStir = { centre: [...stir.position], velocity: [...velocity], radius: stir.radius };
     stir = null;
     try {
       return fn();
@@ -201,7 +220,13 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
     },
     edit: async ({ id, scene, blobCap, flowGrid }) => {
       setCap(blobCap, flowGrid);
-      return { result: await session.edit(id, scene) };
+      const result = await session.edit(id, scene);
+      // The gas stayed on the GPU: so does its flow, as the edit left it (`flowRunNews`).
+      if (session.sim?.centresOnGpu()) {
+        const flowRun = flowRunNews();
+        if (flowRun !== undefined) result.flowRun = flowRun;
+      }
+      return { result };
     },
     reset: async ({ id }) => {
       stir = null;
@@ -244,10 +269,16 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
     // demand; while they are there, each step hands over only the newborns, the emptied slots and
     // the frozen wind (`frame::gpu_steps` in the core).
     gpuStart: () => {
-      const records = sim().handCentresToGpu();
+      const s = sim();
+      const records = s.handCentresToGpu();
       const lattice = session.lattice();
-      const result = { records, lattice, time: sim().time() };
-      return { result, transfer: [records.buffer, ...latticeBuffers(lattice)] };
+      // The flow goes with the gas: its scene and its u_g now (the GPU steps it from there).
+      toldRun = null;
+      const run = flowRunNews();
+      const flow = run ? { ...run, faces: s.flowFaces() } : null;
+      const faces = flow ? [flow.faces.u.buffer, flow.faces.v.buffer, flow.faces.w.buffer] : [];
+      const result = { records, lattice, time: s.time(), flow };
+      return { result, transfer: [records.buffer, ...latticeBuffers(lattice), ...faces] };
     },
     gpuLattice: () => {
       const lattice = session.lattice();
@@ -260,12 +291,18 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
       const t0 = performance.now();
       const out = stirred(steps, () => s.stepForGpu(steps));
       session.stepped(steps);
-      const result = { ...out, stepMs: steps > 0 ? (performance.now() - t0) / steps : 0, fieldVersion: session.fieldVersion, gpu: true };
+      const result = { ...out, stepMs: steps > 0 ? (performance.now() - t0) / steps : 0, fieldVersion: session.fieldVersion, gpu: true, stir: lastStir };
+      // After an edit, the flow the GPU steps from now (undefined: as it was).
+      const flowRun = flowRunNews();
+      if (flowRun !== undefined) result.flowRun = flowRun;
       const arrays = ['births', 'birthSlots', 'freed', 'ranges', 'wind', 'windOffsets', 'solidGrid', 'sigmaRange', 'spheres'];
       return { result, transfer: arrays.map((k) => out[k].buffer) };
     },
-    takeCentres: ({ centres, keepOnGpu }) => {
-      sim().takeCentres(centres, Boolean(keepOnGpu));
+    takeCentres: ({ centres, keepOnGpu, offsets, flowFaces }) => {
+      // The GPU's flow first: a gas stepped here again without the GPU's carried offsets starts
+      // them in it.
+      if (flowFaces) sim().takeFlow(flowFaces.u, flowFaces.v, flowFaces.w);
+      sim().takeCentres(centres, Boolean(keepOnGpu), offsets ?? undefined);
       return { result: null };
     },
     // The scene run again here from its start to where it is, its edits and stirs at the steps
@@ -285,7 +322,8 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
     checkSteps: ({ steps }) => ({ result: sim().checkSteps(steps) ?? null }),
     // The flow's grid now (docs/FORMATS.md, the browser API's `exportFlow`): u_g at the cells'
     // centres (m/s, (nz, ny, nx, 3), x fastest) and the temperature excess (K, (nz, ny, nx)),
-    // whole buffers; null for a scene without a flow. Always the worker's: it steps the flow.
+    // whole buffers; null for a scene without a flow. The worker's, while it steps the flow (the
+    // page reads the GPU's while the GPU does: `player/flow-handoff.js`).
     exportFlow: () => {
       const grid = sim().exportFlow();
       if (!grid) return { result: null };

@@ -57,8 +57,12 @@ export function atlasTexel(atlas, i, j, k) {
   return (j + dy * Math.floor(k / c)) * atlas.width + i + dx * (k % c);
 }
 
-/** The GLSL of the atlases: a sample's texel, a texel's sample, and trilinear sampling. */
-export const ATLAS_GLSL = /* glsl */ `
+/**
+ * The GLSL of the atlases in cells: a sample's texel, a texel's sample, and a trilinear blend of
+ * the eight samples around a point given in cells from the grid's origin (no uniforms: the GPU
+ * stepper samples the flow with it too).
+ */
+export const ATLAS_CELLS_GLSL = /* glsl */ `
 // An atlas: (dims.x, dims.y, dims.z, columns).
 ivec2 texelOf(ivec3 s, ivec4 L) {
   return ivec2(s.x + L.x * (s.z % L.w), s.y + L.y * (s.z / L.w));
@@ -94,10 +98,6 @@ void cornersCells(highp sampler2D t, ivec4 L, vec3 o, vec3 q, out float c[8], ou
     c[n] = fetch1(t, b + e, L);
   }
 }
-// The eight corners around x (m) of the lattice L at offset o (cells), and the fractions.
-void corners(highp sampler2D t, ivec4 L, vec3 o, vec3 x, out float c[8], out vec3 f) {
-  cornersCells(t, L, o, (x - origin) * invH, c, f);
-}
 // a + (b − a)·t, as the core blends (not mix's a·(1 − t) + b·t).
 float lerp(float a, float b, float t) {
   return a + (b - a) * t;
@@ -109,6 +109,14 @@ float blend(float c[8], vec3 f) {
   float y0 = lerp(lerp(c[0], c[1], f.x), lerp(c[2], c[3], f.x), f.y);
   float y1 = lerp(lerp(c[4], c[5], f.x), lerp(c[6], c[7], f.x), f.y);
   return lerp(y0, y1, f.z);
+}
+`;
+
+/** ATLAS_CELLS_GLSL and sampling at a point in metres (the passes' `origin` and `invH`). */
+export const ATLAS_GLSL = /* glsl */ `${ATLAS_CELLS_GLSL}
+// The eight corners around x (m) of the lattice L at offset o (cells), and the fractions.
+void corners(highp sampler2D t, ivec4 L, vec3 o, vec3 x, out float c[8], out vec3 f) {
+  cornersCells(t, L, o, (x - origin) * invH, c, f);
 }
 float trilinear(highp sampler2D t, ivec4 L, vec3 o, vec3 x) {
   float c[8];
@@ -134,6 +142,20 @@ function shader(gl, type, source) {
     throw new Error(`a flow pass did not compile: ${log}`);
   }
   return s;
+}
+
+/** A program of the GLSL 3 sources `vertex` and `fragment`, or an Error saying why not. */
+export function linkProgram(gl, vertex, fragment) {
+  const program = gl.createProgram();
+  const vs = shader(gl, gl.VERTEX_SHADER, vertex);
+  const fs = shader(gl, gl.FRAGMENT_SHADER, fragment);
+  gl.attachShader(program, vs);
+  gl.attachShader(program, fs);
+  gl.linkProgram(program);
+  gl.deleteShader(vs);
+  gl.deleteShader(fs);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(`a flow pass did not link: ${gl.getProgramInfoLog(program)}`);
+  return program;
 }
 
 /**
@@ -162,16 +184,7 @@ uniform ivec3 cells;
 uniform ivec4 target;
 ${ATLAS_GLSL}
 ${body}`;
-    const program = gl.createProgram();
-    const vs = shader(gl, gl.VERTEX_SHADER, VERTEX);
-    const fs = shader(gl, gl.FRAGMENT_SHADER, fragment);
-    gl.attachShader(program, vs);
-    gl.attachShader(program, fs);
-    gl.linkProgram(program);
-    gl.deleteShader(vs);
-    gl.deleteShader(fs);
-    if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(`a flow pass did not link: ${gl.getProgramInfoLog(program)}`);
-    this.program = program;
+    this.program = linkProgram(gl, VERTEX, fragment);
     this.locations = new Map();
   }
 

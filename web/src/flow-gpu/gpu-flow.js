@@ -112,7 +112,7 @@ export class GpuFlow {
     this.back = dims.map((d) => new Lattice(gl, d, 4));
     this.kind = dims.map((d) => new Lattice(gl, d, 2, false));
     this.rows = new Lattice(gl, cells, 4, false);
-    this.temperature = new Lattice(gl, cells, 1, false);
+    this.temperature = new Lattice(gl, cells, 1);
     this.b = new Lattice(gl, cells);
     this.phi = new Pair(gl, cells);
     this.cellOut = new Lattice(gl, cells, 4);
@@ -183,10 +183,16 @@ export class GpuFlow {
     this.u[a].swap();
   }
 
+  /** u_g on each component's faces (three Float32Arrays, m/s, as `faces()` reads them) from now on. */
+  setFaces(faces) {
+    faces.forEach((v, a) => this.u[a].now.upload(v));
+  }
+
   /**
    * One step of `dt` (s) with the temperature excess `temperature` on the cells (K, a
-   * Float32Array, x fastest; null: no heat) and `splats` ({centre (m), radius (m), force
-   * (m/s²)} each).
+   * Float32Array, x fastest; this flow's own `temperature` lattice where the heat was
+   * deposited on the GPU, `heat.js`; null: no heat) and `splats` ({centre (m), radius (m),
+   * force (m/s²)} each).
    */
   step(dt, temperature = null, splats = []) {
     passState(this.gl);
@@ -204,7 +210,7 @@ export class GpuFlow {
     this.#diffuse(dt);
     if (this.eddies) this.#diffuseEddies(dt);
     if (temperature) {
-      this.temperature.upload(temperature);
+      if (temperature !== this.temperature) this.temperature.upload(temperature);
       const dtBeta = f32(dt * this.buoyancy);
       for (let a = 0; a < 3; a++) {
         if (this.gravity[a] === 0) continue;
@@ -334,6 +340,12 @@ export class GpuFlow {
   faces() {
     passState(this.gl);
     return this.u.map((p) => p.now.read());
+  }
+
+  /** T on the cells of the last step (K, x fastest: as `exportFlow()`), read back. */
+  temperatures() {
+    passState(this.gl);
+    return this.temperature.read();
   }
 
   /** u_g at the cells' centres (m/s, xyz interleaved, x fastest: as `exportFlow()`), read back. */

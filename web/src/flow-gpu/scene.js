@@ -37,16 +37,29 @@ export function solidDistance(o, x) {
 }
 
 /**
+ * Why the GPU's flow cannot take `scene` whatever the GPU, or null when it can: it needs an
+ * enabled flow, and primitives that are uniform winds without a decay (u_p the same on every
+ * face; any other, a repulsor's moving sphere among them, is stepped by the worker).
+ */
+export function gpuFlowRefusesScene(scene) {
+  const f = scene.flow;
+  if (!f || f.enabled === false) return 'the scene has no flow';
+  const winds = (scene.wind ?? []).filter((p) => p.enabled !== false);
+  const other = winds.find((p) => p.type !== 'uniform' || (p.decay ?? null) !== null);
+  if (other) return `the GPU's flow takes uniform winds only (the scene has a ${other.type}${(other.decay ?? null) !== null ? ' with a decay' : ''})`;
+  return null;
+}
+
+/**
  * The flow of `scene` on the GPU of `gl` at rest (`{flow}`), or why not (`{refused}`): no
  * enabled flow, primitives other than uniform winds, or a grid too large for its textures.
  * `options` override GpuFlow's settings (`eddies: false`, the SOR's `iterations`, ...).
  */
 export function gpuFlowOfScene(gl, scene, options = {}) {
+  const refused = gpuFlowRefusesScene(scene);
+  if (refused) return { refused };
   const f = scene.flow;
-  if (!f || f.enabled === false) return { refused: 'the scene has no flow' };
   const winds = (scene.wind ?? []).filter((p) => p.enabled !== false);
-  const other = winds.find((p) => p.type !== 'uniform' || p.decay !== undefined);
-  if (other) return { refused: `the GPU's flow takes uniform winds only (the scene has a ${other.type}${other.decay !== undefined ? ' with a decay' : ''})` };
   const cells = f.cells;
   const large = flowGpuRefuses(gl, cells);
   if (large) return { refused: large };

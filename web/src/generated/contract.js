@@ -66,7 +66,7 @@ export const SHADOW_GRID_HEADER = 8;
 
 // The GPU stepper (the gas advected on the GPU)
 
-/** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, 0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
+/** Floats per blob record handed to the GPU stepper: centre xyz, σ²; mass, age, τ, heat at birth h0; v0 xyz, 0; albedo rgb, 0; emission rgb, 0; carried offsets of phases a and b xyz, 0. (`frame::gpu_steps::BLOB_FLOATS`) */
 export const BLOB_FLOATS = 28;
 
 /** Floats of a frozen wind table's header: field slices (has field, i0, i1, f), offset, cells per metre, velocity scale, constant wind and primitive count, solids (count, layer width, has potential, carried), potential scale, carried weights and resets. (`wind::wind_table::WIND_TABLE_HEADER`) */

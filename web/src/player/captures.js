@@ -239,11 +239,12 @@ export class Captures {
   /**
    * The flow's grid now (docs/FORMATS.md, the browser API): `{box, cells, time, velocity,
    * temperature}`, u_g at the cells' centres (m/s, Float32Array (nz, ny, nx, 3), x fastest) and
-   * the temperature excess (K, Float32Array (nz, ny, nx)), whole buffers from the worker, which
-   * steps the flow; null for a scene without one.
+   * the temperature excess (K, Float32Array (nz, ny, nx)), whole buffers from wherever the flow
+   * is stepped (read back from the GPU while it steps the flow, else from the worker); null for
+   * a scene without one.
    */
   exportFlow() {
-    return this.#engine.request('exportFlow');
+    return this.#exclusive(async () => this.#handoff.gpuFlowGrid() ?? this.#engine.request('exportFlow'));
   }
 
   /** Cancels the exports in flight (they reject with "cancelled: …"); resolves with how many. */

@@ -337,6 +337,7 @@ export class Player {
       onProgress: (p) => this.#hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
     this.#stats.sceneBlobCap = info.blobCap;
+    if (info.flowRun !== undefined) this.#handoff.edited(info.flowRun);
     const camera = this.#state.scene?.render.camera;
     const next = this.#adopt(info.sceneJson);
     this.#lighter.flowRuns(info.flowCells, next.flow?.cells);

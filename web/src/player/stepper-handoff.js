@@ -5,22 +5,19 @@
 // back to the worker as the GPU's centres (for good, or for a still, an export, a check).
 
 import { GpuStepper, gpuStepperRefuses, gpuStepperUnsupported, MAX_GPU_LATTICE } from '../stepper/gpu-stepper.js';
+import { FlowHandoff, flowKeepsGpuAway, hasFlow } from './flow-handoff.js';
 
 /** Why 'auto' steps in the worker on a browser that draws 3-D in software. */
 const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps the gas faster than its GPU passes';
 
-/** Whether `scene` (as the core normalised it) has a flow that acts: an enabled `flow`. */
-function hasFlow(scene) {
-  return Boolean(scene?.flow && scene.flow.enabled !== false);
-}
-
 /**
- * Why `scene` must be stepped in the worker (it has a flow, splits blobs, plays a shape in
- * reverse, …), or null. The flow's grid is stepped by the worker alone, and the blobs move
- * through it there.
+ * Why `scene` must be stepped in the worker (it splits blobs, plays a shape in reverse, has a
+ * flow the GPU of `gl` cannot step, …), or null. A flow the GPU can step goes with the gas: the
+ * GPU steps it beside the blobs, from their heat (`flow-handoff.js`).
  */
-function sceneKeepsGpuAway(scene) {
-  if (hasFlow(scene)) return 'the scene has a flow, which the worker steps';
+function sceneKeepsGpuAway(scene, gl) {
+  const flow = flowKeepsGpuAway(scene, gl);
+  if (flow) return `the scene's flow stays in the worker: ${flow}`;
   if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
   if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
   return gpuStepperRefuses(scene);
@@ -52,6 +49,8 @@ export class StepperHandoff {
   #gpu = null;
   /** The field version its lattice is. */
   #fieldVersion = -1;
+  /** The scene's flow on the GPU while the GPU steps the gas (`flow-handoff.js`), once made. */
+  #flow = null;
 
   /**
    * @param {{engine: import('../engine/client.js').Engine, renderer: object, software: boolean,
@@ -85,9 +84,23 @@ export class StepperHandoff {
     return this.#reason;
   }
 
-  /** What steps the scene's flow (`stats().flowStepper`): 'cpu' (the worker's core), or null without a flow. */
+  /**
+   * What steps the scene's flow (`stats().flowStepper`): 'gpu' beside the GPU's blobs, 'cpu'
+   * (the worker's core), or null without a flow.
+   */
   get flowStepper() {
+    if (this.#active === 'gpu' && this.#flow?.active) return 'gpu';
     return hasFlow(this.#scene()) ? 'cpu' : null;
+  }
+
+  /** The GPU's last flow step (ms on the page) while it steps the flow, else null. */
+  get gpuFlowMs() {
+    return this.flowStepper === 'gpu' ? this.#flow.ms : null;
+  }
+
+  /** The flow's grid read back from the GPU while it steps the flow (`exportFlow()`), else null. */
+  gpuFlowGrid() {
+    return this.flowStepper === 'gpu' ? this.#flow.export(this.#gpu.time) : null;
   }
 
   /** The GPU stepper while it steps the gas, else null. */
@@ -106,7 +119,7 @@ export class StepperHandoff {
     const lattice = scene && scene.field.amplitude > 0 ? scene.field.size.reduce((a, b) => a * b, 1) : 0;
     return (this.#contextLost() && 'the view has lost its GPU context')
       || gpuStepperUnsupported(this.#renderer)
-      || (scene && sceneKeepsGpuAway(scene))
+      || (scene && sceneKeepsGpuAway(scene, this.#renderer.getContext()))
       || (lattice > MAX_GPU_LATTICE && `the field's lattice has over ${MAX_GPU_LATTICE} points`)
       || null;
   }
@@ -125,7 +138,18 @@ export class StepperHandoff {
 
   /** Brings the gas back to the worker before an edit to `scene` where the GPU may not step it. */
   async leaveFor(scene) {
-    if (this.#active === 'gpu' && (sceneKeepsGpuAway(scene) || this.#choice === 'cpu')) await this.#toCpu();
+    if (this.#active === 'gpu' && (sceneKeepsGpuAway(scene, this.#renderer.getContext()) || this.#choice === 'cpu')) await this.#toCpu();
+  }
+
+  /**
+   * An edit the gas stayed on the GPU through: its flow as the worker now runs it (`run`: the
+   * run scene's flow, primitives and objects; null without a flow), kept, restarted or gone.
+   */
+  edited(run) {
+    if (this.#active === 'gpu' && this.#flow) {
+      this.#flow.edit(run);
+      this.#renderer.resetState();
+    }
   }
 
   /** Hands the worker's gas to the GPU stepper. */
@@ -137,6 +161,9 @@ export class StepperHandoff {
     this.#gpu.start({ records: start.records, capacity: scene.gas.max_blobs + Math.ceil(4 * births) + 1024, time: start.time });
     this.#gpu.setLattice(start.lattice.data, start.lattice.size, start.lattice.potential);
     this.#fieldVersion = start.lattice.version;
+    this.#flow ??= new FlowHandoff(this.#renderer.getContext());
+    this.#flow.start(start.flow, start.flow?.faces);
+    this.#renderer.resetState();
     this.#active = 'gpu';
   }
 
@@ -149,8 +176,14 @@ export class StepperHandoff {
       return;
     }
     const centres = this.#gpu.readCentres();
+    // The carried offsets and the flow go back with the gas, as the GPU left them.
+    const offsets = this.#gpu.readCarried();
+    const flowFaces = this.#flow?.faces() ?? null;
+    this.#flow?.dispose();
+    this.#renderer.resetState();
     this.#active = 'cpu';
-    await this.#engine.request('takeCentres', { centres, keepOnGpu: false }, { transfer: [centres.buffer] });
+    const buffers = [centres, ...(offsets ? [offsets] : []), ...(flowFaces ? [flowFaces.u, flowFaces.v, flowFaces.w] : [])].map((a) => a.buffer);
+    await this.#engine.request('takeCentres', { centres, keepOnGpu: false, offsets, flowFaces }, { transfer: buffers });
   }
 
   /** Gives the worker the GPU's centres as they are now (for a still, an export, a check). */
@@ -173,8 +206,12 @@ export class StepperHandoff {
       this.#gpu.setLattice(lattice.data, lattice.size, lattice.potential);
       this.#fieldVersion = lattice.version;
     }
+    // After an edit, the flow the worker now runs (kept, restarted or gone).
+    if (steps.flowRun !== undefined) this.#flow.edit(steps.flowRun);
+    this.#renderer.resetState();
     const { simulation, gas } = this.#scene();
-    this.#gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2' });
+    const flow = this.#flow.link(steps.stir);
+    this.#gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2', flow });
   }
 
   /**
@@ -187,7 +224,8 @@ export class StepperHandoff {
     if (this.#active !== 'gpu') return null;
     await this.takeSteps(result);
     if (!this.#gpu) return null;
-    return { ...this.#gpu.frame(this.#scene().render.medium.albedo), stepMs: result.stepMs, packMs: 0, crossed: crossedBytes(result) };
+    const flowMs = this.gpuFlowMs ?? 0;
+    return { ...this.#gpu.frame(this.#scene().render.medium.albedo), stepMs: result.stepMs + flowMs, flowMs, packMs: 0, crossed: crossedBytes(result) };
   }
 
   /**
@@ -201,6 +239,8 @@ export class StepperHandoff {
 
   /** Lets go of the GPU stepper's objects. */
   dispose() {
+    this.#flow?.dispose();
+    this.#flow = null;
     this.#gpu?.dispose();
     this.#gpu = null;
   }

@@ -22,7 +22,8 @@ import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB } from '../generated/contract.js';
 import { Binning } from './binning.js';
 import { binClasses, binLayout } from './class-bins.js';
-import { BoundsPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
+import { flowUniforms } from '../flow-gpu/sample-glsl.js';
+import { BoundsPass, NewbornPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
 import { HEADER_TEXELS, PRIMITIVE_TEXELS, SOLID_TEXELS } from './wind-glsl.js';
 
@@ -87,6 +88,7 @@ export class GpuStepper {
     this.renderer = renderer;
     this.stepPass = new StepPass();
     this.writePass = new WritePass();
+    this.newbornPass = new NewbornPass(this.stepPass);
     this.packPass = new PackPass();
     this.boundsPass = new BoundsPass();
     this.binning = new Binning();
@@ -108,6 +110,9 @@ export class GpuStepper {
     this.version = 0;
     this.sorted = null;
   }
+
+  /** The flow lattices' three.js textures (`#external`). */
+  #externals = new Map();
 
   /**
    * Takes the gas over: `records` (BLOB_FLOATS per slot, slot order, as the core's
@@ -193,11 +198,62 @@ export class GpuStepper {
     this.windTable.needsUpdate = true;
   }
 
+  /** A three.js texture of the flow lattice `lattice`'s own WebGL texture (made once each). */
+  #external(lattice) {
+    let t = this.#externals.get(lattice);
+    if (!t) {
+      t = new THREE.ExternalTexture(lattice.texture);
+      this.#externals.set(lattice, t);
+    }
+    return t;
+  }
+
+  /** The raw WebGL texture of attachment `k` of render target `target`. */
+  #raw(target, k) {
+    return this.renderer.properties.get(target.textures[k]).__webglTexture;
+  }
+
+  /**
+   * The flow's part of one step from the state now (`wind::flow::SceneFlow::step` on the GPU):
+   * u_p from the step's first wind table `table` (its constant: the GPU's flow takes uniform
+   * winds only), the gas's heat deposited on the cells (blobs up to `sigmaMax` wide, m), the
+   * stir `stir` if any, then the flow's step of `dt` (s); the step pass is then given the
+   * flow's new u_g.
+   */
+  #stepFlow(link, table, dt, sigmaMax) {
+    const { flow, heat } = link;
+    const up = Array.from(table.subarray(16, 19));
+    if (!link.up || link.up.some((v, a) => v !== up[a])) {
+      flow.setUniformWind(up);
+      link.up = up;
+    }
+    const t0 = performance.now();
+    heat.deposit(flow, {
+      centres: this.#raw(this.state.now, 0),
+      masses: this.#raw(this.state.now, 1),
+      slotsPerRow: BLOBS_PER_ROW,
+      slots: Math.min(this.state.capacity, Math.max(this.highWater, link.slots ?? 0)),
+      sigmaMax,
+      cooling: link.cooling,
+    });
+    flow.step(dt, flow.temperature, link.stir ? [flow.splatOf(link.stir)] : []);
+    link.ms = performance.now() - t0;
+    this.renderer.resetState();
+    const u = this.stepPass.material.uniforms;
+    const [fu, fv, fw] = flow.u.map((p) => this.#external(p.now));
+    u.flowU.value = fu;
+    u.flowV.value = fv;
+    u.flowW.value = fw;
+    for (const [name, value] of Object.entries(flowUniforms(flow))) u[name].value = value;
+  }
+
   /**
    * Takes the steps the core took (`steps`: its `stepForGpu` result) with time step `dt` (s),
-   * diffusion κ (m²/s), dissipation α (1/s) and the RK2 midpoint rule or Euler.
+   * diffusion κ (m²/s), dissipation α (1/s) and the RK2 midpoint rule or Euler; with `flow`
+   * (`{flow: GpuFlow, heat: HeatDeposit, cooling (1/s), stir}`, the scene's flow on the GPU)
+   * each step first steps the flow from the blobs' heat, and the blobs move through u_g too.
    */
-  apply(steps, { dt, diffusion, alpha, rk2 }) {
+  apply(steps, { dt, diffusion, alpha, rk2, flow = null }) {
     const renderer = this.renderer;
     const n = steps.ranges.length / 4;
     // The tables say whether the wind goes round solids and carries its small scales
@@ -211,7 +267,11 @@ export class GpuStepper {
     // The solids' grid comes with the first steps of a scene (and after an edit that builds it anew).
     if (steps.solidGrid?.length) this.#setSolidGrid(steps.solidGrid);
     this.#ensureCapacity(steps.highWater, carried);
-    this.stepPass.configure({ solids, carried });
+    this.stepPass.configure({ solids, carried, flow: Boolean(flow) });
+    // Every σ during these steps is below this (σ² grows by κ·dt a step; the end's widest may
+    // have died within them).
+    const sigmaMax = Math.sqrt(Math.max(this.sigmaRange[1], steps.sigmaRange[1]) ** 2 + n * diffusion * dt);
+    if (flow) flow.slots = steps.highWater;
     const u = this.stepPass.material.uniforms;
     u.dt.value = dt;
     u.diffusion.value = diffusion;
@@ -226,6 +286,7 @@ export class GpuStepper {
     u.latticeWidth.value = LATTICE_WIDTH;
     const table = (k) => steps.wind.subarray(steps.windOffsets[k], steps.windOffsets[k + 1] ?? steps.wind.length);
     for (let k = 0; k < n; k++) {
+      if (flow) this.#stepFlow(flow, table(2 * k), dt, sigmaMax);
       this.#setWind(table(2 * k), table(2 * k + 1));
       u.windTable.value = this.windTable;
       u.centres.value = this.state.now.textures[0];
@@ -242,6 +303,7 @@ export class GpuStepper {
         steps.births.subarray(BLOB_FLOATS * firstBirth, BLOB_FLOATS * (firstBirth + births)),
         steps.birthSlots.subarray(firstBirth, firstBirth + births),
         steps.freed.subarray(firstFreed, firstFreed + freed),
+        flow ? this.newbornPass : null,
       );
       this.state.swap();
     }
@@ -434,7 +496,8 @@ export class GpuStepper {
     this.potential?.dispose();
     this.windTable?.dispose();
     this.solidGrid?.dispose();
-    for (const p of [this.stepPass, this.writePass, this.packPass, this.boundsPass, this.binning, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
+    for (const t of this.#externals.values()) t.dispose();
+    for (const p of [this.stepPass, this.newbornPass, this.writePass, this.packPass, this.boundsPass, this.binning, this.copyMoving, this.copyCarried, this.copyFixed]) p.dispose();
   }
 }
 

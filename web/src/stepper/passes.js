@@ -5,6 +5,7 @@
 
 import * as THREE from 'three';
 import { BLOB_FLOATS, BLOBS_PER_ROW, FOOTPRINT } from '../generated/contract.js';
+import { FLOW_SAMPLE_GLSL } from '../flow-gpu/sample-glsl.js';
 import { WIND_GLSL, WIND_PARTS_GLSL } from './wind-glsl.js';
 
 const SCREEN_VERTEX = /* glsl */ `
@@ -55,6 +56,9 @@ export class ScreenPass {
 export class StepPass extends ScreenPass {
   constructor() {
     super(/* glsl */ `
+#ifdef FLOW
+${FLOW_SAMPLE_GLSL}
+#endif
 ${WIND_GLSL}
 ${WIND_PARTS_GLSL}
 uniform highp sampler2D centres;
@@ -142,7 +146,7 @@ void main() {
   }
 #endif
   outCentre = vec4(x, a.w + diffusion * dt);
-  outMass = vec4(b.x * exp(-alpha * dt), b.y + dt, tau, 0.0);
+  outMass = vec4(b.x * exp(-alpha * dt), b.y + dt, tau, b.w);
 }`, {
       windTable: { value: null },
       lattice: { value: null },
@@ -160,17 +164,31 @@ void main() {
       diffusion: { value: 0 },
       alpha: { value: 0 },
       rk2: { value: true },
+      flowU: { value: null },
+      flowV: { value: null },
+      flowW: { value: null },
+      flowUL: { value: [1, 1, 1, 1] },
+      flowVL: { value: [1, 1, 1, 1] },
+      flowWL: { value: [1, 1, 1, 1] },
+      flowOrigin: { value: new THREE.Vector3() },
+      flowInvH: { value: 1 },
+      flowLo: { value: new THREE.Vector3() },
+      flowHi: { value: new THREE.Vector3() },
     });
   }
 
-  /** Compiles the pass for solids and carried offsets, or without (recompiled only on a change). */
-  configure({ solids, carried }) {
-    const key = `${solids}${carried}`;
+  /**
+   * Compiles the pass for solids, carried offsets and a flow's u_g, or without (recompiled
+   * only on a change).
+   */
+  configure({ solids, carried, flow = false }) {
+    const key = `${solids}${carried}${flow}`;
     if (this.key === key) return;
     this.key = key;
     const defines = {};
     if (solids) defines.SOLIDS = '';
     if (carried) defines.CARRIED = '';
+    if (flow) defines.FLOW = '';
     this.material.defines = defines;
     this.material.needsUpdate = true;
   }
@@ -253,9 +271,10 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
 
   /**
    * Writes `records` (BLOB_FLOATS each: see `frame::gpu_steps`) into `slots`, then empties
-   * `emptied`, in `state` (its moving state `into`).
+   * `emptied`, in `state` (its moving state `into`); with `newborns` (a NewbornPass) the
+   * records' moving parts are written by it, their blobs advanced on the GPU.
    */
-  write(renderer, state, into, records, slots, emptied) {
+  write(renderer, state, into, records, slots, emptied, newborns = null) {
     const born = slots.length;
     const n = born + emptied.length;
     if (n === 0) return;
@@ -284,8 +303,18 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
     this.carriedMaterial.uniforms.size.value = size;
     this.fixedMaterial.uniforms.size.value = size;
     this.points.material = state.carried ? this.carriedMaterial : this.movingMaterial;
-    this.geometry.setDrawRange(0, n);
     renderer.setRenderTarget(into);
+    if (newborns && born > 0) {
+      const material = newborns.configured();
+      material.uniforms.size.value = size;
+      this.points.material = material;
+      this.geometry.setDrawRange(0, born);
+      renderer.render(this.scene, this.camera);
+      this.points.material = state.carried ? this.carriedMaterial : this.movingMaterial;
+      this.geometry.setDrawRange(born, n - born);
+    } else {
+      this.geometry.setDrawRange(0, n);
+    }
     renderer.render(this.scene, this.camera);
     if (born > 0) {
       this.points.material = this.fixedMaterial;
@@ -301,6 +330,87 @@ void main() { o0 = vc0; o1 = vc1; o2 = vc2; }`);
     this.movingMaterial.dispose();
     this.carriedMaterial.dispose();
     this.fixedMaterial.dispose();
+  }
+}
+
+/**
+ * The newborns of a step the GPU advances itself (while it steps a flow the core does not see,
+ * `frame::gpu_steps`): each record's blob, at its birth place, moves by its age through the
+ * late wind table's wind (the flow's u_g in it) and its own velocity v0, in one Euler step, and
+ * is put back outside a solid; with CARRIED its offsets are made −u_l·τ from the record's phase
+ * ages τ (vec4 5), u_l the large-scale wind there (the core's `gas::blob_gas` emit). Drawn over
+ * the births' slots in place of their moving part; it reads the step pass's uniforms (the same
+ * objects) and compiles with its defines.
+ */
+export class NewbornPass {
+  constructor(stepPass) {
+    this.stepPass = stepPass;
+    this.material = new THREE.RawShaderMaterial({
+      glslVersion: THREE.GLSL3,
+      vertexShader: WRITE_VERTEX,
+      fragmentShader: /* glsl */ `precision highp float;
+precision highp int;
+#ifdef FLOW
+${FLOW_SAMPLE_GLSL}
+#endif
+${WIND_GLSL}
+${WIND_PARTS_GLSL}
+uniform bool rk2;
+in vec4 va;
+in vec4 vb;
+in vec4 vc0;
+in vec4 vc1;
+in vec4 vc2;
+in vec4 vd0;
+in vec4 vd1;
+layout(location = 0) out vec4 o0;
+layout(location = 1) out vec4 o1;
+#ifdef CARRIED
+layout(location = 2) out vec4 o2;
+layout(location = 3) out vec4 o3;
+#endif
+void main() {
+  int late = rk2 ? 1 : 0;
+  vec3 x = va.xyz;
+  vec3 oa = vec3(0.0);
+  vec3 ob = vec3(0.0);
+  vec3 l;
+  vec3 s;
+#ifdef CARRIED
+  windParts(late, x, oa, ob, l, s);
+  oa = l * -vd0.x;
+  ob = l * -vd0.y;
+#endif
+  windParts(late, x, oa, ob, l, s);
+  x += (l + s + vc0.xyz) * vb.y;
+#ifdef SOLIDS
+  x = pushOut(late, x);
+#endif
+  o0 = vec4(x, va.w);
+  o1 = vb;
+#ifdef CARRIED
+  o2 = vec4(oa, 0.0);
+  o3 = vec4(ob, 0.0);
+#endif
+}`,
+      uniforms: { ...stepPass.material.uniforms, size: { value: new THREE.Vector2(1, 1) } },
+      depthTest: false,
+      depthWrite: false,
+    });
+  }
+
+  /** The material for the births, compiled as the step pass is now. */
+  configured() {
+    if (this.key !== this.stepPass.key) {
+      this.key = this.stepPass.key;
+      this.material.defines = { ...this.stepPass.material.defines };
+      this.material.needsUpdate = true;
+    }
+    return this.material;
+  }
+
+  dispose() {
+    this.material.dispose();
   }
 }
 

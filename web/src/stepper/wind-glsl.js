@@ -109,6 +109,9 @@ vec3 wind(int row, vec3 x) {
   vec4 constant = tableTexel(row, 4);
   vec3 u = constant.xyz;
   if (tableTexel(row, 0).x > 0.5) u += smallScale(row, x);
+#ifdef FLOW
+  u += flowVelocity(x) * flowWeight(x);
+#endif
   int n = int(constant.w);
   for (int j = 0; j < n; j++) u += primitiveWind(row, j, x);
   return u;
@@ -611,8 +614,11 @@ float clearanceOf(int row, float nearest, vec3 x) {
 }
 #endif
 
-/** The wind's parts at x, and how far x surely lies from every solid (\`clear\`, m; with SOLIDS). */
-void windPartsAndClearance(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small, out float clear) {
+/**
+ * The wind's parts at x by the solids' closed forms (no flow), and how far x surely lies from
+ * every solid (\`clear\`, m; with SOLIDS).
+ */
+void closedFormParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small, out float clear) {
 #ifdef SOLIDS
   float width = tableTexel(row, 5).y;
   ivec4 cell = cellLists(x);
@@ -647,6 +653,25 @@ void windPartsAndClearance(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, ou
   int count = int(tableTexel(row, 4).w);
   for (int j = 0; j < count; j++) large += primitiveWind(row, j, x);
   small = smallAt(row, x, oa, ob);
+}
+
+/** The wind's parts at x, and how far x surely lies from every solid (\`clear\`, m; with SOLIDS). */
+void windPartsAndClearance(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small, out float clear) {
+  closedFormParts(row, x, oa, ob, large, small, clear);
+#ifdef FLOW
+  // Within the flow's box u_p + u_g replaces the solids' closed forms for the large scales;
+  // across its fade layer the two blend (u_p: the scene's primitives, no mirror images).
+  float w = flowWeight(x);
+  if (w > 0.0) {
+    vec3 solved = tableTexel(row, 4).xyz;
+    int count = int(tableTexel(row, 4).w);
+    for (int j = 0; j < count; j++) {
+      if (tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j + 1).w < 0.0) solved += primitiveWind(row, j, x);
+    }
+    solved += flowVelocity(x);
+    large += (solved - large) * w;
+  }
+#endif
 }
 
 void windParts(int row, vec3 x, vec3 oa, vec3 ob, out vec3 large, out vec3 small) {

@@ -16,6 +16,7 @@ use super::heat::deposit;
 use super::mac::MacField;
 use super::project::Projection;
 use super::step::Flow;
+use crate::error::ParamError;
 use crate::scene::bodies::Body;
 use crate::scene::flow_settings::{FlowFaces, FlowSettings};
 use crate::scene::scene_format::Scene;
@@ -193,6 +194,45 @@ impl SceneFlow {
         self.frozen = Arc::new(FrozenFlow::new(&grid, self.flow.u_g.clone()));
         self.time = t + dt;
         report
+    }
+
+    /// Takes `u_g` (m/s on each component's faces, laid out as [`Grid::face`]) as the flow's
+    /// own at time `t` (s): a flow stepped elsewhere (the page's GPU) handed back. Refused,
+    /// naming the component, where a component's length is not its faces' count or a value is
+    /// not finite; φ starts again from 0.
+    pub fn take_u_g(&mut self, u_g: [&[f32]; 3], t: f64) -> Result<(), ParamError> {
+        let grid = &self.flow.grid;
+        for (a, u) in u_g.iter().enumerate() {
+            let faces = grid.face_count(a);
+            if u.len() != faces {
+                return Err(ParamError::new(
+                    ["u", "v", "w"][a],
+                    format!(
+                        "must hold the flow's {faces} faces across {} (got {})",
+                        ["x", "y", "z"][a],
+                        u.len()
+                    ),
+                ));
+            }
+            if let Some(bad) = u.iter().find(|v| !v.is_finite()) {
+                return Err(ParamError::new(
+                    ["u", "v", "w"][a],
+                    format!("must be finite velocities (got {bad})"),
+                ));
+            }
+        }
+        self.flow.u_g = MacField {
+            u: u_g.map(<[f32]>::to_vec),
+        };
+        self.flow.phi.clear();
+        self.frozen = Arc::new(FrozenFlow::new(grid, self.flow.u_g.clone()));
+        self.time = t;
+        Ok(())
+    }
+
+    /// u_g on each component's faces (m/s, laid out as [`Grid::face`]).
+    pub fn faces(&self) -> &[Vec<f32>; 3] {
+        &self.flow.u_g.u
     }
 
     /// The grid as the exports write it ([`FlowGrid`]) at the time of the last step.
