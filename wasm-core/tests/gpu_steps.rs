@@ -184,7 +184,7 @@ fn the_centres_come_back_by_slot() {
         .chunks_exact(BLOB_FLOATS)
         .flat_map(|r| [r[2], r[0], r[1]])
         .collect();
-    sim.take_centres(&centres, false);
+    sim.take_centres(&centres, false, None);
     assert!(!sim.centres_on_gpu());
     for (a, b) in sim.gas.blobs.position.chunks(3).zip(before.chunks(3)) {
         assert_eq!(a, [b[2], b[0], b[1]]);
@@ -199,6 +199,85 @@ fn a_scene_that_splits_is_stepped_here() {
     let e = sim.hand_centres_to_gpu().unwrap_err();
     assert_eq!(e.path, "gas.split_sigma");
     assert!(!sim.centres_on_gpu());
+}
+
+/// A hot gas under a solid sphere in a crosswind, its flow on 8 × 16 × 8 cells, the small
+/// scales carried.
+fn hot_past_sphere() -> Scene {
+    Scene::from_value(json!({
+        "version": 1, "seed": 3,
+        "field": {"size": [8, 8, 8, 8], "spectrum": {"k_inertial": 2}, "period": [2, 2, 2],
+                  "time_period": 4, "amplitude": 0.5, "carried": true, "carry_time": 0.4},
+        "wind": [{"type": "uniform", "velocity": [0.15, 0.05, 0]}],
+        "emitters": [{"shape": "disk", "center": [0, 0.05, 0], "normal": [0, 1, 0], "radius": 0.08,
+                      "rate": 120, "sigma0": 0.03, "mass0": 0.004, "temperature": 300}],
+        "gas": {"diffusion": 0.0015, "dissipation": 0.15, "max_blobs": 3000, "min_mass": 0.0001},
+        "flow": {"box": [-0.4, -0.1, -0.4, 0.4, 1.5, 0.4], "cells": [8, 16, 8]},
+        "render": {"objects": [{"type": "sphere", "center": [0.08, 0.6, 0.02], "radius": 0.17,
+                                "color": [1, 1, 1], "solid": true}]}
+    }))
+    .unwrap()
+}
+
+#[test]
+fn a_flow_goes_to_the_gpu_with_the_gas_and_comes_back() {
+    let mut sim = Simulation::new(hot_past_sphere()).unwrap();
+    sim.run(20);
+    let before = sim.flow_grid().unwrap();
+    sim.hand_centres_to_gpu().unwrap();
+    assert!(sim.gas.newborns_elsewhere);
+    let steps = GpuSteps::run(&mut sim, 5);
+    // The flow here waits for the GPU's: not stepped while the GPU holds the gas.
+    assert_eq!(sim.flow_grid().unwrap().velocity, before.velocity);
+    // Newborns stay at their birth places on the emitter's disk, their records holding their
+    // heat and, for their offsets, the phases' ages at the step's end.
+    let ages = sim.wind.phases().unwrap().ages(sim.time());
+    let births: Vec<&[f32]> = steps.births.chunks_exact(BLOB_FLOATS).collect();
+    assert!(births.len() > 5, "{} births", births.len());
+    let h0 = 300.0 * (2.0 * std::f64::consts::PI).powf(1.5) * 0.03f64.powi(3);
+    for r in births.iter().rev().take(2) {
+        assert!((r[1] - 0.05).abs() < 1e-6, "born at y = {}", r[1]);
+        assert!(r[0].hypot(r[2]) <= 0.08 + 1e-6);
+        assert!((r[7] as f64 - h0).abs() < 1e-6 * h0, "h0 {}", r[7]);
+        assert_eq!(&r[20..22], &[ages[0] as f32, ages[1] as f32]);
+        assert_eq!(&r[22..28], &[0.0; 6]);
+    }
+    // The GPU's flow comes back: a face array of the wrong size is refused, naming it.
+    let faces = |a: usize| {
+        let n = [9 * 16 * 8, 8 * 17 * 8, 8 * 16 * 9][a];
+        (0..n).map(|i| 0.01 * (i % 7) as f32).collect::<Vec<f32>>()
+    };
+    let (u, v, w) = (faces(0), faces(1), faces(2));
+    let e = sim.take_flow([&u, &v[1..], &w]).unwrap_err();
+    assert_eq!(e.path, "v");
+    sim.take_flow([&u, &v, &w]).unwrap();
+    let slots = sim.slot_high_water() as usize;
+    let centres = vec![0.0f32; 3 * slots];
+    // The GPU's carried offsets come back by slot too.
+    let offsets: Vec<f32> = (0..6 * slots).map(|i| 1e-3 * i as f32).collect();
+    let slot_of: Vec<u32> = sim.gas.blobs.slot.clone();
+    sim.take_centres(&centres, false, Some(&offsets));
+    assert!(!sim.gas.newborns_elsewhere);
+    for (i, &s) in slot_of.iter().enumerate() {
+        let s = 6 * s as usize;
+        assert_eq!(&sim.gas.blobs.carried[6 * i..6 * i + 6], &offsets[s..s + 6]);
+    }
+    let grid = sim.flow_grid().unwrap();
+    // The cells' velocity is the mean of the faces handed back.
+    assert!((grid.velocity[0] - 0.5 * (u[0] + u[1])).abs() < 1e-7);
+    assert_eq!(grid.time, sim.time());
+    // Stepped here again from the GPU's flow.
+    sim.run(1);
+    assert_ne!(sim.flow_grid().unwrap().velocity, grid.velocity);
+}
+
+#[test]
+fn a_scene_without_a_flow_has_none_to_take() {
+    let mut sim = Simulation::new(every_kind()).unwrap();
+    sim.hand_centres_to_gpu().unwrap();
+    assert!(!sim.gas.newborns_elsewhere);
+    let e = sim.take_flow([&[], &[], &[]]).unwrap_err();
+    assert_eq!(e.path, "flow");
 }
 
 /// The scene of every kind with solid objects (a sphere, a plane, a cylinder; the uniform wind's
