@@ -1,11 +1,12 @@
 // The flow stepped on the GPU beside the GPU stepper's blobs (player/flow-handoff.js), against the
 // worker's core, in SwiftShader: a hot gas rising round a solid sphere in a light crosswind, in an
-// open box, its small scales carried by the large. The gas crosses to the GPU with its flow (u_g as the worker left it), the GPU deposits
-// the blobs' heat on the cells and steps the flow and the blobs through u_p + u_g + u_s; one step
-// from the same state moves every blob where the core does and leaves the same flow and heat;
-// 40 steps on the GPU, and 20 more in the worker once the gas and its flow came back, agree with
-// 60 in the worker in the flow (within 1e-3 of max|u_g|) and in the gas's count, mass and
-// statistics, as the GPU stepper's own checks ask.
+// open box, its small scales carried by the large. The gas crosses to the GPU with its flow (u_g
+// as the worker left it), the GPU deposits the blobs' heat on the cells and steps the flow and the
+// blobs through u_p + u_g + u_s; one step from the same state moves every blob where the core does
+// and leaves the same flow and heat; 40 steps on the GPU, and 20 more in the worker once the gas
+// and its flow came back, agree with 60 in the worker in the flow (within 1e-3 of max|u_g|) and in
+// the gas's count, mass and statistics, as the GPU stepper's own checks ask; a drag of the pointer
+// pushes the GPU's flow as the same drag pushes the worker's.
 import { readFileSync } from 'node:fs';
 import { test, expect } from './helpers.js';
 import { encodeScene } from '../web/src/state/url-codec.js';
@@ -134,4 +135,45 @@ test('40 steps on the GPU with its flow, then 20 in the worker with the flow han
     expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
     expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);
   }
+});
+
+test('a drag while the GPU steps the gas pushes its flow as the same drag pushes the worker\'s', async ({ page }) => {
+  const scene = hotPastSphere();
+  scene.wind = [];
+  scene.render.objects = [];
+  scene.emitters[0].temperature = 0;
+  scene.flow.faces = 'closed';
+  await open(page, scene);
+  await page.locator('#stir').click();
+  const box = await page.locator('#canvas').boundingBox();
+  /** A drag to the right across the middle of the view, paused: the next steps take it. */
+  const drag = async () => {
+    const [y, x0, x1] = [box.y + 0.5 * box.height, box.x + 0.4 * box.width, box.x + 0.6 * box.width];
+    await page.mouse.move(x0, y);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; k++) await page.mouse.move(x0 + ((x1 - x0) * k) / 10, y);
+    await page.mouse.up();
+  };
+  const run = async (kind) => {
+    await page.evaluate(async ({ scene, kind }) => {
+      const w = window.windfield;
+      await w.setStepper(kind);
+      await w.setScene(scene);
+      await w.step(5);
+    }, { scene, kind });
+    await drag();
+    return page.evaluate(async () => {
+      const w = window.windfield;
+      await w.step(10);
+      const grid = await w.exportFlow();
+      return { velocity: Array.from(grid.velocity), flowStepper: w.stats().flowStepper };
+    });
+  };
+  const gpu = await run('gpu');
+  const cpu = await run('cpu');
+  const out = await page.evaluate(({ gpu, cpu }) => window.apartOf(Float32Array.from(gpu), Float32Array.from(cpu)), { gpu: gpu.velocity, cpu: cpu.velocity });
+  console.log(`a drag on each: u_g ${out.apart.toExponential(2)} of ${out.largest.toFixed(4)} m/s apart`);
+  expect([gpu.flowStepper, cpu.flowStepper]).toEqual(['gpu', 'cpu']);
+  expect(out.largest).toBeGreaterThan(0.05);
+  expect(out.apart).toBeLessThanOrEqual(1e-3 * out.largest);
 });
