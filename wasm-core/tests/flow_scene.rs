@@ -111,10 +111,11 @@ fn doubling_the_heat_raises_the_rise_speed_by_the_cube_root_of_two() {
     assert!((1.1..=1.45).contains(&ratio), "{ratio}");
 }
 
-/// The plume widens about linearly with height (MTT 1956's self-similar plume, b ∝ z): the rms
-/// distance of its blobs from the axis, averaged over 5 s in 0.2 m bands from 0.3 to 1.9 m,
-/// fits a line of positive slope with r² ≥ 0.9, and widens from the first band to the last
-/// as the bands' heights do, within a factor of 2.
+/// The plume widens about linearly with height (MTT 1956's self-similar plume, b ∝ z − z_v from
+/// a virtual origin z_v): the rms distance of its blobs from the axis, averaged over 5 s in
+/// 0.2 m bands from 0.3 to 1.9 m, fits a line with r² ≥ 0.9 whose slope is a plume's spreading
+/// rate (about 0.1 in experiments; 0.05–0.2 asked) and whose virtual origin lies within 0.5 m
+/// of the source (a source of finite width puts it below; ten source radii asked).
 #[test]
 fn the_plume_widens_about_linearly_with_height() {
     let bins = [0.3f32, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 1.7];
@@ -140,13 +141,15 @@ fn the_plume_widens_about_linearly_with_height() {
     let szw: f64 = z.iter().zip(&w).map(|(a, b)| (a - mz) * (b - mw)).sum();
     let slope = szw / szz;
     let r2 = szw * szw / (szz * sww);
-    let growth = w[w.len() - 1] / w[0];
-    let heights = z[z.len() - 1] / z[0];
-    println!("widths {w:.3?}: slope {slope:.3}, r² {r2:.3}, growth {growth:.2} over ×{heights:.2}");
-    assert!(slope > 0.0 && r2 >= 0.9, "slope {slope}, r² {r2}");
+    let virtual_origin = mz - mw / slope;
+    println!("widths {w:.3?}: slope {slope:.3}, r² {r2:.3}, virtual origin {virtual_origin:.2} m from the source");
     assert!(
-        growth > heights / 2.0 && growth < heights * 2.0,
-        "{growth} vs {heights}"
+        (0.05..=0.2).contains(&slope) && r2 >= 0.9,
+        "slope {slope}, r² {r2}"
+    );
+    assert!(
+        virtual_origin.abs() <= 0.5,
+        "virtual origin {virtual_origin} m"
     );
 }
 

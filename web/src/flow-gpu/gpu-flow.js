@@ -204,7 +204,7 @@ export class GpuFlow {
     this.passes.CARRIER.draw(this.carrier, { ...grid, px, py, pz, ux, uy, uz });
     for (let a = 0; a < 3; a++) {
       const trace = { carrier: this.carrier, dt, offset: { vec3: offsetOf(a) }, axis: { int: a } };
-      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...trace, q: this.u[a].now });
+      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...trace, q: this.u[a].now, open: this.boxFaces === 'open' });
       this.#update(a, 'ADVECT_CORRECT', { ...trace, q: this.u[a].now, back: this.back[a] });
     }
     this.#diffuse(dt);

@@ -6,7 +6,7 @@
 // - ADVECT_BACK, ADVECT_CORRECT: semi-Lagrangian advection by a midpoint trace back in cells
 //   from the face's carrier (its two cells' mean), then MacCormack's correction from a trace
 //   forward, clamped to the eight samples the first trace blended (`advect.rs`: Selle et al.
-//   2008).
+//   2008); with the box's faces open a trace from beyond them brings u_g faded to 0.
 // - DIFFUSE: one explicit substep of ν∇² on one component's faces, with the core's stencil at
 //   the box's faces, fixed faces and no-slip or slipping solids (`diffuse.rs`).
 // - EDDY_VISCOSITY: Smagorinsky's ν_t = (C_s h)² √(2 S_ij S_ij) per cell, capped at h²/(8 dt),
@@ -112,7 +112,16 @@ export const ADVECT_BACK = /* glsl */ `
 ${TRACE}
 uniform sampler2D q;
 uniform ivec4 qL;
+// The box's faces are open: a trace from beyond them brings u_g faded to 0 (\`beyond_open_faces\`).
+uniform bool open;
 ${OUT}
+float beyondOpenFaces(vec3 t) {
+  vec3 outside = max(max(-t, t - vec3(cells)), vec3(0.0));
+  if (outside == vec3(0.0)) return 1.0;
+  vec3 s = max(vec3(1.0) - outside, vec3(0.0));
+  vec3 fade = s * s * (vec3(3.0) - 2.0 * s);
+  return fade.x * fade.y * fade.z;
+}
 void main() {${SAMPLE}
   vec3 t = offset + vec3(s);
   float k = dt / h;
@@ -126,7 +135,8 @@ void main() {${SAMPLE}
     lo = min(lo, c[n]);
     hi = max(hi, c[n]);
   }
-  outValue = vec4(blend(c, f), lo, hi, 0.0);
+  float w = open ? beyondOpenFaces(back) : 1.0;
+  outValue = vec4(blend(c, f), lo, hi, 0.0) * w;
 }`;
 
 /** MacCormack's correction of the first trace, clamped to its bounds. */

@@ -83,6 +83,22 @@ fn trace_from(velocity: &impl Carrier, t: Vec4, v0: Vec4, k: f32) -> Vec4 {
     t - v1 * k
 }
 
+/// How much of a sample taken at `t` (in cells from the origin) beyond a box of `n` cells with
+/// open faces is the flow's: 1 in the box, 0 a cell or more outside it, a smoothstep in each
+/// axis's distance between (the fade of [`super::FrozenFlow`], in cells). Beyond an open face
+/// the air is the primitives' wind undisturbed (u_g = 0), so a trace that comes from there
+/// brings u_g's value at the face faded by this.
+#[inline(always)]
+pub fn beyond_open_faces(t: Vec4, n: Vec4) -> f32 {
+    let outside = (-t).max(t - n).max(Vec4::ZERO).truncate();
+    if outside == glam::Vec3::ZERO {
+        return 1.0;
+    }
+    let s = (glam::Vec3::ONE - outside).max(glam::Vec3::ZERO);
+    let fade = s * s * (glam::Vec3::splat(3.0) - 2.0 * s);
+    fade.x * fade.y * fade.z
+}
+
 /// One lattice of samples: `values` on `dims` samples at `offset` cells from the grid's origin.
 #[derive(Debug, Clone, Copy)]
 pub struct Lattice<'a> {
@@ -107,7 +123,10 @@ pub struct Advection {
 impl Advection {
     /// The lattice `q` advected by `velocity` (m/s) over `dt` (s) into `out`, semi-Lagrangian
     /// with MacCormack's clamped correction, `here(i, j, k)` the velocity at sample (i, j, k).
-    /// The traces run in cells from the grid's origin.
+    /// The traces run in cells from the grid's origin. With `open` (the box's faces open) a
+    /// backward trace that lands outside the box takes the value there faded to 0
+    /// ([`beyond_open_faces`]), its bounds with it: air entering the box brings no u_g.
+    #[allow(clippy::too_many_arguments)]
     fn maccormack(
         &mut self,
         grid: &Grid,
@@ -115,8 +134,15 @@ impl Advection {
         velocity: &impl Carrier,
         dt: f32,
         here: impl Fn([usize; 3]) -> Vec4,
+        open: bool,
         out: &mut Vec<f32>,
     ) {
+        let box_cells = Vec4::new(
+            grid.cells[0] as f32,
+            grid.cells[1] as f32,
+            grid.cells[2] as f32,
+            0.0,
+        );
         let d = q.dims;
         let n = d[0] * d[1] * d[2];
         let k = dt / grid.h;
@@ -144,6 +170,12 @@ impl Advection {
                 let v0 = here([i, j, l]);
                 let back = trace_from(velocity, t, v0, k);
                 (*forward, *lo, *hi) = lattice.value_bounds(q.values, back);
+                if open {
+                    let w = beyond_open_faces(back, box_cells);
+                    if w != 1.0 {
+                        (*forward, *lo, *hi) = (*forward * w, *lo * w, *hi * w);
+                    }
+                }
                 *ahead = trace_from(velocity, t, v0, -k);
             }
         }
@@ -173,29 +205,39 @@ pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<
         &faces,
         dt,
         |[i, j, k]| faces.at_cells(offset + Vec4::new(i as f32, j as f32, k as f32, 0.0)),
+        false,
         &mut out,
     );
     out
 }
 
 /// Each component of `u` advected by `velocity` (m/s) over `dt` (s), the traces through its
-/// cells' velocity ([`advect_velocity_into`]).
+/// cells' velocity ([`advect_velocity_into`]), in a box with closed faces.
 pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) -> MacField {
     let mut centred = Centred::new(grid);
     centred.set_sum(grid, velocity, &MacField::zeros(grid));
     let mut out = MacField::zeros(grid);
-    advect_velocity_into(grid, u, &centred, dt, &mut Advection::default(), &mut out);
+    advect_velocity_into(
+        grid,
+        u,
+        &centred,
+        dt,
+        false,
+        &mut Advection::default(),
+        &mut out,
+    );
     out
 }
 
 /// Each component of `u` advected into `out` by the cells' velocity `velocity` (m/s) over
 /// `dt` (s) ([`maccormack`], each trace through [`Centred::at`]), with `scratch` kept
-/// between calls.
+/// between calls; `open`: the box's faces are open (traces from beyond them bring no u_g).
 pub fn advect_velocity_into(
     grid: &Grid,
     u: &MacField,
     velocity: &Centred,
     dt: f32,
+    open: bool,
     scratch: &mut Advection,
     out: &mut MacField,
 ) {
@@ -205,6 +247,14 @@ pub fn advect_velocity_into(
             dims: grid.face_dims(a),
             offset: Grid::offset(a),
         };
-        scratch.maccormack(grid, q, velocity, dt, |idx| velocity.at_face(a, idx), comp);
+        scratch.maccormack(
+            grid,
+            q,
+            velocity,
+            dt,
+            |idx| velocity.at_face(a, idx),
+            open,
+            comp,
+        );
     }
 }
