@@ -155,8 +155,8 @@ pub enum FaceKind {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceKinds {
     pub kind: [Vec<FaceKind>; 3],
-    /// Whether a face is free, inside its lattice's ends, and so are its six neighbours in the
-    /// lattice: the viscosity's stencil there reads free faces only.
+    /// Whether a face is free and so are its neighbours in the lattice (six, fewer at the
+    /// lattice's ends): the viscosity's stencil there reads no fixed face.
     pub interior: [Vec<bool>; 3],
 }
 
@@ -192,10 +192,8 @@ impl FaceKinds {
                         let f = grid.face(a, i, j, k);
                         interior[f] = free(f)
                             && (0..3).all(|b| {
-                                idx[b] > 0
-                                    && idx[b] + 1 < d[b]
-                                    && free(f - stride[b])
-                                    && free(f + stride[b])
+                                (idx[b] == 0 || free(f - stride[b]))
+                                    && (idx[b] + 1 == d[b] || free(f + stride[b]))
                             });
                     }
                 }

@@ -44,19 +44,32 @@ pub fn diffuse(grid: &Grid, kinds: &FaceKinds, u_p: &MacField, u: &mut MacField,
         let stride = [1, d[0], d[0] * d[1]];
         for _ in 0..substeps {
             let old = u.u[a].clone();
+            let new = &mut u.u[a];
+            // The steps to a face's neighbours below and above along an axis, 0 beyond the
+            // lattice's ends (where the stencil reads the face itself).
+            let steps = |i: usize, b: usize| {
+                let st = stride[b];
+                [
+                    if i > 0 { st } else { 0 },
+                    if i + 1 < d[b] { st } else { 0 },
+                ]
+            };
             for k in 0..d[2] {
+                let dz = steps(k, 2);
                 for j in 0..d[1] {
+                    let dy = steps(j, 1);
+                    let row = d[0] * (j + d[1] * k);
                     for i in 0..d[0] {
-                        let s = grid.face(a, i, j, k);
+                        let s = row + i;
                         if interior[s] {
-                            // Six free neighbours: the same sum, with no boundary to read.
+                            // Free neighbours: the same sum, with no fixed face to read.
                             let o = old[s];
-                            let [_, sy, sz] = stride;
+                            let dx = steps(i, 0);
                             let lap = 0.0
-                                + (old[s - 1] + old[s + 1] - 2.0 * o)
-                                + (old[s - sy] + old[s + sy] - 2.0 * o)
-                                + (old[s - sz] + old[s + sz] - 2.0 * o);
-                            u.u[a][s] = o + r * lap;
+                                + (old[s - dx[0]] + old[s + dx[1]] - 2.0 * o)
+                                + (old[s - dy[0]] + old[s + dy[1]] - 2.0 * o)
+                                + (old[s - dz[0]] + old[s + dz[1]] - 2.0 * o);
+                            new[s] = o + r * lap;
                             continue;
                         }
                         if kind[s] != Face::Free {
@@ -84,7 +97,7 @@ pub fn diffuse(grid: &Grid, kinds: &FaceKinds, u_p: &MacField, u: &mut MacField,
                             };
                             lap += below + above - 2.0 * old[s];
                         }
-                        u.u[a][s] = old[s] + r * lap;
+                        new[s] = old[s] + r * lap;
                     }
                 }
             }
