@@ -253,23 +253,29 @@ impl System {
         r: &mut [f64],
         q: &mut [f64],
     ) -> f64 {
-        let (nx, pad) = (self.stride[1], self.pad());
+        let (nx, sz, pad) = (self.stride[1], self.stride[2], self.pad());
         let mut worst = 0.0f64;
         let mut last = 0.0;
         let rows = self.lower.chunks_exact(nx).zip(phi.chunks_exact_mut(nx));
         for (row, (w, phi)) in rows.enumerate() {
             let p0 = pad + row * nx;
-            let r = &mut r[p0..p0 + nx];
-            let cells =
-                (phi.iter_mut().zip(&s[p0..p0 + nx])).zip(r.iter_mut().zip(&a_s[p0..p0 + nx]));
-            for ((p, &sc), (rc, &ac)) in cells {
+            let (done, rest) = q.split_at_mut(p0);
+            let (below_y, below_z) = (&done[p0 - nx..], &done[p0 - sz..][..nx]);
+            let cells = (phi.iter_mut().zip(&s[p0..p0 + nx]))
+                .zip(r[p0..p0 + nx].iter_mut().zip(&a_s[p0..p0 + nx]))
+                .zip(rest[..nx].iter_mut().zip(w))
+                .zip(below_y.iter().zip(below_z));
+            for ((((p, &sc), (rc, &ac)), (out, w)), (&qy, &qz)) in cells {
                 *p += alpha * sc;
-                *rc -= alpha * ac;
-                if rc.abs() > worst {
-                    worst = rc.abs();
+                let r = *rc - alpha * ac;
+                *rc = r;
+                if r.abs() > worst {
+                    worst = r.abs();
                 }
+                let t = f64::from(w[0]) * r + f64::from(w[2]) * qy + f64::from(w[3]) * qz;
+                last = t + f64::from(w[1]) * last;
+                *out = last;
             }
-            last = self.lower_row(w, r, q, p0, last);
         }
         worst
     }
