@@ -253,51 +253,57 @@ impl System {
         r: &mut [f64],
         q: &mut [f64],
     ) -> f64 {
-        let (nx, sz, pad) = (self.stride[1], self.stride[2], self.pad());
+        let (nx, pad) = (self.stride[1], self.pad());
         let mut worst = 0.0f64;
         let mut last = 0.0;
         let rows = self.lower.chunks_exact(nx).zip(phi.chunks_exact_mut(nx));
         for (row, (w, phi)) in rows.enumerate() {
             let p0 = pad + row * nx;
-            let (done, rest) = q.split_at_mut(p0);
-            let (below_y, below_z) = (&done[p0 - nx..], &done[p0 - sz..][..nx]);
-            let cells = (phi.iter_mut().zip(&s[p0..p0 + nx]))
-                .zip(r[p0..p0 + nx].iter_mut().zip(&a_s[p0..p0 + nx]))
-                .zip(rest[..nx].iter_mut().zip(w))
-                .zip(below_y.iter().zip(below_z));
-            for ((((p, &sc), (rc, &ac)), (out, w)), (&qy, &qz)) in cells {
+            let r = &mut r[p0..p0 + nx];
+            let cells =
+                (phi.iter_mut().zip(&s[p0..p0 + nx])).zip(r.iter_mut().zip(&a_s[p0..p0 + nx]));
+            for ((p, &sc), (rc, &ac)) in cells {
                 *p += alpha * sc;
-                let r = *rc - alpha * ac;
-                *rc = r;
-                if r.abs() > worst {
-                    worst = r.abs();
+                *rc -= alpha * ac;
+                if rc.abs() > worst {
+                    worst = rc.abs();
                 }
-                let t = f64::from(w[0]) * r + f64::from(w[2]) * qy + f64::from(w[3]) * qz;
-                last = t + f64::from(w[1]) * last;
-                *out = last;
             }
+            last = self.lower_row(w, r, q, p0, last);
         }
         worst
     }
 
     /// MIC(0)'s forward sweep over the row of cells from padded index `p0` (`w` their
     /// coefficients, `r` their r): q_c = e_c (r_c + Σ e_b q_b) over the linked cells b before
-    /// c, `last` the previous cell's q carried in a register (the sweep's only serial
-    /// dependence). Returns the row's last q.
+    /// c, `last` the previous cell's q carried in a register (the sweep's one serial
+    /// dependence), two cells at a time: the second's q from the same `last` as the first's
+    /// (q_b = t_b + u_b t_a + u_b u_a last), one multiply-add of serial dependence for two
+    /// cells. Returns the row's last q.
     #[inline(always)]
     fn lower_row(&self, w: &[[f32; 4]], r: &[f64], q: &mut [f64], p0: usize, last: f64) -> f64 {
         let (nx, sz) = (self.stride[1], self.stride[2]);
         let (done, rest) = q.split_at_mut(p0);
-        let below_y = &done[p0 - nx..];
-        let below_z = &done[p0 - sz..][..nx];
+        let (below_y, below_z) = (&done[p0 - nx..][..nx], &done[p0 - sz..][..nx]);
+        let (out, w, r) = (&mut rest[..nx], &w[..nx], &r[..nx]);
+        let t = |i: usize| {
+            let w = w[i];
+            f64::from(w[0]) * r[i] + f64::from(w[2]) * below_y[i] + f64::from(w[3]) * below_z[i]
+        };
         let mut last = last;
-        let cells = (rest[..nx].iter_mut().zip(w))
-            .zip(r)
-            .zip(below_y.iter().zip(below_z));
-        for (((out, w), &rc), (&qy, &qz)) in cells {
-            let t = f64::from(w[0]) * rc + f64::from(w[2]) * qy + f64::from(w[3]) * qz;
-            last = t + f64::from(w[1]) * last;
-            *out = last;
+        let mut i = 0;
+        while i + 2 <= nx {
+            let (a, b) = (i, i + 1);
+            let (ta, tb) = (t(a), t(b));
+            let (ua, ub) = (f64::from(w[a][1]), f64::from(w[b][1]));
+            out[a] = ta + ua * last;
+            last = (tb + ub * ta) + (ub * ua) * last;
+            out[b] = last;
+            i += 2;
+        }
+        if i < nx {
+            last = t(i) + f64::from(w[i][1]) * last;
+            out[i] = last;
         }
         last
     }
@@ -307,22 +313,39 @@ impl System {
     fn upper_sweep(&self, r: &[f64], q: &[f64], z: &mut [f64]) -> f64 {
         let (nx, sz, pad) = (self.stride[1], self.stride[2], self.pad());
         let mut last = 0.0;
-        let mut rz = 0.0;
+        let mut rz = [0.0; 2];
         for (row, w) in self.upper.chunks_exact(nx).enumerate().rev() {
             let p0 = pad + row * nx;
             let (head, above) = z.split_at_mut(p0 + nx);
             let (above_y, above_z) = (&above[..nx], &above[sz - nx..][..nx]);
-            let cells = (head[p0..].iter_mut().zip(w))
-                .zip(q[p0..p0 + nx].iter().zip(&r[p0..p0 + nx]))
-                .zip(above_y.iter().zip(above_z));
-            for (((out, w), (&qc, &rc)), (&zy, &zz)) in cells.rev() {
-                let t = f64::from(w[0]) * qc + f64::from(w[2]) * zy + f64::from(w[3]) * zz;
-                last = t + f64::from(w[1]) * last;
-                *out = last;
-                rz += rc * last;
+            let out = &mut head[p0..];
+            let (q, r) = (&q[p0..p0 + nx], &r[p0..p0 + nx]);
+            let t = |i: usize| {
+                let w = w[i];
+                f64::from(w[0]) * q[i] + f64::from(w[2]) * above_y[i] + f64::from(w[3]) * above_z[i]
+            };
+            // Two cells at a time, as in the forward sweep ([`System::lower_row`]).
+            let mut i = nx;
+            while i >= 2 {
+                let (a, b) = (i - 1, i - 2);
+                let (ta, tb) = (t(a), t(b));
+                let (ua, ub) = (f64::from(w[a][1]), f64::from(w[b][1]));
+                let za = ta + ua * last;
+                let zb = (tb + ub * ta) + (ub * ua) * last;
+                out[a] = za;
+                out[b] = zb;
+                rz[0] += r[a] * za;
+                rz[1] += r[b] * zb;
+                last = zb;
+                i -= 2;
+            }
+            if i == 1 {
+                last = t(0) + f64::from(w[0][1]) * last;
+                out[0] = last;
+                rz[0] += r[0] * last;
             }
         }
-        rz
+        rz[0] + rz[1]
     }
 }
 
