@@ -2,7 +2,7 @@
 //! centres), clamped to the lattice: beyond the outermost samples the value is the nearest
 //! one's, a zero normal derivative at the box's faces. 8 samples and 7 lerps per call.
 
-use glam::Vec4;
+use glam::{IVec4, Vec4};
 
 /// Where a point falls along one axis of a lattice of samples.
 #[derive(Debug, Clone, Copy)]
@@ -49,27 +49,19 @@ pub struct Lanes {
     /// axis of one sample, whose fraction is then 0).
     top: Vec4,
     /// The last lower corner along each axis.
-    last: Vec4,
-    /// The index's step along x, y and z (1, the samples of a row, of a plane; 0).
-    rows: Vec4,
+    last: IVec4,
     layout: Layout,
 }
 
 impl Lanes {
-    /// The lattice of `dims` samples at `offset` cells from the origin (fewer than 2^24, so
-    /// that every index is exact in f32).
+    /// The lattice of `dims` samples at `offset` cells from the origin.
     pub fn new(dims: [usize; 3], offset: [f32; 3]) -> Self {
-        assert!(
-            dims.iter().product::<usize>() < 1 << 24,
-            "a lattice of under 2^24 samples"
-        );
         let top = |a: usize| (dims[a] - 1) as f32;
-        let last = |a: usize| dims[a].saturating_sub(2) as f32;
+        let last = |a: usize| dims[a].saturating_sub(2) as i32;
         Self {
             offset: Vec4::new(offset[0], offset[1], offset[2], 0.0),
             top: Vec4::new(top(0), top(1), top(2), 0.0),
-            last: Vec4::new(last(0), last(1), last(2), 0.0),
-            rows: Vec4::new(1.0, dims[0] as f32, (dims[0] * dims[1]) as f32, 0.0),
+            last: IVec4::new(last(0), last(1), last(2), 0),
             layout: Layout::new(dims),
         }
     }
@@ -79,10 +71,10 @@ impl Lanes {
     #[inline(always)]
     pub fn locate(&self, t: Vec4) -> (usize, Vec4) {
         let p = (t - self.offset).max(Vec4::ZERO).min(self.top);
-        // p ≥ 0, so truncation is the floor; the corner's index is a sum of whole numbers
-        // under 2^24, exact in f32, so it is worked out in the lanes and converted once.
-        let i = p.trunc().min(self.last);
-        (i.dot(self.rows) as usize, p - i)
+        // p ≥ 0, so truncation is the floor.
+        let i = p.as_ivec4().min(self.last);
+        let [x, y, z, _] = i.to_array().map(|v| v as usize);
+        (self.layout.index([x, y, z]), p - i.as_vec4())
     }
 
     /// The eight values around `t` (cells from the origin) and the fractions within their cell.
