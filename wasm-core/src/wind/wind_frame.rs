@@ -76,6 +76,12 @@ impl WindFrame {
         FrozenPrimitive::add_winds(&self.primitives[..self.originals], self.constant, x)
     }
 
+    /// u_p where it is the same everywhere (the scene's primitives all uniform winds without
+    /// decay): [`Self::primitive_wind`] at any point, m/s.
+    pub fn uniform_primitive_wind(&self) -> Option<Vec3A> {
+        (self.originals == 0).then_some(self.constant)
+    }
+
     /// The small-scale field's slice sampled at `x`, with the carried coordinates' offsets
     /// `o` (ignored unless carried).
     #[inline(always)]

@@ -165,8 +165,10 @@ impl Advection {
                 .zip(lo.iter_mut())
                 .zip(hi.iter_mut())
                 .zip(ahead.iter_mut());
+            // The sample's place, a cell further along x each time (whole and half cells:
+            // exact in f32).
+            let mut t = offset + Vec4::new(0.0, j as f32, l as f32, 0.0);
             for (i, (((forward, lo), hi), ahead)) in samples.enumerate() {
-                let t = offset + Vec4::new(i as f32, j as f32, l as f32, 0.0);
                 let v0 = here([i, j, l]);
                 let back = trace_from(velocity, t, v0, k);
                 (*forward, *lo, *hi) = lattice.value_bounds(q.values, back);
@@ -177,19 +179,26 @@ impl Advection {
                     }
                 }
                 *ahead = trace_from(velocity, t, v0, -k);
+                t += Vec4::X;
             }
         }
         out.clear();
-        out.extend(
-            (q.values[..n].iter())
-                .zip(&self.forward)
-                .zip(self.lo.iter().zip(&self.hi))
-                .zip(&self.ahead)
-                .map(|(((&was, &forward), (&lo, &hi)), &ahead)| {
-                    let returned = lattice.value(&self.forward, ahead);
-                    (forward + 0.5 * (was - returned)).clamp(lo, hi)
-                }),
-        );
+        out.resize(n, 0.0);
+        let second = (out.iter_mut().zip(&q.values[..n]))
+            .zip(self.forward.iter().zip(&self.ahead))
+            .zip(self.lo.iter().zip(&self.hi));
+        for (((out, &was), (&forward, &ahead)), (&lo, &hi)) in second {
+            let returned = lattice.value(&self.forward, ahead);
+            // f32::clamp without its check that lo ≤ hi (they are a least and a greatest).
+            let v = forward + 0.5 * (was - returned);
+            *out = if v < lo {
+                lo
+            } else if v > hi {
+                hi
+            } else {
+                v
+            };
+        }
     }
 }
 
@@ -247,14 +256,35 @@ pub fn advect_velocity_into(
             dims: grid.face_dims(a),
             offset: Grid::offset(a),
         };
-        scratch.maccormack(
-            grid,
-            q,
-            velocity,
-            dt,
-            |idx| velocity.at_face(a, idx),
-            open,
-            comp,
-        );
+        // Each component's own call, so that its axis is a constant in the traces' loop.
+        match a {
+            0 => scratch.maccormack(
+                grid,
+                q,
+                velocity,
+                dt,
+                |i| velocity.at_face(0, i),
+                open,
+                comp,
+            ),
+            1 => scratch.maccormack(
+                grid,
+                q,
+                velocity,
+                dt,
+                |i| velocity.at_face(1, i),
+                open,
+                comp,
+            ),
+            _ => scratch.maccormack(
+                grid,
+                q,
+                velocity,
+                dt,
+                |i| velocity.at_face(2, i),
+                open,
+                comp,
+            ),
+        }
     }
 }

@@ -155,30 +155,52 @@ pub enum FaceKind {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceKinds {
     pub kind: [Vec<FaceKind>; 3],
+    /// Whether a face is free and so are its neighbours in the lattice (six, fewer at the
+    /// lattice's ends): the viscosity's stencil there reads no fixed face.
+    pub interior: [Vec<bool>; 3],
 }
 
 impl FaceKinds {
     /// The faces of `grid` with `solids` and the box's `faces`.
     pub fn new(grid: &Grid, solids: &Solids, faces: Faces) -> Self {
-        Self {
-            kind: std::array::from_fn(|a| {
-                let d = grid.face_dims(a);
-                let mut kind = vec![FaceKind::Free; grid.face_count(a)];
-                for k in 0..d[2] {
-                    for j in 0..d[1] {
-                        for i in 0..d[0] {
-                            if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
-                                kind[grid.face(a, i, j, k)] = FaceKind::Fixed {
-                                    v,
-                                    holds: holds(grid, solids, a, [i, j, k]),
-                                };
-                            }
+        let kind: [Vec<FaceKind>; 3] = std::array::from_fn(|a| {
+            let d = grid.face_dims(a);
+            let mut kind = vec![FaceKind::Free; grid.face_count(a)];
+            for k in 0..d[2] {
+                for j in 0..d[1] {
+                    for i in 0..d[0] {
+                        if let Some(v) = fixed_normal(grid, solids, faces, a, [i, j, k]) {
+                            kind[grid.face(a, i, j, k)] = FaceKind::Fixed {
+                                v,
+                                holds: holds(grid, solids, a, [i, j, k]),
+                            };
                         }
                     }
                 }
-                kind
-            }),
-        }
+            }
+            kind
+        });
+        let interior = std::array::from_fn(|a| {
+            let d = grid.face_dims(a);
+            let stride = [1, d[0], d[0] * d[1]];
+            let free = |f: usize| kind[a][f] == FaceKind::Free;
+            let mut interior = vec![false; grid.face_count(a)];
+            for k in 0..d[2] {
+                for j in 0..d[1] {
+                    for i in 0..d[0] {
+                        let idx = [i, j, k];
+                        let f = grid.face(a, i, j, k);
+                        interior[f] = free(f)
+                            && (0..3).all(|b| {
+                                (idx[b] == 0 || free(f - stride[b]))
+                                    && (idx[b] + 1 == d[b] || free(f + stride[b]))
+                            });
+                    }
+                }
+            }
+            interior
+        });
+        Self { kind, interior }
     }
 
     /// Sets u_g on every fixed face so that u_p + u_g carries its fixed normal velocity there

@@ -38,6 +38,14 @@ impl MacField {
         out
     }
 
+    /// Sets every face to its normal component of the uniform velocity `v` (m/s): what
+    /// [`MacField::from_fn`] gives for a constant `f`, without a call per face.
+    pub fn fill(&mut self, v: [f32; 3]) {
+        for (comp, &va) in self.u.iter_mut().zip(&v) {
+            comp.fill(va);
+        }
+    }
+
     /// The face-wise sum of two fields on one grid.
     pub fn plus(&self, other: &Self) -> Self {
         Self {

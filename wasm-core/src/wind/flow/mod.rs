@@ -24,7 +24,7 @@
 //! A step costs, per cell, the advection's three faces (each two four-lane and two scalar
 //! trilinear blends), a diffusion substep, the boundary's faces set and a projection of 15
 //! warm-started CG iterations at 32³ (26 at 64³) in a steady flow, each about 40 flops: about
-//! 0.3 µs a cell natively and 0.5 µs in WebAssembly on a shared two-core machine
+//! 0.25 µs a cell natively and 0.35 µs in WebAssembly on a shared two-core machine
 //! (`npm run bench`: `flow_step_32_native_ms`, `flow_step_32_wasm_ms`; docs/BENCHMARKS.md).
 
 pub mod advect;

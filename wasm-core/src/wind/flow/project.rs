@@ -233,44 +233,119 @@ impl System {
 
     /// z = M⁻¹ r by MIC(0)'s two triangular sweeps (padded vectors; `q` is scratch), and r·z.
     fn precondition(&self, r: &[f64], q: &mut [f64], z: &mut [f64]) -> f64 {
-        let pad = self.pad();
+        let (nx, pad) = (self.stride[1], self.pad());
         let mut last = 0.0;
-        for c in 0..self.lower.len() {
-            last = self.lower_sweep(c, r[pad + c], q, last);
+        for (row, w) in self.lower.chunks_exact(nx).enumerate() {
+            let p0 = pad + row * nx;
+            last = self.lower_row(w, &r[p0..p0 + nx], q, p0, last);
         }
         self.upper_sweep(r, q, z)
     }
 
-    /// MIC(0)'s forward sweep at cell `c`, `rc` its r and `last` the previous cell's q:
-    /// q_c = e_c (r_c + Σ e_b q_b) over the linked cells b before c, the previous cell along x
-    /// carried in a register (the sweep's only serial dependence). Returns q_c.
-    #[inline(always)]
-    fn lower_sweep(&self, c: usize, rc: f64, q: &mut [f64], last: f64) -> f64 {
-        let [_, sy, sz] = self.stride;
-        let p = self.pad() + c;
-        let w = self.lower[c];
-        let t = f64::from(w[0]) * rc + f64::from(w[2]) * q[p - sy] + f64::from(w[3]) * q[p - sz];
-        let qc = t + f64::from(w[1]) * last;
-        q[p] = qc;
-        qc
+    /// φ += α s and r −= α A s (`a_s` holding A s; padded vectors but φ) and MIC(0)'s forward
+    /// sweep of the new r into `q`, a row at a time; returns max|r|.
+    fn update_and_sweep(
+        &self,
+        alpha: f64,
+        phi: &mut [f64],
+        s: &[f64],
+        a_s: &[f64],
+        r: &mut [f64],
+        q: &mut [f64],
+    ) -> f64 {
+        let (nx, pad) = (self.stride[1], self.pad());
+        let mut worst = 0.0f64;
+        let mut last = 0.0;
+        let rows = self.lower.chunks_exact(nx).zip(phi.chunks_exact_mut(nx));
+        for (row, (w, phi)) in rows.enumerate() {
+            let p0 = pad + row * nx;
+            let r = &mut r[p0..p0 + nx];
+            let cells =
+                (phi.iter_mut().zip(&s[p0..p0 + nx])).zip(r.iter_mut().zip(&a_s[p0..p0 + nx]));
+            for ((p, &sc), (rc, &ac)) in cells {
+                *p += alpha * sc;
+                *rc -= alpha * ac;
+                if rc.abs() > worst {
+                    worst = rc.abs();
+                }
+            }
+            last = self.lower_row(w, r, q, p0, last);
+        }
+        worst
     }
 
-    /// MIC(0)'s backward sweep, z_c = e_c (q_c + e_c Σ z_a) over the linked cells a after c;
-    /// returns r·z.
-    fn upper_sweep(&self, r: &[f64], q: &[f64], z: &mut [f64]) -> f64 {
-        let [_, sy, sz] = self.stride;
-        let pad = self.pad();
-        let mut last = 0.0;
-        let mut rz = 0.0;
-        for (c, w) in self.upper.iter().enumerate().rev() {
-            let p = pad + c;
-            let t =
-                f64::from(w[0]) * q[p] + f64::from(w[2]) * z[p + sy] + f64::from(w[3]) * z[p + sz];
-            last = t + f64::from(w[1]) * last;
-            z[p] = last;
-            rz += r[p] * last;
+    /// MIC(0)'s forward sweep over the row of cells from padded index `p0` (`w` their
+    /// coefficients, `r` their r): q_c = e_c (r_c + Σ e_b q_b) over the linked cells b before
+    /// c, `last` the previous cell's q carried in a register (the sweep's one serial
+    /// dependence), two cells at a time: the second's q from the same `last` as the first's
+    /// (q_b = t_b + u_b t_a + u_b u_a last), one multiply-add of serial dependence for two
+    /// cells. Returns the row's last q.
+    #[inline(always)]
+    fn lower_row(&self, w: &[[f32; 4]], r: &[f64], q: &mut [f64], p0: usize, last: f64) -> f64 {
+        let (nx, sz) = (self.stride[1], self.stride[2]);
+        let (done, rest) = q.split_at_mut(p0);
+        let (below_y, below_z) = (&done[p0 - nx..][..nx], &done[p0 - sz..][..nx]);
+        let (out, w, r) = (&mut rest[..nx], &w[..nx], &r[..nx]);
+        let t = |i: usize| {
+            let w = w[i];
+            f64::from(w[0]) * r[i] + f64::from(w[2]) * below_y[i] + f64::from(w[3]) * below_z[i]
+        };
+        let mut last = last;
+        let mut i = 0;
+        while i + 2 <= nx {
+            let (a, b) = (i, i + 1);
+            let (ta, tb) = (t(a), t(b));
+            let (ua, ub) = (f64::from(w[a][1]), f64::from(w[b][1]));
+            out[a] = ta + ua * last;
+            last = (tb + ub * ta) + (ub * ua) * last;
+            out[b] = last;
+            i += 2;
         }
-        rz
+        if i < nx {
+            last = t(i) + f64::from(w[i][1]) * last;
+            out[i] = last;
+        }
+        last
+    }
+
+    /// MIC(0)'s backward sweep, z_c = e_c (q_c + e_c Σ z_a) over the linked cells a after c, a
+    /// row at a time from the last; returns r·z.
+    fn upper_sweep(&self, r: &[f64], q: &[f64], z: &mut [f64]) -> f64 {
+        let (nx, sz, pad) = (self.stride[1], self.stride[2], self.pad());
+        let mut last = 0.0;
+        let mut rz = [0.0; 2];
+        for (row, w) in self.upper.chunks_exact(nx).enumerate().rev() {
+            let p0 = pad + row * nx;
+            let (head, above) = z.split_at_mut(p0 + nx);
+            let (above_y, above_z) = (&above[..nx], &above[sz - nx..][..nx]);
+            let out = &mut head[p0..];
+            let (q, r) = (&q[p0..p0 + nx], &r[p0..p0 + nx]);
+            let t = |i: usize| {
+                let w = w[i];
+                f64::from(w[0]) * q[i] + f64::from(w[2]) * above_y[i] + f64::from(w[3]) * above_z[i]
+            };
+            // Two cells at a time, as in the forward sweep ([`System::lower_row`]).
+            let mut i = nx;
+            while i >= 2 {
+                let (a, b) = (i - 1, i - 2);
+                let (ta, tb) = (t(a), t(b));
+                let (ua, ub) = (f64::from(w[a][1]), f64::from(w[b][1]));
+                let za = ta + ua * last;
+                let zb = (tb + ub * ta) + (ub * ua) * last;
+                out[a] = za;
+                out[b] = zb;
+                rz[0] += r[a] * za;
+                rz[1] += r[b] * zb;
+                last = zb;
+                i -= 2;
+            }
+            if i == 1 {
+                last = t(0) + f64::from(w[0][1]) * last;
+                out[0] = last;
+                rz[0] += r[0] * last;
+            }
+        }
+        rz[0] + rz[1]
     }
 }
 
@@ -374,18 +449,7 @@ impl Projector {
                     report.iterations += 1;
                     let alpha = sigma / system.apply(s, a_s);
                     // φ += α s and r −= α A s, and MIC(0)'s forward sweep of the new r.
-                    let mut worst = 0.0f64;
-                    let mut last = 0.0;
-                    for (c, p) in phi.iter_mut().enumerate() {
-                        let i = pad + c;
-                        *p += alpha * s[i];
-                        let rc = r[i] - alpha * a_s[i];
-                        r[i] = rc;
-                        if rc.abs() > worst {
-                            worst = rc.abs();
-                        }
-                        last = system.lower_sweep(c, rc, q, last);
-                    }
+                    let worst = system.update_and_sweep(alpha, phi, s, a_s, r, q);
                     report.residual = worst / scale;
                     if report.residual <= tolerance {
                         break;

@@ -118,15 +118,22 @@ pub struct Layout {
     row: [usize; 2],
     /// The steps to the next corner along x, y and z.
     step: [usize; 3],
+    /// The step to the far corner, their sum.
+    span: usize,
 }
 
 impl Layout {
     /// The layout of `dims` samples, x fastest.
     pub fn new(dims: [usize; 3]) -> Self {
         let step = |a: usize| usize::from(dims[a] > 1);
+        let step = [step(0), dims[0] * step(1), dims[0] * dims[1] * step(2)];
+        let span = (step[0].checked_add(step[1]))
+            .and_then(|s| s.checked_add(step[2]))
+            .expect("a lattice's steps add up within usize");
         Self {
             row: [dims[0], dims[0] * dims[1]],
-            step: [step(0), dims[0] * step(1), dims[0] * dims[1] * step(2)],
+            step,
+            span,
         }
     }
 
@@ -146,16 +153,21 @@ impl Layout {
     #[inline(always)]
     pub fn corners_from<T: Copy>(&self, values: &[T], i0: usize) -> [T; 8] {
         let [sx, sy, sz] = self.step;
-        let v = &values[i0..=i0 + sx + sy + sz];
+        let v = &values[i0..][..=self.span];
+        // SAFETY: each corner's offset is a sum of some of the steps, at most their sum
+        // `span` (which [`Layout::new`] checked does not wrap), the last index of `v`. One
+        // check where there were eight: these reads are most of a trace, and the traces most
+        // of the flow's step.
+        let at = |o: usize| unsafe { *v.get_unchecked(o) };
         [
-            v[0],
-            v[sx],
-            v[sy],
-            v[sx + sy],
-            v[sz],
-            v[sx + sz],
-            v[sy + sz],
-            v[sx + sy + sz],
+            at(0),
+            at(sx),
+            at(sy),
+            at(sx + sy),
+            at(sz),
+            at(sx + sz),
+            at(sy + sz),
+            at(self.span),
         ]
     }
 }

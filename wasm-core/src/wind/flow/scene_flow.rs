@@ -149,9 +149,15 @@ impl SceneFlow {
     ) -> Projection {
         let frame = wind.large_frame(t);
         let grid = self.flow.grid.clone();
-        self.u_p = MacField::from_fn(&grid, |x| {
-            frame.primitive_wind(Vec3A::from_array(x)).to_array()
-        });
+        match frame.uniform_primitive_wind() {
+            // A uniform u_p (uniform winds alone) fills the faces it has.
+            Some(v) => self.u_p.fill(v.to_array()),
+            None => {
+                self.u_p = MacField::from_fn(&grid, |x| {
+                    frame.primitive_wind(Vec3A::from_array(x)).to_array()
+                })
+            }
+        }
         let spheres = wind.repulsor_spheres(t);
         if !spheres.is_empty() {
             let mut solids = self.fixed.clone();
