@@ -48,7 +48,7 @@ export interface WindFieldStats {
   stepper: WindFieldStepper;
   /** Why the worker steps the gas where the GPU was asked for (`setStepper('gpu' | 'auto')`); absent otherwise. */
   stepperReason?: string;
-  /** The last flow step's time (ms: the worker's, or on the GPU the page's time to issue its passes); 0 for a scene without a flow. */
+  /** The last flow step's time (ms: the worker's, or on the GPU the GPU's own time for its passes by a timer query, else the page's time to issue them); 0 for a scene without a flow. */
   flowMs: number;
   /** What steps the scene's flow: the engine worker's core ('cpu', where it steps the gas) or the GPU beside the GPU stepper's blobs ('gpu'); null for a scene without a flow. */
   flowStepper: 'cpu' | 'gpu' | null;

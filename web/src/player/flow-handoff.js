@@ -9,6 +9,7 @@
 import { flowGpuRefuses, flowGpuUnsupported } from '../flow-gpu/gl.js';
 import { HeatDeposit, heatGpuUnsupported } from '../flow-gpu/heat.js';
 import { gpuFlowOfScene, gpuFlowRefusesScene } from '../flow-gpu/scene.js';
+import { GpuTimer } from '../flow-gpu/timer.js';
 
 const f32 = Math.fround;
 
@@ -58,7 +59,10 @@ export class FlowHandoff {
     return this.#flow !== null;
   }
 
-  /** The last flow step's time on the page (ms: issuing its passes and the heat's), 0 without one. */
+  /**
+   * The last flow step's time (ms, the heat's and the flow's passes): the GPU's own, by a timer
+   * query, where it gives one; else the page's time to issue them; 0 without a flow.
+   */
   get ms() {
     return this.#link?.ms ?? 0;
   }
@@ -77,7 +81,7 @@ export class FlowHandoff {
     this.#heat = new HeatDeposit(this.#gl);
     this.#grid = gridOf(run);
     this.#box = run.flow.box;
-    this.#link = { flow, heat: this.#heat, cooling: f32(run.flow.cooling), stir: null, ms: 0 };
+    this.#link = { flow, heat: this.#heat, cooling: f32(run.flow.cooling), stir: null, ms: 0, timer: new GpuTimer(this.#gl) };
   }
 
   /**
@@ -125,6 +129,7 @@ export class FlowHandoff {
   }
 
   dispose() {
+    this.#link?.timer.dispose();
     this.#flow?.dispose();
     this.#heat?.dispose();
     this.#flow = null;
