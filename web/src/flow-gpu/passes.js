@@ -38,20 +38,14 @@ const SAMPLE = /* glsl */ `
 
 const OUT = 'layout(location = 0) out vec4 outValue;';
 
+/** The uniforms of lattices `names`: each its texture and its atlas (`name` and `nameL`). */
+function lattices(...names) {
+  return names.map((n) => `uniform sampler2D ${n};\nuniform ivec4 ${n}L;`).join('\n');
+}
+
 /** The carrier at the cells' centres: each component of u_p + u_g the mean of the cell's two faces. */
 export const CARRIER = /* glsl */ `
-uniform sampler2D px;
-uniform ivec4 pxL;
-uniform sampler2D py;
-uniform ivec4 pyL;
-uniform sampler2D pz;
-uniform ivec4 pzL;
-uniform sampler2D ux;
-uniform ivec4 uxL;
-uniform sampler2D uy;
-uniform ivec4 uyL;
-uniform sampler2D uz;
-uniform ivec4 uzL;
+${lattices('px', 'py', 'pz', 'ux', 'uy', 'uz')}
 ${OUT}
 float face(sampler2D p, ivec4 pL, sampler2D u, ivec4 uL, ivec3 m) {
   return fetch1(p, m, pL) + fetch1(u, m, uL);
@@ -66,8 +60,7 @@ void main() {${SAMPLE}
 
 const TRACE = /* glsl */ `
 // The carrier at the cells' centres (xyz per cell).
-uniform sampler2D carrier;
-uniform ivec4 carrierL;
+${lattices('carrier')}
 uniform float dt;
 // Where this lattice's samples lie, in cells from the origin, and its component.
 uniform vec3 offset;
@@ -110,8 +103,7 @@ vec3 traceFrom(vec3 t, vec3 v0, float k) {
 /** The first trace: the value found where the carrier brought the sample from, and its bounds. */
 export const ADVECT_BACK = /* glsl */ `
 ${TRACE}
-uniform sampler2D q;
-uniform ivec4 qL;
+${lattices('q')}
 // The box's faces are open: a trace from beyond them brings u_g faded to 0 (\`beyond_open_faces\`).
 uniform bool open;
 ${OUT}
@@ -142,11 +134,9 @@ void main() {${SAMPLE}
 /** MacCormack's correction of the first trace, clamped to its bounds. */
 export const ADVECT_CORRECT = /* glsl */ `
 ${TRACE}
-uniform sampler2D q;
-uniform ivec4 qL;
+${lattices('q')}
 // The first trace: (value, lo, hi) per sample.
-uniform sampler2D back;
-uniform ivec4 backL;
+${lattices('back')}
 ${OUT}
 void main() {${SAMPLE}
   vec3 t = offset + vec3(s);
@@ -163,8 +153,7 @@ void main() {${SAMPLE}
 
 const KINDS = /* glsl */ `
 // Each face's [kind, v]: kind 0 free, 1 fixed holding the air (no-slip), 2 fixed slipping.
-uniform sampler2D kind;
-uniform ivec4 kindL;
+${lattices('kind')}
 vec2 kindOf(ivec3 m) {
   return texelFetch(kind, texelOf(m, kindL), 0).xy;
 }`;
@@ -172,10 +161,7 @@ vec2 kindOf(ivec3 m) {
 /** One explicit substep of ν∇² (r = ν·dt_sub/h²) on component `axis`'s faces. */
 export const DIFFUSE = /* glsl */ `
 ${KINDS}
-uniform sampler2D old;
-uniform ivec4 oldL;
-uniform sampler2D up;
-uniform ivec4 upL;
+${lattices('old', 'up')}
 uniform int axis;
 uniform float r;
 ${OUT}
@@ -209,8 +195,7 @@ void main() {${SAMPLE}
  * either side, one-sided at the box's faces, none along an axis of one cell.
  */
 export const EDDY_VISCOSITY = /* glsl */ `
-uniform sampler2D centred;
-uniform ivec4 centredL;
+${lattices('centred')}
 uniform float scale;
 uniform float cap;
 ${OUT}
@@ -244,10 +229,7 @@ void main() {${SAMPLE}
  */
 export const EDDY_DIFFUSE = /* glsl */ `
 ${KINDS}
-uniform sampler2D old;
-uniform ivec4 oldL;
-uniform sampler2D nuT;
-uniform ivec4 nuTL;
+${lattices('old', 'nuT')}
 uniform int axis;
 uniform float dt;
 uniform float invH2;
@@ -276,10 +258,7 @@ void main() {${SAMPLE}
 
 /** u −= (dt·β)·T·g on component `axis`'s faces, T on the cells. */
 export const BUOYANCY = /* glsl */ `
-uniform sampler2D u;
-uniform ivec4 uL;
-uniform sampler2D temperature;
-uniform ivec4 temperatureL;
+${lattices('u', 'temperature')}
 uniform int axis;
 uniform float dtBeta;
 uniform float g;
@@ -298,8 +277,7 @@ void main() {${SAMPLE}
 
 /** u += (dt·force)·exp(−|x − centre|²/radius²) on the faces within four widths of the centre. */
 export const SPLAT = /* glsl */ `
-uniform sampler2D u;
-uniform ivec4 uL;
+${lattices('u')}
 uniform vec3 offset;
 uniform vec3 centre;
 uniform float radius;
@@ -322,10 +300,7 @@ void main() {${SAMPLE}
 /** Each fixed face's u_g = v − u_p (so u_p + u_g carries v); free faces as they are. */
 export const IMPOSE = /* glsl */ `
 ${KINDS}
-uniform sampler2D u;
-uniform ivec4 uL;
-uniform sampler2D up;
-uniform ivec4 upL;
+${lattices('u', 'up')}
 ${OUT}
 void main() {${SAMPLE}
   vec2 k = kindOf(s);
@@ -335,10 +310,7 @@ void main() {${SAMPLE}
 const ROWS = /* glsl */ `
 // Each cell's Poisson row: [free faces, links (bit a: the next cell along a is joined, bit
 // 3 + a: the previous one), 0, 0].
-uniform sampler2D rows;
-uniform ivec4 rowsL;
-uniform sampler2D phi;
-uniform ivec4 phiL;
+${lattices('rows', 'phi')}
 // Σ of φ over the cell's fluid neighbours.
 float neighbours(ivec3 s, int links) {
   float sum = 0.0;
@@ -352,14 +324,7 @@ float neighbours(ivec3 s, int links) {
 
 /** b = −h²·∇·u_g on the fluid cells (0 on the others). */
 export const DIVERGENCE = /* glsl */ `
-uniform sampler2D ux;
-uniform ivec4 uxL;
-uniform sampler2D uy;
-uniform ivec4 uyL;
-uniform sampler2D uz;
-uniform ivec4 uzL;
-uniform sampler2D rows;
-uniform ivec4 rowsL;
+${lattices('ux', 'uy', 'uz', 'rows')}
 ${OUT}
 void main() {${SAMPLE}
   float d = 0.0;
@@ -373,8 +338,7 @@ void main() {${SAMPLE}
 /** One half sweep of SOR: the cells of `parity` updated, the others kept. */
 export const RELAX = /* glsl */ `
 ${ROWS}
-uniform sampler2D b;
-uniform ivec4 bL;
+${lattices('b')}
 uniform float omega;
 uniform int parity;
 ${OUT}
@@ -396,8 +360,7 @@ void main() {${SAMPLE}
 /** b − Aφ and b per cell (0 off the fluid). */
 export const RESIDUAL = /* glsl */ `
 ${ROWS}
-uniform sampler2D b;
-uniform ivec4 bL;
+${lattices('b')}
 ${OUT}
 void main() {${SAMPLE}
   vec4 row = texelFetch(rows, texelOf(s, rowsL), 0);
@@ -409,8 +372,7 @@ void main() {${SAMPLE}
 /** Component `axis`'s free faces lose ∇φ (φ = 0 beyond an open face). */
 export const GRADIENT = /* glsl */ `
 ${ROWS}
-uniform sampler2D u;
-uniform ivec4 uL;
+${lattices('u')}
 uniform int axis;
 uniform bool open;
 ${OUT}
@@ -445,12 +407,7 @@ void main() {${SAMPLE}
 
 /** u_g at the cells' centres: each component the mean of the cell's two faces. */
 export const CENTRES = /* glsl */ `
-uniform sampler2D ux;
-uniform ivec4 uxL;
-uniform sampler2D uy;
-uniform ivec4 uyL;
-uniform sampler2D uz;
-uniform ivec4 uzL;
+${lattices('ux', 'uy', 'uz')}
 ${OUT}
 void main() {${SAMPLE}
   outValue = vec4(
@@ -462,18 +419,7 @@ void main() {${SAMPLE}
 
 /** The wind u_p + u_g at one point (m), each sampled trilinearly on its faces, into one texel. */
 export const PROBE = /* glsl */ `
-uniform sampler2D ux;
-uniform ivec4 uxL;
-uniform sampler2D uy;
-uniform ivec4 uyL;
-uniform sampler2D uz;
-uniform ivec4 uzL;
-uniform sampler2D px;
-uniform ivec4 pxL;
-uniform sampler2D py;
-uniform ivec4 pyL;
-uniform sampler2D pz;
-uniform ivec4 pzL;
+${lattices('ux', 'uy', 'uz', 'px', 'py', 'pz')}
 uniform vec3 point;
 ${OUT}
 void main() {
@@ -507,10 +453,7 @@ void main() {
 
 /** b less its mean over the fluid cells (`total`'s texel over `fluid` cells), 0 off them. */
 export const CENTRE_B = /* glsl */ `
-uniform sampler2D b;
-uniform ivec4 bL;
-uniform sampler2D rows;
-uniform ivec4 rowsL;
+${lattices('b', 'rows')}
 uniform sampler2D total;
 uniform float fluid;
 ${OUT}
