@@ -207,8 +207,10 @@ export class StepperHandoff {
       this.#fieldVersion = lattice.version;
     }
     // After an edit, the flow the worker now runs (kept, restarted or gone).
-    if (steps.flowRun !== undefined) this.#flow.edit(steps.flowRun);
-    this.#renderer.resetState();
+    if (steps.flowRun !== undefined) {
+      this.#flow.edit(steps.flowRun);
+      this.#renderer.resetState();
+    }
     const { simulation, gas } = this.#scene();
     const flow = this.#flow.link(steps.stir);
     this.#gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2', flow });

@@ -27,6 +27,8 @@ import { BoundsPass, NewbornPass, PackPass, ScreenPass, StepPass, WritePass } fr
 import { StepperState } from './state.js';
 import { HEADER_TEXELS, PRIMITIVE_TEXELS, SOLID_TEXELS } from './wind-glsl.js';
 
+/** Where a wind table holds its constant wind (xyz, m/s): the header's fifth texel (`wind::wind_table`). */
+const CONSTANT_WIND = 4 * 4;
 /** Widest lattice texture row (texels); a lattice fills rows of this many points. */
 const LATTICE_WIDTH = 4096;
 /** Most lattice points the GPU takes (64 MiB as RGBA32F); larger fields are stepped in the worker. */
@@ -216,13 +218,13 @@ export class GpuStepper {
   /**
    * The flow's part of one step from the state now (`wind::flow::SceneFlow::step` on the GPU):
    * u_p from the step's first wind table `table` (its constant: the GPU's flow takes uniform
-   * winds only), the gas's heat deposited on the cells (blobs up to `sigmaMax` wide, m), the
-   * stir `stir` if any, then the flow's step of `dt` (s); the step pass is then given the
-   * flow's new u_g.
+   * winds only), the gas's heat deposited on the cells (the blobs of the first `slots` slots,
+   * none wider than `sigmaMax`, m), the stir `stir` if any, then the flow's step of `dt` (s);
+   * the step pass is then given the flow's new u_g.
    */
-  #stepFlow(link, table, dt, sigmaMax) {
+  #stepFlow(link, table, dt, slots, sigmaMax) {
     const { flow, heat } = link;
-    const up = Array.from(table.subarray(16, 19));
+    const up = Array.from(table.subarray(CONSTANT_WIND, CONSTANT_WIND + 3));
     if (!link.up || link.up.some((v, a) => v !== up[a])) {
       flow.setUniformWind(up);
       link.up = up;
@@ -233,7 +235,7 @@ export class GpuStepper {
       centres: this.#raw(this.state.now, 0),
       masses: this.#raw(this.state.now, 1),
       slotsPerRow: BLOBS_PER_ROW,
-      slots: Math.min(this.state.capacity, Math.max(this.highWater, link.slots ?? 0)),
+      slots,
       sigmaMax,
       cooling: link.cooling,
     });
@@ -275,7 +277,8 @@ export class GpuStepper {
     // Every σ during these steps is below this (σ² grows by κ·dt a step; the end's widest may
     // have died within them).
     const sigmaMax = Math.sqrt(Math.max(this.sigmaRange[1], steps.sigmaRange[1]) ** 2 + n * diffusion * dt);
-    if (flow) flow.slots = steps.highWater;
+    // Every slot in use during them (empty ones cost one vertex an instance).
+    const slots = Math.min(this.state.capacity, Math.max(this.highWater, steps.highWater));
     const u = this.stepPass.material.uniforms;
     u.dt.value = dt;
     u.diffusion.value = diffusion;
@@ -290,7 +293,7 @@ export class GpuStepper {
     u.latticeWidth.value = LATTICE_WIDTH;
     const table = (k) => steps.wind.subarray(steps.windOffsets[k], steps.windOffsets[k + 1] ?? steps.wind.length);
     for (let k = 0; k < n; k++) {
-      if (flow) this.#stepFlow(flow, table(2 * k), dt, sigmaMax);
+      if (flow) this.#stepFlow(flow, table(2 * k), dt, slots, sigmaMax);
       this.#setWind(table(2 * k), table(2 * k + 1));
       u.windTable.value = this.windTable;
       u.centres.value = this.state.now.textures[0];
