@@ -58,9 +58,9 @@ export function atlasTexel(atlas, i, j, k) {
 }
 
 /**
- * The GLSL of the atlases in cells: a sample's texel, a texel's sample, and a trilinear blend of
- * the eight samples around a point given in cells from the grid's origin (no uniforms: the GPU
- * stepper samples the flow with it too).
+ * The GLSL of the atlases in cells: a sample's texel, a texel's sample, a trilinear blend of
+ * the eight samples around a point given in cells from the grid's origin, and the fade beyond
+ * the box (no uniforms: the GPU stepper samples the flow with it too).
  */
 export const ATLAS_CELLS_GLSL = /* glsl */ `
 // An atlas: (dims.x, dims.y, dims.z, columns).
@@ -97,6 +97,14 @@ void cornersCells(highp sampler2D t, ivec4 L, vec3 o, vec3 q, out float c[8], ou
     ivec3 e = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1) * st;
     c[n] = fetch1(t, b + e, L);
   }
+}
+// The fade across one cell beyond the box at a point \`outside\` cells beyond it along each axis
+// (0 inside): 1 in the box, 0 a cell or more out (the core's \`frozen_flow::fade_beyond\`).
+float fadeBeyond(vec3 outside) {
+  if (outside == vec3(0.0)) return 1.0;
+  vec3 s = max(vec3(1.0) - outside, vec3(0.0));
+  vec3 fade = s * s * (vec3(3.0) - 2.0 * s);
+  return fade.x * fade.y * fade.z;
 }
 // a + (b − a)·t, as the core blends (not mix's a·(1 − t) + b·t).
 float lerp(float a, float b, float t) {

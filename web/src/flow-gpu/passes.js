@@ -107,13 +107,6 @@ ${lattices('q')}
 // The box's faces are open: a trace from beyond them brings u_g faded to 0 (\`beyond_open_faces\`).
 uniform bool open;
 ${OUT}
-float beyondOpenFaces(vec3 t) {
-  vec3 outside = max(max(-t, t - vec3(cells)), vec3(0.0));
-  if (outside == vec3(0.0)) return 1.0;
-  vec3 s = max(vec3(1.0) - outside, vec3(0.0));
-  vec3 fade = s * s * (vec3(3.0) - 2.0 * s);
-  return fade.x * fade.y * fade.z;
-}
 void main() {${SAMPLE}
   vec3 t = offset + vec3(s);
   float k = dt / h;
@@ -127,7 +120,7 @@ void main() {${SAMPLE}
     lo = min(lo, c[n]);
     hi = max(hi, c[n]);
   }
-  float w = open ? beyondOpenFaces(back) : 1.0;
+  float w = open ? fadeBeyond(max(max(-back, back - vec3(cells)), vec3(0.0))) : 1.0;
   outValue = vec4(blend(c, f), lo, hi, 0.0) * w;
 }`;
 

@@ -25,11 +25,7 @@ uniform vec3 flowLo;
 uniform vec3 flowHi;
 ${ATLAS_CELLS_GLSL}
 float flowWeight(vec3 x) {
-  vec3 outside = max(max(flowLo - x, x - flowHi), vec3(0.0)) * flowInvH;
-  if (outside == vec3(0.0)) return 1.0;
-  vec3 s = max(vec3(1.0) - outside, vec3(0.0));
-  vec3 fade = s * s * (vec3(3.0) - 2.0 * s);
-  return fade.x * fade.y * fade.z;
+  return fadeBeyond(max(max(flowLo - x, x - flowHi), vec3(0.0)) * flowInvH);
 }
 float flowComponent(highp sampler2D t, ivec4 L, vec3 o, vec3 q) {
   float c[8];

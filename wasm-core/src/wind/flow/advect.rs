@@ -19,6 +19,7 @@
 //! field is smooth, and the clamp brings back first-order smearing at extrema and sharp fronts
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
+use super::frozen_flow::fade_beyond;
 use super::grid::Grid;
 use super::mac::{Centred, FaceSampler, MacField};
 use super::sample::Lanes;
@@ -90,13 +91,7 @@ fn trace_from(velocity: &impl Carrier, t: Vec4, v0: Vec4, k: f32) -> Vec4 {
 /// brings u_g's value at the face faded by this.
 #[inline(always)]
 pub fn beyond_open_faces(t: Vec4, n: Vec4) -> f32 {
-    let outside = (-t).max(t - n).max(Vec4::ZERO).truncate();
-    if outside == glam::Vec3::ZERO {
-        return 1.0;
-    }
-    let s = (glam::Vec3::ONE - outside).max(glam::Vec3::ZERO);
-    let fade = s * s * (glam::Vec3::splat(3.0) - 2.0 * s);
-    fade.x * fade.y * fade.z
+    fade_beyond((-t).max(t - n).max(Vec4::ZERO).truncate().into())
 }
 
 /// One lattice of samples: `values` on `dims` samples at `offset` cells from the grid's origin.

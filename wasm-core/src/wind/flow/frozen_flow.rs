@@ -8,6 +8,18 @@ use super::grid::Grid;
 use super::mac::{FaceSampler, MacField};
 use glam::Vec3A;
 
+/// The fade across one cell beyond the box, at a point `outside` cells beyond it along each
+/// axis (0 inside): 1 in the box, 0 a cell or more out, Π_a s²(3 − 2s) with s = 1 − outside_a.
+#[inline]
+pub fn fade_beyond(outside: Vec3A) -> f32 {
+    if outside == Vec3A::ZERO {
+        return 1.0;
+    }
+    let s = (Vec3A::ONE - outside).max(Vec3A::ZERO);
+    let fade = s * s * (Vec3A::splat(3.0) - 2.0 * s);
+    fade.x * fade.y * fade.z
+}
+
 /// u_g for a step, m/s.
 #[derive(Debug, Clone)]
 pub struct FrozenFlow {
@@ -39,13 +51,7 @@ impl FrozenFlow {
     /// How much of u_g acts at `x` (m): 1 in the box, 0 a cell or more outside it.
     #[inline]
     pub fn weight(&self, x: Vec3A) -> f32 {
-        let outside = (self.lo - x).max(x - self.hi).max(Vec3A::ZERO) * self.inv_h;
-        if outside == Vec3A::ZERO {
-            return 1.0;
-        }
-        let s = (Vec3A::ONE - outside).max(Vec3A::ZERO);
-        let fade = s * s * (Vec3A::splat(3.0) - 2.0 * s);
-        fade.x * fade.y * fade.z
+        fade_beyond((self.lo - x).max(x - self.hi).max(Vec3A::ZERO) * self.inv_h)
     }
 
     /// u_g at `x` (m), m/s, faded outside the box.
