@@ -30,6 +30,8 @@ use crate::wind::wind_table::{NO_RESET, RESET_AT};
 
 /// Floats per blob record.
 pub const BLOB_FLOATS: usize = 28;
+/// Where a record's carried offsets start (vec4 5, then vec4 6 to its end).
+const CARRIED_AT: usize = 20;
 
 /// Steps for the GPU, whole buffers: `steps` steps' worth, one after another.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -122,7 +124,7 @@ impl GpuSteps {
                 let at = out.births.len();
                 write_blob(b, i, t, &mut out.births);
                 if sim.gas.newborns_elsewhere {
-                    out.births[at + 20..at + 28].copy_from_slice(&[
+                    out.births[at + CARRIED_AT..at + BLOB_FLOATS].copy_from_slice(&[
                         ages[0] as f32,
                         ages[1] as f32,
                         0.0,
