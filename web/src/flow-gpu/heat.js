@@ -2,8 +2,9 @@
 // blob j of the GPU stepper's state carries heat h_j = h0_j · exp(−c · age_j) (K·m³; h0 from its
 // birth record, c the flow's cooling, 1/s), and the temperature excess averaged over a cell is
 // exact, the product over the three axes of (Φ((b − c)/σ) − Φ((a − c)/σ))/h, Φ the standard
-// normal distribution and [a, b] the cell's extent along the axis. A blob reaches the cells
-// within four σ and a cell of its centre, as in the core.
+// normal distribution and [a, b] the cell's extent along the axis. The Gaussian is cut at four σ
+// as in the core (Φ is 0 below −4 and 1 above 4), so a blob reaches the cells that overlap
+// [c − 4σ, c + 4σ] and leaves its whole heat on them.
 //
 // The sum is a scatter: one instance per blob and z slice of its reach draws a rectangle over
 // the cells of that slice it reaches (two triangles, any size: no point-size limit), each
@@ -45,7 +46,7 @@ void main() {
   heat = b.w == 0.0 ? 0.0 : b.w * exp(-cooling * b.y);
   if (!(b.x > 0.0) || heat == 0.0 || !(sigma > 0.0)) return;
   // The cells the blob reaches along each axis, [lo, hi) (the core's bounds, f32 as there).
-  float reach = ${REACH.toFixed(1)} * sigma + h;
+  float reach = ${REACH.toFixed(1)} * sigma;
   ivec3 hi;
   for (int k = 0; k < 3; k++) {
     lo[k] = int(max(floor((a[k] - reach - origin[k]) / h), 0.0));
@@ -73,25 +74,31 @@ flat in vec4 blob;
 flat in float heat;
 flat in ivec3 lo;
 out vec4 added;
-// Φ(t), the standard normal distribution, by erf (Abramowitz & Stegun 7.1.26: |error| ≤ 1.5e-7).
+// Φ(t), the standard normal distribution, by erf (Abramowitz & Stegun 7.1.26: |error| ≤ 1.5e-7),
+// cut at ±REACH as in the core.
 float normalCdf(float t) {
+  if (t <= -${REACH.toFixed(1)}) return 0.0;
+  if (t >= ${REACH.toFixed(1)}) return 1.0;
   float x = abs(t) * 0.70710678;
   float k = 1.0 / (1.0 + 0.3275911 * x);
   float poly = k * (0.254829592 + k * (-0.284496736 + k * (1.421413741 + k * (-1.453152027 + k * 1.061405429))));
   float erfAbs = 1.0 - poly * exp(-x * x);
   return 0.5 * (1.0 + (t < 0.0 ? -erfAbs : erfAbs));
 }
-// The blob's share of the cell from x0 to x0 + h along one axis, per metre.
-float share(float x0, float c, float s) {
-  return (normalCdf((x0 + h - c) / s) - normalCdf((x0 - c) / s)) / h;
+// The blob's share of the cell from x0 to x1 along one axis, per metre.
+float share(float x0, float x1, float c, float s) {
+  return (normalCdf((x1 - c) / s) - normalCdf((x0 - c) / s)) / h;
 }
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   ivec2 cell = p - target.xy * (p / target.xy);
-  vec3 x0 = origin + h * vec3(float(cell.x), float(cell.y), float(lo.z));
+  // The cell's edges as the core places them, origin + h·m.
+  vec3 m = vec3(float(cell.x), float(cell.y), float(lo.z));
+  vec3 x0 = origin + h * m;
+  vec3 x1 = origin + h * (m + 1.0);
   float s = blob.w;
-  float w = heat * share(x0.z, blob.z, s) * share(x0.y, blob.y, s);
-  added = vec4(w * share(x0.x, blob.x, s), 0.0, 0.0, 0.0);
+  float w = heat * share(x0.z, x1.z, blob.z, s) * share(x0.y, x1.y, blob.y, s);
+  added = vec4(w * share(x0.x, x1.x, blob.x, s), 0.0, 0.0, 0.0);
 }`;
 
 /** Why `gl` cannot add the heat up on the GPU (no float blending), or null when it can. */
@@ -124,8 +131,8 @@ export class HeatDeposit {
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
     const h = flow.h;
-    // The most z slices one blob reaches: its cells from ⌊(c − r)/h⌋ to ⌈(c + r)/h⌉, r = 4σ + h.
-    const slices = Math.min(Math.ceil((2 * (REACH * sigmaMax + h)) / h) + 2, flow.cells[2]);
+    // The most z slices one blob reaches: its cells from ⌊(c − r)/h⌋ to ⌈(c + r)/h⌉, r = 4σ.
+    const slices = Math.min(Math.ceil((2 * REACH * sigmaMax) / h) + 2, flow.cells[2]);
     if (!(slots > 0) || !(slices > 0)) return;
     gl.useProgram(this.program);
     gl.activeTexture(gl.TEXTURE0);
