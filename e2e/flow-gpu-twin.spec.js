@@ -65,13 +65,15 @@ async function open(page, scene) {
 /** The GPU's flow of `scene` (`gpuFlowOfScene`), in the page. */
 function installGpuFlowOf() {
   window.gpuFlowOf = async (scene) => {
-    const { flowGpuUnsupported, gpuFlowOfScene } = await import('./flow-gpu/index.js');
+    const { flowGpuUnsupported, gpuFlowBytes, gpuFlowOfScene } = await import('./flow-gpu/index.js');
     const gl = document.createElement('canvas').getContext('webgl2');
     const unsupported = flowGpuUnsupported(gl);
     if (unsupported) return { unsupported };
     const { flow, solids, refused } = gpuFlowOfScene(gl, scene);
     if (refused) return { unsupported: refused };
-    return { flow, solids };
+    // What a memory budget is told beforehand, against the textures made.
+    const bytes = { counted: gpuFlowBytes(scene.flow.cells, gl.getParameter(gl.MAX_TEXTURE_SIZE)), made: flow.bytes };
+    return { flow, solids, bytes };
   };
   /** The largest |component| of `cpu` (m/s) and of `gpu` − `cpu`. */
   window.apartOf = (gpu, cpu) => {
@@ -105,7 +107,7 @@ function twin(page, scene, heated) {
     }
     const cpu = await w.exportFlow();
 
-    const { flow, solids, unsupported } = await window.gpuFlowOf(scene);
+    const { flow, solids, unsupported, bytes } = await window.gpuFlowOf(scene);
     if (unsupported) return { unsupported };
     const residuals = [];
     for (let n = 0; n < steps; n++) {
@@ -121,7 +123,7 @@ function twin(page, scene, heated) {
     const otherSolids = u === 0 ? 0 : solids.solid.filter((v, c) => (cpu.velocity[3 * c] === -u ? 1 : 0) !== v).length;
     const solidCells = solids.solid.reduce((s, v) => s + v, 0);
     const warmest = temperatures.length ? Math.max(...temperatures[steps - 1]) : 0;
-    return { largest, apart, residuals, otherSolids, solidCells, warmest, eddies, time: cpu.time, finite };
+    return { largest, apart, residuals, otherSolids, solidCells, warmest, eddies, time: cpu.time, finite, bytes };
   }, { scene, heated, steps: STEPS });
 }
 
@@ -132,6 +134,7 @@ test('a sphere and a cylinder in a uniform wind, 60 steps in an open box: the GP
   expect(out.unsupported).toBeUndefined();
   console.log(`a sphere and a cylinder in a wind: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}, max ν_t ${out.eddies.toExponential(2)} m²/s`);
   expect(out.finite).toBe(true);
+  expect(out.bytes.made).toBe(out.bytes.counted);
   expect(out.eddies).toBeGreaterThan(0);
   expect(out.solidCells).toBeGreaterThan(100);
   expect(out.otherSolids).toBe(0);
@@ -148,6 +151,7 @@ test('a hot gas in a closed box, 60 steps: the GPU\'s buoyant flow agrees with t
   expect(out.unsupported).toBeUndefined();
   console.log(`hot gas in a closed box: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}, warmest cell ${out.warmest.toFixed(1)} K, max ν_t ${out.eddies.toExponential(2)} m²/s`);
   expect(out.finite).toBe(true);
+  expect(out.bytes.made).toBe(out.bytes.counted);
   expect(out.eddies).toBeGreaterThan(0);
   expect(out.warmest).toBeGreaterThan(1);
   expect(out.largest).toBeGreaterThan(0.01);

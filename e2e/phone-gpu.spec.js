@@ -190,3 +190,29 @@ test('the chimney\'s million blobs on a phone run under the memory budget\'s cap
   expect(errors).toEqual([]);
   await page.close();
 });
+
+test('on a phone with float targets a small flow goes to the GPU with the gas, one whose textures pass a quarter of the budget stays in the worker, saying why', async ({ browser }) => {
+  const { page, errors } = await pageOn(browser, { maxTextureSize: 4096, deviceMemory: 2 });
+  await page.goto('./?preset=candle&view=points');
+  await page.waitForFunction(() => window.windfield !== undefined);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    await w.ready;
+    await w.pause();
+    const small = await w.setStepper('gpu');
+    const smallStats = w.stats();
+    // The candle's box in cubes of 0.8/52 m: 52 × 156 × 52 cells, about 84 MiB of textures.
+    const scene = w.getScene();
+    scene.flow.cells = [52, 156, 52];
+    await w.setScene(scene);
+    const large = await w.setStepper('gpu');
+    return { small, smallStats, large, stats: w.stats() };
+  });
+  expect(out.smallStats.memoryBudget.bytes).toBe(2 ** 28);
+  expect(out.small).toBe('gpu');
+  expect(out.smallStats.flowStepper).toBe('gpu');
+  expect(out.large).toBe('cpu');
+  expect(out.stats.flowStepper).toBe('cpu');
+  expect(out.stats.stepperReason).toMatch(/^the scene's flow stays in the worker: its 52 × 156 × 52 cells take \d+\.\d MiB of textures on the GPU, more than the 64\.0 MiB this device's memory budget gives a flow$/);
+  expect(errors).toEqual([]);
+});

@@ -4,7 +4,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { formatsGaveUp, passPrecision } from '../web/src/views/precision.js';
-import { BYTES_PER_BLOB, memoryBudget } from '../web/src/player/memory.js';
+import { BYTES_PER_BLOB, memoryBudget, MemoryLimit } from '../web/src/player/memory.js';
+import { gpuFlowBytes } from '../web/src/flow-gpu/gpu-flow.js';
+import { flowMemoryRefuses } from '../web/src/player/flow-handoff.js';
 import { atlasLayout, fitGrid, halved } from '../web/src/views/volume/grid.js';
 import { brickDims } from '../web/src/views/volume/occupancy-pass.js';
 
@@ -68,6 +70,30 @@ test('a full desktop has no memory budget; a phone-class GPU or a small device h
   // The chimney's million blobs fit an 8 GiB phone's budget, not a 2 GiB one's.
   assert.ok(memoryBudget(8, formats([], 4096)).blobCap >= 1_000_000);
   assert.ok(memoryBudget(2, formats([], 4096)).blobCap < 1_000_000);
+});
+
+test('a flow\'s textures on the GPU are counted before it is made, and a budget gives them a quarter of it, the view another', () => {
+  // 32³ cells in atlases without padding (32 slices of 33 × 32 face samples make one row of
+  // tiles): each component's 33 × 32 × 32 faces hold 9 floats (u_g's pair, u_p, the traces' 4,
+  // the kinds' 2), each cell 22 (four 4-channel lattices, six 1-channel), the probe 4, and b's
+  // sums, 8 × 8 texels to one, 1024 × 32 → 128 × 4 → 16 × 1 → 2 × 1 → 1 × 1.
+  const faces = 33 * 32 * 32;
+  const sums = 128 * 4 + 16 + 2 + 1;
+  assert.equal(gpuFlowBytes([32, 32, 32], 16384), 4 * (3 * 9 * faces + 22 * 32 ** 3 + 4 + sums));
+  assert.ok(gpuFlowBytes([64, 64, 64], 16384) > 190 * 64 ** 3);
+  // No budget on a full desktop: the flow and the view are unbounded.
+  const desktop = new MemoryLimit(8, formats());
+  assert.equal(desktop.flowBytes, Infinity);
+  assert.equal(desktop.volumeBytes(true), Infinity);
+  assert.equal(flowMemoryRefuses([128, 128, 128], 16384, desktop.flowBytes), null);
+  // A 2 GiB phone: 256 MiB, a quarter (64 MiB) for a flow and a quarter for the view beside it.
+  const phone = new MemoryLimit(2, formats([], 4096));
+  assert.equal(phone.flowBytes, 2 ** 26);
+  assert.equal(phone.volumeBytes(true), 2 ** 26);
+  assert.equal(phone.volumeBytes(false), 2 ** 27);
+  assert.equal(flowMemoryRefuses([32, 32, 32], 4096, phone.flowBytes), null);
+  const refused = flowMemoryRefuses([128, 128, 128], 4096, phone.flowBytes);
+  assert.match(refused, /^its 128 × 128 × 128 cells take \d+\.\d MiB of textures on the GPU, more than the 64\.0 MiB this device's memory budget gives a flow$/);
 });
 
 test('at 4096 texels a side the atlases of every grid the qualities allow fit, as laid out', () => {

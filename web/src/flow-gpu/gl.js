@@ -36,6 +36,17 @@ export function flowGpuRefuses(gl, cells) {
   return null;
 }
 
+/** The atlas (`atlasOf`) of a lattice of `dims` samples on a GPU whose textures are at most `maxTextureSize` a side. */
+export function atlasFor(dims, maxTextureSize) {
+  return atlasOf(dims, Math.min(ATLAS_WIDTH, maxTextureSize));
+}
+
+/** The bytes of a lattice of `dims` samples, `channels` float32s each (`atlasFor`). */
+export function latticeBytes(dims, channels, maxTextureSize) {
+  const atlas = atlasFor(dims, maxTextureSize);
+  return atlas.width * atlas.height * channels * 4;
+}
+
 /**
  * The atlas of a lattice of `dims` samples (x, y, z): `columns` slices to a row of tiles,
  * `width` × `height` texels, and the uniform the shaders read it by (dims, columns).
@@ -253,7 +264,7 @@ const FORMATS = {
 export class Lattice {
   constructor(gl, dims, channels = 1, renderable = true) {
     this.gl = gl;
-    this.atlas = atlasOf(dims, Math.min(ATLAS_WIDTH, gl.getParameter(gl.MAX_TEXTURE_SIZE)));
+    this.atlas = atlasFor(dims, gl.getParameter(gl.MAX_TEXTURE_SIZE));
     this.channels = channels;
     const f = FORMATS[channels];
     this.internal = gl[f.internal];
@@ -273,6 +284,11 @@ export class Lattice {
       const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
       if (status !== gl.FRAMEBUFFER_COMPLETE) throw new Error(`a float render target is incomplete (0x${status.toString(16)})`);
     }
+  }
+
+  /** The bytes of its texture. */
+  get bytes() {
+    return this.atlas.width * this.atlas.height * this.channels * 4;
   }
 
   /** Uploads `values` (`channels` floats a sample, x fastest, then y, then z). */

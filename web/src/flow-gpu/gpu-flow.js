@@ -28,7 +28,7 @@
 // iterations, about 460 passes. A multigrid solve would take fewer.
 
 import { boundaryOf, faceDims, noSolids } from './boundary.js';
-import { Lattice, Pass, passState } from './gl.js';
+import { atlasFor, Lattice, latticeBytes, Pass, passState } from './gl.js';
 import {
   ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, EDDY_DIFFUSE, EDDY_VISCOSITY, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
 } from './passes.js';
@@ -55,6 +55,31 @@ function offsetOf(axis) {
   return o;
 }
 
+/**
+ * The bytes of the textures a `GpuFlow` on `cells` [nx, ny, nz] holds on a GPU whose textures
+ * are at most `maxTextureSize` a side (float32 atlases: per cell about 196 B), worked out before
+ * one is made, so that a memory budget can refuse it first (`GpuFlow.bytes` once made).
+ */
+export function gpuFlowBytes(cells, maxTextureSize) {
+  const of = (dims, channels = 1) => latticeBytes(dims, channels, maxTextureSize);
+  let bytes = 0;
+  for (let a = 0; a < 3; a++) {
+    const d = faceDims(cells, a);
+    // u_g's pair, u_p, the traces' values and bounds, the faces' kinds.
+    bytes += 2 * of(d) + of(d) + of(d, 4) + of(d, 2);
+  }
+  // The carrier, the Poisson rows, the cells' velocity out and centred; T, b, φ's pair, b
+  // centred and ν_t; the probe.
+  bytes += 4 * of(cells, 4) + 6 * of(cells) + of([1, 1, 1], 4);
+  // b's sums, block by block down to one texel.
+  const atlas = atlasFor(cells, maxTextureSize);
+  for (let [w, hh] = [atlas.width, atlas.height]; w > 1 || hh > 1;) {
+    [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
+    bytes += of([w, hh, 1]);
+  }
+  return bytes;
+}
+
 /** A ping-pong pair of lattices: `now` read, `next` written, then swapped. */
 class Pair {
   constructor(gl, dims, channels = 1) {
@@ -72,6 +97,10 @@ class Pair {
 
   swap() {
     this.current = 1 - this.current;
+  }
+
+  get bytes() {
+    return this.both[0].bytes + this.both[1].bytes;
   }
 
   dispose() {
@@ -359,8 +388,18 @@ export class GpuFlow {
     return out;
   }
 
+  /** Every lattice (and pair of them) it holds. */
+  #lattices() {
+    return [...this.u, ...this.up, this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, this.centred, this.nuT, ...this.sums];
+  }
+
+  /** The bytes of its textures (`gpuFlowBytes` beforehand). */
+  get bytes() {
+    return this.#lattices().reduce((n, l) => n + l.bytes, 0);
+  }
+
   dispose() {
-    for (const l of [...this.u, ...this.up, this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, this.centred, this.nuT, ...this.sums]) l.dispose();
+    for (const l of this.#lattices()) l.dispose();
     for (const p of Object.values(this.passes)) p.dispose();
   }
 }

@@ -1,8 +1,9 @@
 // The flow on the GPU: `GpuFlow` steps the grid's u_g with WebGL2 passes where
 // `flowGpuUnsupported` finds nothing missing; `noSolids` and `addSolid` mark its solid cells,
-// `gpuFlowOfScene` sets one up from a scene as the core does; `HeatDeposit` adds the GPU
+// `gpuFlowOfScene` sets one up from a scene as the core does, `gpuFlowBytes` says what its
+// textures take before it is made; `HeatDeposit` adds the GPU
 // stepper's blobs' heat up on its cells, and FLOW_SAMPLE_GLSL samples its u_g for their step.
-export { GpuFlow, STIR_CELLS, STIR_TIME } from './gpu-flow.js';
+export { GpuFlow, gpuFlowBytes, STIR_CELLS, STIR_TIME } from './gpu-flow.js';
 export { addSolid, faceDims, noSolids } from './boundary.js';
 export { flowGpuRefuses, flowGpuUnsupported } from './gl.js';
 export { gpuFlowOfScene, gpuFlowRefusesScene, solidDistance } from './scene.js';

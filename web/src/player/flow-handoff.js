@@ -8,6 +8,7 @@
 
 import { flowGpuRefuses, flowGpuUnsupported } from '../flow-gpu/gl.js';
 import { HeatDeposit, heatGpuUnsupported } from '../flow-gpu/heat.js';
+import { gpuFlowBytes } from '../flow-gpu/gpu-flow.js';
 import { gpuFlowOfScene, gpuFlowRefusesScene } from '../flow-gpu/scene.js';
 import { GpuTimer } from '../flow-gpu/timer.js';
 
@@ -19,16 +20,29 @@ export function hasFlow(scene) {
 }
 
 /**
- * Why the GPU of `gl` cannot step `scene`'s flow beside the blobs, or null when it can (or the
- * scene has no flow): uniform winds only, float render targets and blending, and textures
- * large enough for its cells.
+ * Why a flow of `cells` must not take the GPU's memory, or null: its textures
+ * (`gpuFlowBytes`, on a GPU of textures at most `maxTextureSize` a side) against the `most`
+ * bytes a memory budget gives a flow (`MemoryLimit.flowBytes`; Infinity where none applies).
  */
-export function flowKeepsGpuAway(scene, gl) {
+export function flowMemoryRefuses(cells, maxTextureSize, most) {
+  const bytes = gpuFlowBytes(cells, maxTextureSize);
+  if (bytes <= most) return null;
+  const mib = (n) => `${(n / 2 ** 20).toFixed(1)} MiB`;
+  return `its ${cells.join(' × ')} cells take ${mib(bytes)} of textures on the GPU, more than the ${mib(most)} this device's memory budget gives a flow`;
+}
+
+/**
+ * Why the GPU of `gl` cannot step `scene`'s flow beside the blobs, or null when it can (or the
+ * scene has no flow): uniform winds only, float render targets and blending, textures large
+ * enough for its cells, and their bytes within the `most` a memory budget gives a flow.
+ */
+export function flowKeepsGpuAway(scene, gl, most = Infinity) {
   if (!hasFlow(scene)) return null;
   return gpuFlowRefusesScene(scene)
     || flowGpuUnsupported(gl)
     || heatGpuUnsupported(gl)
-    || flowGpuRefuses(gl, scene.flow.cells);
+    || flowGpuRefuses(gl, scene.flow.cells)
+    || flowMemoryRefuses(scene.flow.cells, gl.getParameter(gl.MAX_TEXTURE_SIZE), most);
 }
 
 /** What of a run scene's flow an edit may keep u_g through: the box, cells, faces and objects. */

@@ -9,7 +9,10 @@
 // no 32-bit float render targets: `precision.js`) or when the browser reports at most 2 GiB of
 // memory (`navigator.deviceMemory`, Chromium's, rounded down to a power of two). The budget is
 // an eighth of the device's memory (2 GiB assumed where it is not reported), half of it for
-// the blobs, half for the real-time view's volume.
+// the blobs, half for the real-time view's volume; in a scene with a flow the view's half is
+// shared, a quarter of the budget for the volume and a quarter for the flow's textures on the
+// GPU (`flow-gpu/gpu-flow.js`'s `gpuFlowBytes`: a flow larger than that is stepped in the worker,
+// where the core's own budget holds it).
 
 import { formatsGaveUp } from '../views/precision.js';
 
@@ -73,9 +76,18 @@ export class MemoryLimit {
     this.#budget = memoryBudget(deviceMemory, formats);
   }
 
-  /** Most bytes of the real-time view's targets (Infinity where no budget applies). */
-  get volumeBytes() {
-    return this.#budget?.volumeBytes ?? Infinity;
+  /**
+   * Most bytes of the real-time view's targets (Infinity where no budget applies): half the
+   * budget, a quarter in a scene `withFlow`.
+   */
+  volumeBytes(withFlow = false) {
+    const half = this.#budget?.volumeBytes ?? Infinity;
+    return withFlow ? half / 2 : half;
+  }
+
+  /** Most bytes of a flow's textures on the GPU: a quarter of the budget (Infinity where none applies). */
+  get flowBytes() {
+    return this.#budget ? this.#budget.bytes / 4 : Infinity;
   }
 
   /** The blob cap a scene runs under: `chosen` (a number, or null for none) within the budget's; null for none. */

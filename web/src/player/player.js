@@ -20,6 +20,7 @@ import { SLICE_SAMPLES } from '../views/wind-slice-layer.js';
 import { browserApi } from './api.js';
 import { atLeast, nonFinite, shown } from './arguments.js';
 import { Captures } from './captures.js';
+import { hasFlow } from './flow-handoff.js';
 import { FramePace } from './frame-pace.js';
 import { LighterVersion } from './lighter.js';
 import { describeRenderer, userChoices } from './machine.js';
@@ -149,7 +150,7 @@ export class Player {
     this.#view.volume.profile = Boolean(hooks.profile);
     this.#machine = describeRenderer(this.#view.renderer.getContext());
     this.#memory = new MemoryLimit(navigator.deviceMemory, this.#view.formats);
-    this.#view.volume.memoryBytes = this.#memory.volumeBytes;
+    this.#view.volume.memoryBytes = this.#memory.volumeBytes();
     this.#recovery = new Recovery(hooks, {
       reload: (text) => this.#loadTurn(text),
       sceneJson: () => this.#sceneJson,
@@ -165,6 +166,7 @@ export class Player {
       scene: () => this.#state.scene,
       contextLost: () => this.#recovery.contextLost,
       restep: () => this.#restep(),
+      flowBytes: this.#memory.flowBytes,
     });
     this.#captures = new Captures({
       engine: this.#engine,
@@ -312,6 +314,8 @@ export class Player {
     const scene = JSON.parse(json);
     this.#state.scene = scene;
     this.#sceneJson = json;
+    // A scene with a flow shares the view's half of a memory budget with the flow's textures.
+    this.#view.volume.memoryBytes = this.#memory.volumeBytes(hasFlow(scene));
     return scene;
   }
 

@@ -12,11 +12,12 @@ const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps t
 
 /**
  * Why `scene` must be stepped in the worker (it splits blobs, plays a shape in reverse, has a
- * flow the GPU of `gl` cannot step, …), or null. A flow the GPU can step goes with the gas: the
- * GPU steps it beside the blobs, from their heat (`flow-handoff.js`).
+ * flow the GPU of `gl` cannot step or whose textures pass the `flowBytes` a memory budget gives
+ * it, …), or null. A flow the GPU can step goes with the gas: the GPU steps it beside the
+ * blobs, from their heat (`flow-handoff.js`).
  */
-function sceneKeepsGpuAway(scene, gl) {
-  const flow = flowKeepsGpuAway(scene, gl);
+function sceneKeepsGpuAway(scene, gl, flowBytes) {
+  const flow = flowKeepsGpuAway(scene, gl, flowBytes);
   if (flow) return `the scene's flow stays in the worker: ${flow}`;
   if ((scene.gas?.split_sigma ?? null) !== null) return 'the scene splits blobs (gas.split_sigma)';
   if (scene.shapes?.some((s) => (s.reverse_from ?? null) !== null)) return 'the scene plays a shape in reverse';
@@ -51,18 +52,22 @@ export class StepperHandoff {
   #fieldVersion = -1;
   /** The scene's flow on the GPU while the GPU steps the gas (`flow-handoff.js`), once made. */
   #flow = null;
+  /** Most bytes of a flow's textures on the GPU (`MemoryLimit.flowBytes`). */
+  #flowBytes;
 
   /**
    * @param {{engine: import('../engine/client.js').Engine, renderer: object, software: boolean,
-   *   scene: () => object | null, contextLost: () => boolean, restep: () => Promise<void>}} parts
+   *   scene: () => object | null, contextLost: () => boolean, restep: () => Promise<void>,
+   *   flowBytes?: number}} parts
    */
-  constructor({ engine, renderer, software, scene, contextLost, restep }) {
+  constructor({ engine, renderer, software, scene, contextLost, restep, flowBytes = Infinity }) {
     this.#engine = engine;
     this.#renderer = renderer;
     this.#software = software;
     this.#scene = scene;
     this.#contextLost = contextLost;
     this.#restep = restep;
+    this.#flowBytes = flowBytes;
   }
 
   /** The choice of stepper: 'auto', 'gpu' or 'cpu'; taken at the next `engage`. */
@@ -119,7 +124,7 @@ export class StepperHandoff {
     const lattice = scene && scene.field.amplitude > 0 ? scene.field.size.reduce((a, b) => a * b, 1) : 0;
     return (this.#contextLost() && 'the view has lost its GPU context')
       || gpuStepperUnsupported(this.#renderer)
-      || (scene && sceneKeepsGpuAway(scene, this.#renderer.getContext()))
+      || (scene && sceneKeepsGpuAway(scene, this.#renderer.getContext(), this.#flowBytes))
       || (lattice > MAX_GPU_LATTICE && `the field's lattice has over ${MAX_GPU_LATTICE} points`)
       || null;
   }
@@ -138,7 +143,7 @@ export class StepperHandoff {
 
   /** Brings the gas back to the worker before an edit to `scene` where the GPU may not step it. */
   async leaveFor(scene) {
-    if (this.#active === 'gpu' && (sceneKeepsGpuAway(scene, this.#renderer.getContext()) || this.#choice === 'cpu')) await this.#toCpu();
+    if (this.#active === 'gpu' && (sceneKeepsGpuAway(scene, this.#renderer.getContext(), this.#flowBytes) || this.#choice === 'cpu')) await this.#toCpu();
   }
 
   /**
