@@ -29,6 +29,88 @@ pub fn load4(w: &[f32], i: usize) -> Vec4 {
     }
 }
 
+/// The two pairs `w[i..i + 2]` and `w[j..j + 2]` as one vector (lanes `w[i]`, `w[i + 1]`,
+/// `w[j]`, `w[j + 1]`): two 64-bit loads.
+///
+/// # Safety
+/// `i + 2 <= w.len()` and `j + 2 <= w.len()` (checked in debug builds only).
+#[inline(always)]
+pub unsafe fn load2x2(w: &[f32], i: usize, j: usize) -> Vec4 {
+    debug_assert!(i + 2 <= w.len() && j + 2 <= w.len());
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        use core::arch::wasm32::*;
+        let p = w.as_ptr();
+        // SAFETY: the caller guarantees two floats from i and from j; wasm's 64-bit loads
+        // may be unaligned.
+        unsafe {
+            let low = v128_load64_zero(p.add(i).cast());
+            Vec4::from(v128_load64_lane::<1>(low, p.add(j).cast()))
+        }
+    }
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    {
+        // SAFETY: the caller guarantees two floats from i and from j; the reads are unaligned.
+        let pair = |k: usize| unsafe { w.as_ptr().add(k).cast::<[f32; 2]>().read_unaligned() };
+        let ([a, b], [c, d]) = (pair(i), pair(j));
+        Vec4::new(a, b, c, d)
+    }
+}
+
+/// The even and the odd lanes of `a` then `b`: (a₀, a₂, b₀, b₂) and (a₁, a₃, b₁, b₃), one
+/// shuffle each (WASM's SIMD, SSE2).
+#[inline(always)]
+pub fn evens_odds(a: Vec4, b: Vec4) -> (Vec4, Vec4) {
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        use core::arch::wasm32::*;
+        let (a, b) = (a.into(), b.into());
+        (
+            Vec4::from(i32x4_shuffle::<0, 2, 4, 6>(a, b)),
+            Vec4::from(i32x4_shuffle::<1, 3, 5, 7>(a, b)),
+        )
+    }
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        use core::arch::x86_64::*;
+        let (a, b) = (a.into(), b.into());
+        // SAFETY: SSE2 is enabled for this target (checked by the cfg).
+        unsafe {
+            (
+                Vec4::from(_mm_shuffle_ps::<0b10_00_10_00>(a, b)),
+                Vec4::from(_mm_shuffle_ps::<0b11_01_11_01>(a, b)),
+            )
+        }
+    }
+    #[cfg(not(any(
+        all(target_arch = "wasm32", target_feature = "simd128"),
+        all(target_arch = "x86_64", target_feature = "sse2")
+    )))]
+    {
+        (Vec4::new(a.x, a.z, b.x, b.z), Vec4::new(a.y, a.w, b.y, b.w))
+    }
+}
+
+/// Per lane the lesser and the greater of `a` and `b` by one comparison each,
+/// `if b < a { b } else { a }` and `if b > a { b } else { a }` (`a` where they are equal;
+/// not for NaN lanes): WASM's pseudo-minimum and pseudo-maximum, one instruction each there.
+#[inline(always)]
+pub fn lesser_greater4(a: Vec4, b: Vec4) -> (Vec4, Vec4) {
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    {
+        use core::arch::wasm32::*;
+        let (a, b) = (a.into(), b.into());
+        (Vec4::from(f32x4_pmin(a, b)), Vec4::from(f32x4_pmax(a, b)))
+    }
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128")))]
+    {
+        (
+            Vec4::select(b.cmplt(a), b, a),
+            Vec4::select(b.cmpgt(a), b, a),
+        )
+    }
+}
+
 /// The lanes of `v` (each less than 2^31 in size) truncated toward zero to integers: one
 /// conversion of the three lanes (SSE2), else lane by lane (one instruction each in WASM).
 /// Where the lanes are known to be in range this spares the checks of `as usize`.

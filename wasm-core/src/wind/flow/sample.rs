@@ -2,7 +2,8 @@
 //! centres), clamped to the lattice: beyond the outermost samples the value is the nearest
 //! one's, a zero normal derivative at the box's faces. 8 samples and 7 lerps per call.
 
-use glam::{IVec4, Vec4};
+use crate::lanes::{evens_odds, lesser_greater4, load2x2};
+use glam::{IVec4, Vec4, Vec4Swizzles};
 
 /// Where a point falls along one axis of a lattice of samples.
 #[derive(Debug, Clone, Copy)]
@@ -84,19 +85,30 @@ impl Lanes {
         (self.layout.corners_from(values, i0), f)
     }
 
-    /// The value of `values` at `t` (cells from the origin).
+    /// The eight values around `t` (cells from the origin) as their x-pairs' first and
+    /// second samples ([`Layout::pairs_from`]) and the fractions within their cell.
     #[inline(always)]
-    pub fn value(&self, values: &[f32], t: Vec4) -> f32 {
-        let (c, f) = self.corners(values, t);
-        blend(&c, [f.x, f.y, f.z])
+    fn pairs(&self, values: &[f32], t: Vec4) -> (Vec4, Vec4, Vec4) {
+        let (i0, f) = self.locate(t);
+        let (first, second) = self.layout.pairs_from(values, i0);
+        (first, second, f)
     }
 
-    /// [`Lanes::value`] with the least and greatest of the eight samples it blends.
+    /// The value of `values` at `t` (cells from the origin): [`blend`] four lanes wide, the
+    /// same bits.
+    #[inline(always)]
+    pub fn value(&self, values: &[f32], t: Vec4) -> f32 {
+        let (first, second, f) = self.pairs(values, t);
+        blend_pairs(first, second, f)
+    }
+
+    /// [`Lanes::value`] with the least and greatest of the eight samples it blends
+    /// ([`bounds`] four lanes wide, the same bits).
     #[inline(always)]
     pub fn value_bounds(&self, values: &[f32], t: Vec4) -> (f32, f32, f32) {
-        let (c, f) = self.corners(values, t);
-        let (lo, hi) = bounds(&c);
-        (blend(&c, [f.x, f.y, f.z]), lo, hi)
+        let (first, second, f) = self.pairs(values, t);
+        let (lo, hi) = bounds_pairs(first, second);
+        (blend_pairs(first, second, f), lo, hi)
     }
 
     /// The four-lane value of `values` at `t` (cells from the origin).
@@ -173,6 +185,28 @@ impl Layout {
 }
 
 impl Layout {
+    /// The eight values around the lower corner of index `i0` as the first and the second
+    /// samples of their four x-pairs: (c₀, c₂, c₄, c₆) and (c₁, c₃, c₅, c₇) in
+    /// [`Layout::corners_from`]'s order. Where the samples along x are adjacent, each x-pair
+    /// is one 64-bit load.
+    #[inline(always)]
+    pub fn pairs_from(&self, values: &[f32], i0: usize) -> (Vec4, Vec4) {
+        let [sx, sy, sz] = self.step;
+        let v = &values[i0..][..=self.span];
+        let (near, far) = if sx == 1 {
+            // SAFETY: with sx = 1 the pairs start at 0 and sy, and at sz and sy + sz =
+            // span − 1, so each ends at or before span, the last index of `v`.
+            unsafe { (load2x2(v, 0, sy), load2x2(v, sz, sy + sz)) }
+        } else {
+            let c = self.corners_from(values, i0);
+            (
+                Vec4::new(c[0], c[1], c[2], c[3]),
+                Vec4::new(c[4], c[5], c[6], c[7]),
+            )
+        };
+        evens_odds(near, far)
+    }
+
     /// The trilinear sample of `values` at the lower corners and fractions `at` along x, y, z.
     #[inline(always)]
     pub fn sample(&self, values: &[f32], at: [(usize, f32); 3]) -> f32 {
@@ -206,6 +240,32 @@ pub fn bounds(c: &[f32; 8]) -> (f32, f32) {
         max(max(c[4], c[5]), max(c[6], c[7])),
     );
     (lo, hi)
+}
+
+/// [`blend`] of the eight corners given as their x-pairs' first and second samples
+/// ([`Layout::pairs_from`]) at fractions `f` (x, y, z): the four lerps along x in one, then
+/// the two along y, then the one along z, each lane the same operations, so the same bits.
+#[inline(always)]
+pub fn blend_pairs(first: Vec4, second: Vec4, f: Vec4) -> f32 {
+    let x = first + (second - first) * f.xxxx();
+    let y = x + (x.yyww() - x) * f.yyyy();
+    y.x + (y.z - y.x) * f.z
+}
+
+/// [`bounds`] of the eight corners given as their x-pairs' first and second samples
+/// ([`Layout::pairs_from`]): the same comparisons in the same order, four lanes wide.
+#[inline(always)]
+pub fn bounds_pairs(first: Vec4, second: Vec4) -> (f32, f32) {
+    // The comparisons of `bounds` (the samples are never NaN).
+    let (lo, hi) = lesser_greater4(first, second);
+    let (lo, hi) = (
+        lesser_greater4(lo, lo.yyww()).0,
+        lesser_greater4(hi, hi.yyww()).1,
+    );
+    (
+        if lo.z < lo.x { lo.z } else { lo.x },
+        if hi.z > hi.x { hi.z } else { hi.x },
+    )
 }
 
 /// One lattice of samples made ready for many interpolations: `dims` samples at `offset` cells
@@ -304,5 +364,41 @@ mod tests {
         assert!((trilinear(&v, [0.0; 3], 0.5, dims, off, x) - f(x)).abs() < 1e-5);
         let far = trilinear(&v, [0.0; 3], 0.5, dims, off, [-3.0, 0.6, 1.3]);
         assert!((far - f([0.0, 0.6, 1.3])).abs() < 1e-5);
+    }
+
+    #[test]
+    fn the_four_lane_blend_and_bounds_are_the_scalar_bits() {
+        // Lattices with and without a second sample along x (whose x-pairs are not adjacent),
+        // values with repeats and both zeros, points inside and beyond the samples.
+        let mut seed = 12345u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1u32 << 24) as f32
+        };
+        for dims in [[5, 4, 3], [1, 4, 3], [6, 1, 2], [3, 3, 1]] {
+            let n = dims[0] * dims[1] * dims[2];
+            let values: Vec<f32> = (0..n)
+                .map(|i| match i % 5 {
+                    0 => 0.0,
+                    1 => -0.0,
+                    _ => (next() - 0.5) * 8.0,
+                })
+                .collect();
+            let lanes = Lanes::new(dims, [0.5, 0.0, 0.5]);
+            for _ in 0..500 {
+                let t = Vec4::new(
+                    next() * 8.0 - 1.5,
+                    next() * 6.0 - 1.0,
+                    next() * 5.0 - 1.0,
+                    0.0,
+                );
+                let (c, f) = lanes.corners(&values, t);
+                let (v, lo, hi) = lanes.value_bounds(&values, t);
+                let (lo0, hi0) = bounds(&c);
+                assert_eq!(v.to_bits(), blend(&c, [f.x, f.y, f.z]).to_bits());
+                assert_eq!(lanes.value(&values, t).to_bits(), v.to_bits());
+                assert_eq!((lo.to_bits(), hi.to_bits()), (lo0.to_bits(), hi0.to_bits()));
+            }
+        }
     }
 }
