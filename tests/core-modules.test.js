@@ -118,3 +118,36 @@ test('the field handed over and its wind grid are refused in the core\'s words',
     field.free();
   }
 });
+
+test('a scene serde refuses is told its JSON path through the first module, in the full module\'s words', async () => {
+  const bad = [
+    '{"version": 1, "field": {"size": [32, -1, 32, 32]}}',
+    '{"version": 1, "gas": {"max_blobs": "many"}}',
+    '{"version": 1, "wind": [{"type": "uniform", "velocity": [1, 0]}]}',
+    '{"version": 1, "flow": {"box": [0, 0, 0, 1, 1, 1], "faces": "ajar"}}',
+  ];
+  let fetches = 0;
+  const lazy = createHandlers(first, () => {}, () => 0, async () => {
+    fetches += 1;
+    return full;
+  });
+  const alone = createHandlers(full, () => {});
+  for (const [k, text] of bad.entries()) {
+    assert.throws(() => first.validateScene(text), /^Error: scene \(path unread\): /, 'the first module refuses it, its path unread');
+    let expected = null;
+    try {
+      full.validateScene(text);
+    } catch (err) {
+      expected = err.message;
+    }
+    assert.ok(expected && !expected.startsWith('scene'), `the full module names a path: ${expected}`);
+    for (const handlers of [lazy, alone]) {
+      await assert.rejects(handlers.load({ id: 10 + k, scene: text }), (err) => err.message === expected);
+    }
+  }
+  assert.ok(fetches >= 1);
+  const noFull = createHandlers(first, () => {}, () => 0, async () => {
+    throw new Error('offline');
+  });
+  await assert.rejects(noFull.load({ id: 20, scene: bad[1] }), /^Error: scene: must be /, 'without the full module the refusal stands, unmarked');
+});

@@ -252,8 +252,7 @@ impl Scene {
             Err(_) => {}
         }
         let mut de = serde_json::Deserializer::from_str(text);
-        let scene: Scene = serde_path_to_error::deserialize(&mut de)
-            .map_err(|e| at_path("scene", e, Some(text), None))?;
+        let scene = read_scene(&mut de, text)?;
         de.end()
             .map_err(|e| ParamError::new("scene", describe(&e, Some(text))))?;
         scene.validate()?;
@@ -268,6 +267,31 @@ impl Scene {
         scene.validate()?;
         Ok(scene)
     }
+}
+
+/// The path a scene that serde refuses is given by the player's first WebAssembly module. That
+/// module reads scenes without tracking where it is in them (the tracking is a sixth of its
+/// bytes), so the worker asks the full module, which names the path, for the message
+/// (`web/src/engine/session.js`); the refusal itself is the same.
+pub const PATH_UNREAD: &str = "scene (path unread)";
+
+/// The scene serde reads from `de` (over `text`), refused at its JSON path.
+#[cfg(any(not(target_arch = "wasm32"), feature = "full"))]
+fn read_scene(
+    de: &mut serde_json::Deserializer<serde_json::de::StrRead<'_>>,
+    text: &str,
+) -> Result<Scene, ParamError> {
+    serde_path_to_error::deserialize(de).map_err(|e| at_path("scene", e, Some(text), None))
+}
+
+/// The scene serde reads from `de` (over `text`), in the first WebAssembly module: refused at
+/// [`PATH_UNREAD`].
+#[cfg(all(target_arch = "wasm32", not(feature = "full")))]
+fn read_scene(
+    de: &mut serde_json::Deserializer<serde_json::de::StrRead<'_>>,
+    text: &str,
+) -> Result<Scene, ParamError> {
+    Scene::deserialize(de).map_err(|e| ParamError::new(PATH_UNREAD, describe(&e, Some(text))))
 }
 
 /// Checks a scene's `version` (None: missing): this build reads version 1, the first, so

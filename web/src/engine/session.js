@@ -17,6 +17,12 @@ import { coarsenFlow, lightenScene, overCap } from './lighten.js';
 const yieldToEvents = () => new Promise((resolve) => setTimeout(resolve));
 
 /**
+ * How the first module's refusal of a scene that serde could not read begins (the core's
+ * `scene::read::PATH_UNREAD`): it does not track the JSON path, so the full module is asked for it.
+ */
+const PATH_UNREAD = 'scene (path unread): ';
+
+/**
  * The error of a load or synthesis that a newer one superseded (`superseded`: no refusal of its
  * input; what its synthesis took is freed, for the newer one to reuse).
  */
@@ -218,7 +224,28 @@ export class Session {
    * when it is not the current one). Resolves with {sceneJson (normalised), fieldMs, size}.
    */
   load(id, text) {
-    return this.#start(id, this.#read(text));
+    let next;
+    try {
+      next = this.#read(text);
+    } catch (err) {
+      return this.#refuse(err, text);
+    }
+    return this.#start(id, next);
+  }
+
+  /**
+   * Rejects with `err`, a refusal of the scene `text`, at its JSON path: the first module reads
+   * scenes without tracking the path (its refusals name {@link PATH_UNREAD}), so the full module
+   * reads a scene the first one refused that way again, for the message that names the path.
+   * Without the full module, the first one's message stands, its marker dropped.
+   */
+  async #refuse(err, text) {
+    if (!this.full || !err?.message?.startsWith(PATH_UNREAD)) throw err;
+    const unread = new Error(`scene: ${err.message.slice(PATH_UNREAD.length)}`);
+    const full = await this.full().catch(() => null);
+    if (!full) throw unread;
+    full.validateScene(sceneText(text));
+    throw unread;
   }
 
   async #start(id, next) {
@@ -244,7 +271,12 @@ export class Session {
    * {sceneJson, restarted, fieldPending, fieldMs}.
    */
   async edit(id, text) {
-    const next = this.#read(text);
+    let next;
+    try {
+      next = this.#read(text);
+    } catch (err) {
+      return this.#refuse(err, text);
+    }
     if (!this.sim) return { ...(await this.#start(id, next)), restarted: true, fieldPending: false };
     const ready = !next.key || (this.field && this.fieldKey === next.key);
     if (!ready && !sameData(next.scene.shapes, this.current.scene.shapes)) {
