@@ -56,21 +56,10 @@ fn crossing_strouhal(signal: &[f32], dt: f32) -> f32 {
     }
 }
 
-/// What the cross-wind velocity 2 D behind the cylinder does.
-struct Street {
-    /// The Strouhal number of the spectrum's peak, and of the mean crossings.
-    strouhal: f32,
-    crossings: f32,
-    /// The peak's amplitude, and the strongest line away from it (m/s).
-    peak: f64,
-    rival: f64,
-    /// The cross-wind velocity's rms about its mean (m/s).
-    rms: f32,
-}
-
 /// The street behind the cylinder, the wind entering through a solid layer moving at U
-/// (`moving_inflow`) or through the box's open face.
-fn street(moving_inflow: bool) -> Street {
+/// (`moving_inflow`) or through the box's open face: its measures 2 D behind, printed under
+/// `case` and held to a regular street at St 0.15–0.25.
+fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
     let cells = [80, 48, 3];
     let grid = Grid::new([0.0; 3], cells, H);
     let width = cells[1] as f32 * H;
@@ -127,24 +116,6 @@ fn street(moving_inflow: bool) -> Street {
     let rms = (cross_wind.iter().map(|v| (v - mean).powi(2)).sum::<f32>()
         / cross_wind.len() as f32)
         .sqrt();
-    Street {
-        strouhal,
-        crossings,
-        peak,
-        rival,
-        rms,
-    }
-}
-
-/// [`street`]'s measures, printed and held to a regular street at St 0.15–0.25.
-fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
-    let Street {
-        strouhal,
-        crossings,
-        peak,
-        rival,
-        rms,
-    } = street(moving_inflow);
     println!(
         "{case}: cylinder of {} cells at Re {REYNOLDS}, 2 D behind it: St = {strouhal:.3} (spectral peak), {crossings:.3} (mean crossings); cross-wind amplitude {:.2} U at the peak, rms {:.2} U; the next line {:.2} of the peak",
         DIAMETER / H,
