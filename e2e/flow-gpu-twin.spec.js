@@ -144,6 +144,20 @@ test('a sphere and a cylinder in a uniform wind, 60 steps in an open box: the GP
   expect(out.apart).toBeLessThanOrEqual(1e-3 * out.largest);
 });
 
+test('the same between walls across y alone (open across x and z), 60 steps: the GPU\'s flow agrees with the worker\'s within 1e-3 of max|u_g|', async ({ page }) => {
+  const scene = sphereInWind();
+  scene.flow.faces = { x: 'open', y: 'closed', z: 'open' };
+  await open(page, scene);
+  const out = await twin(page, scene, false);
+  expect(out.unsupported).toBeUndefined();
+  console.log(`between walls across y: max|u_g| ${out.largest.toFixed(4)} m/s, GPU − worker ${out.apart.toExponential(2)} m/s (${(out.apart / out.largest).toExponential(2)} of it), residuals ${out.residuals.map((r) => r.toExponential(1)).join(', ')}`);
+  expect(out.finite).toBe(true);
+  expect(out.otherSolids).toBe(0);
+  expect(out.largest).toBeGreaterThan(0.1);
+  for (const r of out.residuals) expect(r).toBeLessThanOrEqual(1e-4);
+  expect(out.apart).toBeLessThanOrEqual(1e-3 * out.largest);
+});
+
 test('a hot gas in a closed box, 60 steps: the GPU\'s buoyant flow agrees with the worker\'s within 1e-3 of max|u_g|', async ({ page }) => {
   const scene = hotInClosedBox();
   await open(page, scene);

@@ -51,7 +51,12 @@ test('the panel switches the flow on and off and edits its cells, cooling, faces
   for (const s of h16) expect(Math.abs(s - h16[0])).toBeLessThanOrEqual(0.01 * h16[0]);
   expect(refit.cooling).toBe(1.5);
 
-  await (await openFolder(page, 'Flow (§7)')).locator('.lil-controller', { hasText: 'faces' }).locator('select').selectOption('closed');
+  // The faces across y alone closed, then all three: one word where the three agree.
+  const faces = async (axis) => (await openFolder(page, 'Flow (§7)')).locator('.lil-controller', { hasText: `faces across ${axis}` }).locator('select');
+  await (await faces('y')).selectOption('closed');
+  await expect.poll(async () => (await scene()).flow.faces).toEqual({ x: 'open', y: 'closed', z: 'open' });
+  await (await faces('x')).selectOption('closed');
+  await (await faces('z')).selectOption('closed');
   await expect.poll(async () => (await scene()).flow.faces).toBe('closed');
 
   await openFolder(page, 'Emitters');

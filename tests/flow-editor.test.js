@@ -4,7 +4,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { loadCore, root } from './support/core.js';
-import { defaultFlow, fitFlowBox, flowLongest, FLOW_CELLS } from '../web/src/pages/scene-editor.js';
+import { defaultFlow, fitFlowBox, flowFaces, flowLongest, FLOW_CELLS } from '../web/src/pages/scene-editor.js';
+import { closedAxes } from '../web/src/flow-gpu/boundary.js';
 
 const core = await loadCore();
 const presets = JSON.parse(readFileSync(`${root}public/presets.json`, 'utf8')).presets.map(({ name }) => name);
@@ -38,5 +39,16 @@ test('every offered cell count refits the box to cubes the core accepts', () => 
       scene.flow = { ...fitted };
       assert.doesNotThrow(() => validate(scene), `${bounds} at ${n} cells`);
     }
+  }
+});
+
+test('the faces across each axis, as the panel writes them, are the faces the core reads', () => {
+  const scene = load('cylinder-wake');
+  for (let bits = 0; bits < 8; bits += 1) {
+    const across = Object.fromEntries(['x', 'y', 'z'].map((a, i) => [a, bits & (1 << i) ? 'closed' : 'open']));
+    scene.flow.faces = flowFaces(across);
+    const read = validate(scene).flow.faces;
+    assert.deepEqual(closedAxes(read), [0, 1, 2].map((i) => Boolean(bits & (1 << i))), JSON.stringify(read));
+    if (bits === 0 || bits === 7) assert.equal(typeof read, 'string');
   }
 });

@@ -4,7 +4,7 @@
 // grids too large for a GPU's textures, and the solid objects' signed distances.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { addSolid, boundaryOf, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
+import { addSolid, boundaryOf, closedAxes, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
 import { atlasOf, atlasTexel, flowGpuRefuses } from '../web/src/flow-gpu/gl.js';
 import { gpuFlowRefusesScene, solidDistance } from '../web/src/flow-gpu/scene.js';
 
@@ -50,6 +50,21 @@ test('a 3³ closed box: the walls are fixed at 0 and slip, the system is singula
   assert.equal(rows[4 * cell(0, 0, 0)], 3);
   assert.equal(rows[4 * cell(1, 1, 1)], 6);
   assert.equal(rows[4 * cell(2, 2, 2) + 1], 0b111000);
+});
+
+test('a 3³ box with walls across y alone: those faces fixed at 0, the faces across x and z free, the system definite', () => {
+  const { kinds, rows, definite } = boundaryOf(cells, noSolids(cells), { y: 'closed' });
+  assert.equal(definite, true);
+  assert.deepEqual(faceOf(kinds, 1, 1, 0, 1), [SLIPPING, 0]);
+  assert.deepEqual(faceOf(kinds, 1, 1, 3, 1), [SLIPPING, 0]);
+  assert.deepEqual(faceOf(kinds, 0, 0, 1, 1), [FREE, 0]);
+  assert.deepEqual(faceOf(kinds, 2, 1, 1, 3), [FREE, 0]);
+  // A corner cell: its two faces on the box across x and z free, the one across y a wall.
+  assert.equal(rows[4 * cell(0, 0, 0)], 5);
+  assert.deepEqual(closedAxes({ y: 'closed' }), [false, true, false]);
+  assert.deepEqual(closedAxes({ x: 'closed', y: 'open', z: 'closed' }), [true, false, true]);
+  assert.deepEqual(closedAxes('closed'), [true, true, true]);
+  assert.deepEqual(closedAxes(undefined), [false, false, false]);
 });
 
 test('every sample of a lattice has a texel of its own in its atlas', () => {

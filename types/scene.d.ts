@@ -18,12 +18,20 @@ export type EmitterShape = 'point' | 'disk' | 'sphere' | 'box';
  */
 export type SpectrumLaw = 'kolmogorov' | 'paper-literal';
 /**
- * What the box's six faces do.
+ * What the box's six faces do: all alike (`"open"` or `"closed"`), or the two across each
+ * axis as that axis says (`{"x": …, "y": …, "z": …}`, an axis not named open).
  *
  * This interface was referenced by `Scene`'s JSON-Schema
  * via the `definition` "FlowFaces".
  */
-export type FlowFaces = 'open' | 'closed';
+export type FlowFaces = Face | AxisFaces;
+/**
+ * What a face of the box does.
+ *
+ * This interface was referenced by `Scene`'s JSON-Schema
+ * via the `definition` "Face".
+ */
+export type Face = 'open' | 'closed';
 /**
  * Output encoding: `srgb` applies the sRGB transfer curve before quantising, `linear` does not.
  *
@@ -496,6 +504,17 @@ export interface FlowSettings {
    * ν, the kinematic viscosity (m²/s).
    */
   viscosity: number;
+}
+/**
+ * What the two faces across each axis do.
+ *
+ * This interface was referenced by `Scene`'s JSON-Schema
+ * via the `definition` "AxisFaces".
+ */
+export interface AxisFaces {
+  x: Face;
+  y: Face;
+  z: Face;
 }
 /**
  * Gas constants (paper Eqs. 12, 15, 16).
@@ -1175,4 +1194,15 @@ export interface SimulationSettingsInput {
    */
   dt?: number;
   integrator?: Integrator;
+}
+/**
+ * What the two faces across each axis do.
+ *
+ * This interface was referenced by `SceneInput`'s JSON-Schema
+ * via the `definition` "AxisFaces".
+ */
+export interface AxisFacesInput {
+  x?: Face;
+  y?: Face;
+  z?: Face;
 }

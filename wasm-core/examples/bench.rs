@@ -20,7 +20,7 @@ pub const BLOB_STEP_SCENE: &str = include_str!("blob-step-scene.json");
 fn flow_step(n: usize, runs: usize) {
     let h = 1.6 / n as f32;
     let grid = Grid::new([0.0; 3], [n; 3], h);
-    let mut flow = Flow::new(grid.clone(), Faces::Open);
+    let mut flow = Flow::new(grid.clone(), Faces::OPEN);
     flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
     let u_p = MacField::from_fn(&grid, |_| [1.0, 0.0, 0.0]);
     let mut iterations = 0;

@@ -19,7 +19,7 @@ pub extern "C" fn flow_new(n: u32) {
     let n = n as usize;
     let h = 1.6 / n as f32;
     let grid = Grid::new([0.0; 3], [n; 3], h);
-    let mut flow = Flow::new(grid.clone(), Faces::Open);
+    let mut flow = Flow::new(grid.clone(), Faces::OPEN);
     flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
     let u_p = MacField::from_fn(&grid, |_| [1.0, 0.0, 0.0]);
     CASE.with(|c| *c.borrow_mut() = Some((flow, u_p)));

@@ -277,6 +277,14 @@ fn the_flows_keys_are_checked_and_budgeted() {
             "flow.faces",
         ),
         (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {{"y": "ajar"}}}}"#),
+            "flow.faces",
+        ),
+        (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {{"w": "open"}}}}"#),
+            "flow.faces",
+        ),
+        (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "swirl": 1}}"#),
             "flow",
         ),
@@ -300,4 +308,17 @@ fn the_flows_keys_are_checked_and_budgeted() {
     let off = format!(r#"{{{unit}, "cells": [8, 8, 8], "enabled": false}}"#);
     let sim = Simulation::new(Scene::from_json(&scene(&off, "")).expect("valid")).expect("runs");
     assert!(sim.flow().is_none());
+    // The faces across each axis: an axis not named is open; the six alike in one word.
+    for (faces, closed) in [
+        (r#""closed""#, [true; 3]),
+        (r#"{"y": "closed"}"#, [false, true, false]),
+        (
+            r#"{"x": "closed", "y": "open", "z": "closed"}"#,
+            [true, false, true],
+        ),
+    ] {
+        let flow = format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {faces}}}"#);
+        let read = Scene::from_json(&scene(&flow, "")).expect(faces);
+        assert_eq!(read.flow.expect("a flow").faces.closed(), closed, "{faces}");
+    }
 }

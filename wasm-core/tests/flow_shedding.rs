@@ -66,7 +66,7 @@ fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
     let depth = cells[2] as f32 * H;
     let centre = [3.0 * DIAMETER, 0.5 * width];
     let radius = 0.5 * DIAMETER;
-    let mut flow = Flow::new(grid.clone(), Faces::Open);
+    let mut flow = Flow::new(grid.clone(), Faces::OPEN);
     flow.viscosity = WIND * DIAMETER / REYNOLDS;
     flow.solids.add(&grid, [0.0; 3], |x| {
         (x[0] - centre[0]).powi(2) + (x[1] - centre[1]).powi(2) < radius * radius

@@ -16,15 +16,58 @@ pub const EARTH_GRAVITY: [f64; 3] = [0.0, -9.81, 0.0];
 /// How fast the gas's heat is lost by default, 1/s.
 pub const DEFAULT_COOLING: f64 = 0.5;
 
-/// What the box's six faces do.
+/// What a face of the box does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
 #[serde(rename_all = "lowercase")]
-pub enum FlowFaces {
+pub enum Face {
     /// Air enters and leaves: the pressure beyond the face is 0, u_g's normal derivative 0.
     #[default]
     Open,
-    /// Solid walls: no air crosses them ((u_p + u_g)·n = 0).
+    /// A solid wall: no air crosses it ((u_p + u_g)·n = 0); the air slips along it.
     Closed,
+}
+
+/// What the two faces across each axis do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(deny_unknown_fields)]
+pub struct AxisFaces {
+    /// The faces across x (at x0 and x1).
+    #[serde(default)]
+    pub x: Face,
+    /// The faces across y (at y0 and y1).
+    #[serde(default)]
+    pub y: Face,
+    /// The faces across z (at z0 and z1).
+    #[serde(default)]
+    pub z: Face,
+}
+
+/// What the box's six faces do: all alike (`"open"` or `"closed"`), or the two across each
+/// axis as that axis says (`{"x": …, "y": …, "z": …}`, an axis not named open).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum FlowFaces {
+    /// The six faces alike.
+    All(Face),
+    /// The two faces across each axis as that axis says.
+    PerAxis(AxisFaces),
+}
+
+impl Default for FlowFaces {
+    fn default() -> Self {
+        Self::All(Face::Open)
+    }
+}
+
+impl FlowFaces {
+    /// Whether the faces across x, y and z are closed.
+    pub fn closed(self) -> [bool; 3] {
+        let face = match self {
+            Self::All(f) => [f; 3],
+            Self::PerAxis(a) => [a.x, a.y, a.z],
+        };
+        face.map(|f| f == Face::Closed)
+    }
 }
 
 /// The flow: u_g on `cells` cubes over `box`, under the primitives and the small scales.
@@ -89,7 +132,7 @@ impl FlowSettings {
             buoyancy: AIR_EXPANSION,
             gravity: EARTH_GRAVITY,
             cooling: DEFAULT_COOLING,
-            faces: FlowFaces::Open,
+            faces: FlowFaces::default(),
             enabled: true,
         }
     }

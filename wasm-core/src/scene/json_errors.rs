@@ -81,6 +81,7 @@ fn data(bare: &str) -> String {
     if let Some(name) = after("data did not match any variant of untagged enum ") {
         return match name {
             "Extinction" => "must be a number or a list of 3 numbers".to_string(),
+            "FlowFaces" => r#"must be "open", "closed" or an object {"x", "y", "z"} of those (each axis's two faces)"#.to_string(),
             _ => format!("must be one of the forms the format allows for it ({name})"),
         };
     }

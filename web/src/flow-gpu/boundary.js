@@ -14,6 +14,15 @@ export const HOLDING = 1;
 /** A fixed face touching no no-slip solid cell (a slipping solid's, or a closed wall). */
 export const SLIPPING = 2;
 
+/**
+ * Whether the box's faces across x, y and z are closed, from a scene's `flow.faces`: 'open',
+ * 'closed' or {x, y, z} of those (each axis's two faces; an axis left out is open).
+ */
+export function closedAxes(faces = 'open') {
+  if (typeof faces === 'string') return [0, 1, 2].map(() => faces === 'closed');
+  return ['x', 'y', 'z'].map((a) => faces[a] === 'closed');
+}
+
 /** The grid's cells: `cells` [nx, ny, nz], x fastest. */
 function cellIndex(cells, i, j, k) {
   return i + cells[0] * (j + cells[1] * k);
@@ -55,7 +64,7 @@ export function addSolid(solids, { origin, cells, h }, inside, v = [0, 0, 0], sl
 
 /**
  * The total normal velocity (m/s) face `idx` of component `axis` must carry, or null where it
- * is free (the core's `boundary::fixed_normal`).
+ * is free (the core's `boundary::fixed_normal`); `closed`: whether each axis's box faces are.
  */
 function fixedNormal(cells, solids, closed, axis, idx) {
   const n = cells[axis];
@@ -69,7 +78,7 @@ function fixedNormal(cells, solids, closed, axis, idx) {
   if (s === 0 || s === n) {
     const v = solidV(cell(s === 0 ? 0 : n - 1));
     if (v !== null) return v;
-    return closed ? 0 : null;
+    return closed[axis] ? 0 : null;
   }
   const a = solidV(cell(s - 1));
   const b = solidV(cell(s));
@@ -96,7 +105,7 @@ function holds(cells, solids, axis, idx) {
  * a, bit 3 + a for the previous one), with `definite` (some fluid cell has an open face).
  */
 export function boundaryOf(cells, solids, faces) {
-  const closed = faces === 'closed';
+  const closed = closedAxes(faces);
   const kinds = [0, 1, 2].map((axis) => {
     const d = faceDims(cells, axis);
     const out = new Float32Array(2 * d[0] * d[1] * d[2]);

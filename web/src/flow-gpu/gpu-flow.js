@@ -27,7 +27,7 @@
 // 3–4 passes and 1 to centre b), 2 per SOR iteration, 3 for the gradient: at 64³ open, 222
 // iterations, about 460 passes. A multigrid solve would take fewer.
 
-import { boundaryOf, faceDims, noSolids } from './boundary.js';
+import { boundaryOf, closedAxes, faceDims, noSolids } from './boundary.js';
 import { atlasFor, Lattice, latticeBytes, Pass, passState } from './gl.js';
 import {
   ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, EDDY_DIFFUSE, EDDY_VISCOSITY, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
@@ -111,8 +111,8 @@ class Pair {
 export class GpuFlow {
   /**
    * The flow at rest on the grid of `origin` (m), `cells` [nx, ny, nz] and cube edge `h` (m)
-   * with `faces` 'open' or 'closed', ν `viscosity` (m²/s), β `buoyancy` (1/K), `gravity`
-   * (m/s²), Smagorinsky's eddy viscosity when `eddies` (a scene's flow has it, the core's bare
+   * with `faces` 'open', 'closed' or {x, y, z} of those (each axis's two faces), ν `viscosity`
+   * (m²/s), β `buoyancy` (1/K), `gravity` (m/s²), Smagorinsky's eddy viscosity when `eddies` (a scene's flow has it, the core's bare
    * `Flow` not), and the SOR's `iterations` a step and `omega`, on the WebGL2 context `gl`
    * (float render targets: `flowGpuUnsupported`).
    */
@@ -121,18 +121,22 @@ export class GpuFlow {
     this.origin = origin.map(f32);
     this.cells = [...cells];
     this.h = f32(h);
-    // The box's faces, 'open' or 'closed' (`faces()` reads u_g back).
+    // The box's faces as the scene says them (`faces()` reads u_g back), and 1 on the axes
+    // whose faces are open, 0 on the closed (the advection's fade and the gradient read it).
     this.boxFaces = faces;
+    const closed = closedAxes(faces);
+    this.openAxes = { vec3: closed.map((c) => (c ? 0 : 1)) };
+    const allClosed = closed.every(Boolean);
     this.viscosity = f32(viscosity);
     this.buoyancy = f32(buoyancy);
     this.gravity = gravity.map(f32);
     this.eddies = eddies;
     const longest = Math.max(...cells);
-    this.iterations = iterations ?? (faces === 'closed' ? 5 : 3) * longest + 30;
+    this.iterations = iterations ?? (allClosed ? 5 : 3) * longest + 30;
     // SOR's best ω for the model problem on a cube of the longest side: 2/(1 + π/n) with the
     // box's faces open (p = 0 beyond them), 2/(1 + π/(√3 n)) with them closed (the Neumann
     // problem's smallest eigenvalue but the constant's is a third of the Dirichlet one's).
-    const side = faces === 'closed' ? Math.sqrt(3) * longest : longest;
+    const side = allClosed ? Math.sqrt(3) * longest : longest;
     this.omega = omega ?? 2 / (1 + Math.sin(Math.PI / side));
     const dims = [0, 1, 2].map((a) => faceDims(cells, a));
     this.u = dims.map((d) => new Pair(gl, d));
@@ -233,7 +237,7 @@ export class GpuFlow {
     this.passes.CARRIER.draw(this.carrier, { ...grid, px, py, pz, ux, uy, uz });
     for (let a = 0; a < 3; a++) {
       const trace = { carrier: this.carrier, dt, offset: { vec3: offsetOf(a) }, axis: { int: a } };
-      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...trace, q: this.u[a].now, open: this.boxFaces === 'open' });
+      this.passes.ADVECT_BACK.draw(this.back[a], { ...grid, ...trace, q: this.u[a].now, open: this.openAxes });
       this.#update(a, 'ADVECT_CORRECT', { ...trace, q: this.u[a].now, back: this.back[a] });
     }
     this.#diffuse(dt);
@@ -304,7 +308,7 @@ export class GpuFlow {
       }
     }
     for (let a = 0; a < 3; a++) {
-      this.#update(a, 'GRADIENT', { u: this.u[a].now, phi: this.phi.now, rows: this.rows, axis: { int: a }, open: this.boxFaces === 'open' });
+      this.#update(a, 'GRADIENT', { u: this.u[a].now, phi: this.phi.now, rows: this.rows, axis: { int: a }, open: this.openAxes });
     }
   }
 

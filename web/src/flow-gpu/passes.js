@@ -6,7 +6,7 @@
 // - ADVECT_BACK, ADVECT_CORRECT: semi-Lagrangian advection by a midpoint trace back in cells
 //   from the face's carrier (its two cells' mean), then MacCormack's correction from a trace
 //   forward, clamped to the eight samples the first trace blended (`advect.rs`: Selle et al.
-//   2008); with the box's faces open a trace from beyond them brings u_g faded to 0.
+//   2008); a trace from beyond an open face of the box brings u_g faded to 0.
 // - DIFFUSE: one explicit substep of ν∇² on one component's faces, with the core's stencil at
 //   the box's faces, fixed faces and no-slip or slipping solids (`diffuse.rs`).
 // - EDDY_VISCOSITY: Smagorinsky's ν_t = (C_s h)² √(2 S_ij S_ij) per cell, capped at h²/(8 dt),
@@ -104,8 +104,9 @@ vec3 traceFrom(vec3 t, vec3 v0, float k) {
 export const ADVECT_BACK = /* glsl */ `
 ${TRACE}
 ${lattices('q')}
-// The box's faces are open: a trace from beyond them brings u_g faded to 0 (\`beyond_open_faces\`).
-uniform bool open;
+// 1 on the axes whose faces are open, 0 on the closed: a trace from beyond an open face brings
+// u_g faded to 0 (\`beyond_open_faces\`).
+uniform vec3 open;
 ${OUT}
 void main() {${SAMPLE}
   vec3 t = offset + vec3(s);
@@ -120,7 +121,7 @@ void main() {${SAMPLE}
     lo = min(lo, c[n]);
     hi = max(hi, c[n]);
   }
-  float w = open ? fadeBeyond(max(max(-back, back - vec3(cells)), vec3(0.0))) : 1.0;
+  float w = fadeBeyond(max(max(-back, back - vec3(cells)), vec3(0.0)) * open);
   outValue = vec4(blend(c, f), lo, hi, 0.0) * w;
 }`;
 
@@ -367,7 +368,8 @@ export const GRADIENT = /* glsl */ `
 ${ROWS}
 ${lattices('u')}
 uniform int axis;
-uniform bool open;
+// 1 on the axes whose faces are open, 0 on the closed.
+uniform vec3 open;
 ${OUT}
 void main() {${SAMPLE}
   float v = fetch1(u, s, uL);
@@ -378,7 +380,7 @@ void main() {${SAMPLE}
   float below;
   float above;
   if (k == 0 || k == n) {
-    if (!(open && texelFetch(rows, texelOf(c, rowsL), 0).x > 0.0)) {
+    if (!(open[axis] > 0.5 && texelFetch(rows, texelOf(c, rowsL), 0).x > 0.0)) {
       outValue = vec4(v, 0.0, 0.0, 0.0);
       return;
     }

@@ -6,6 +6,7 @@
 // whose range is a rule of the format takes it from the core (the contract).
 
 import { MAX_ALBEDO } from '../generated/contract.js';
+import { closedAxes } from '../flow-gpu/boundary.js';
 
 /** New items, one per kind: valid as they stand (docs/FORMATS.md: the scene format, the blob list). */
 export const TEMPLATES = {
@@ -238,9 +239,18 @@ function medium(root, draft, changed) {
 }
 
 /**
+ * A scene's `flow.faces` from what the faces across each axis do (`across`: {x, y, z}, each
+ * 'open' or 'closed'): one word where all three agree, the object otherwise.
+ */
+export function flowFaces(across) {
+  const words = new Set(['x', 'y', 'z'].map((a) => across[a]));
+  return words.size === 1 ? [...words][0] : { x: across.x, y: across.y, z: across.z };
+}
+
+/**
  * The flow (paper §7): on/off (on adds a flow round the emitters, off keeps it switched off),
  * the cells along the box's longest side (the others in proportion, the box refitted so the
- * cells stay cubes), the box's corners, ν, β, the cooling and the faces.
+ * cells stay cubes), the box's corners, ν, β, the cooling and the faces across each axis.
  */
 function flowFolder(root, draft, changed) {
   const f = root.addFolder('Flow (§7)');
@@ -262,5 +272,10 @@ function flowFolder(root, draft, changed) {
   f.add(flow, 'viscosity').name('viscosity ν (m²/s)').onFinishChange(changed);
   f.add(flow, 'buoyancy').name('buoyancy β (1/K)').onFinishChange(changed);
   f.add(flow, 'cooling').name('cooling (1/s)').onFinishChange(changed);
-  f.add(flow, 'faces', ['open', 'closed']).name('faces').onChange(changed);
+  const across = Object.fromEntries(['x', 'y', 'z'].map((a, i) => [a, closedAxes(flow.faces)[i] ? 'closed' : 'open']));
+  const setFaces = () => {
+    flow.faces = flowFaces(across);
+    changed();
+  };
+  for (const a of ['x', 'y', 'z']) f.add(across, a, ['open', 'closed']).name(`faces across ${a}`).onChange(setFaces);
 }

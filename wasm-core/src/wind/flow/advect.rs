@@ -19,6 +19,7 @@
 //! field is smooth, and the clamp brings back first-order smearing at extrema and sharp fronts
 //! (the numerical viscosity measured at ν = 0 is in the flow's tests).
 
+use super::boundary::Faces;
 use super::frozen_flow::fade_beyond;
 use super::grid::Grid;
 use super::mac::{Centred, FaceSampler, MacField};
@@ -84,14 +85,22 @@ fn trace_from(velocity: &impl Carrier, t: Vec4, v0: Vec4, k: f32) -> Vec4 {
     t - v1 * k
 }
 
-/// How much of a sample taken at `t` (in cells from the origin) beyond a box of `n` cells with
-/// open faces is the flow's: 1 in the box, 0 a cell or more outside it, a smoothstep in each
-/// axis's distance between (the fade of [`super::FrozenFlow`], in cells). Beyond an open face
-/// the air is the primitives' wind undisturbed (u_g = 0), so a trace that comes from there
-/// brings u_g's value at the face faded by this.
+/// How much of a sample taken at `t` (in cells from the origin) beyond the open faces of a box
+/// of `n` cells is the flow's: 1 in the box, 0 a cell or more beyond an open face, a
+/// smoothstep in each axis's distance between (the fade of [`super::FrozenFlow`], in cells);
+/// `open` is 1 on the axes whose faces are open, 0 on the closed (beyond a wall the sample is
+/// the wall's own, clamped to the box). Beyond an open face the air is the primitives' wind
+/// undisturbed (u_g = 0), so a trace that comes from there brings u_g's value at the face
+/// faded by this.
 #[inline(always)]
-pub fn beyond_open_faces(t: Vec4, n: Vec4) -> f32 {
-    fade_beyond((-t).max(t - n).max(Vec4::ZERO).truncate().into())
+pub fn beyond_open_faces(t: Vec4, n: Vec4, open: Vec4) -> f32 {
+    fade_beyond(((-t).max(t - n).max(Vec4::ZERO) * open).truncate().into())
+}
+
+/// 1 on the axes whose faces are open, 0 on the closed (and on the fourth lane).
+fn open_axes(faces: Faces) -> Vec4 {
+    let one = |a: usize| if faces.open(a) { 1.0 } else { 0.0 };
+    Vec4::new(one(0), one(1), one(2), 0.0)
 }
 
 /// One lattice of samples: `values` on `dims` samples at `offset` cells from the grid's origin.
@@ -118,8 +127,8 @@ pub struct Advection {
 impl Advection {
     /// The lattice `q` advected by `velocity` (m/s) over `dt` (s) into `out`, semi-Lagrangian
     /// with MacCormack's clamped correction, `here(i, j, k)` the velocity at sample (i, j, k).
-    /// The traces run in cells from the grid's origin. With `open` (the box's faces open) a
-    /// backward trace that lands outside the box takes the value there faded to 0
+    /// The traces run in cells from the grid's origin. A backward trace that lands beyond an
+    /// open face of the box's `faces` takes the value there faded to 0
     /// ([`beyond_open_faces`]), its bounds with it: air entering the box brings no u_g.
     #[allow(clippy::too_many_arguments)]
     fn maccormack(
@@ -129,9 +138,11 @@ impl Advection {
         velocity: &impl Carrier,
         dt: f32,
         here: impl Fn([usize; 3]) -> Vec4,
-        open: bool,
+        faces: Faces,
         out: &mut Vec<f32>,
     ) {
+        let open = open_axes(faces);
+        let any_open = open != Vec4::ZERO;
         let box_cells = Vec4::new(
             grid.cells[0] as f32,
             grid.cells[1] as f32,
@@ -167,8 +178,8 @@ impl Advection {
                 let v0 = here([i, j, l]);
                 let back = trace_from(velocity, t, v0, k);
                 (*forward, *lo, *hi) = lattice.value_bounds(q.values, back);
-                if open {
-                    let w = beyond_open_faces(back, box_cells);
+                if any_open {
+                    let w = beyond_open_faces(back, box_cells, open);
                     if w != 1.0 {
                         (*forward, *lo, *hi) = (*forward * w, *lo * w, *hi * w);
                     }
@@ -209,7 +220,7 @@ pub fn maccormack(grid: &Grid, q: Lattice, velocity: &MacField, dt: f32) -> Vec<
         &faces,
         dt,
         |[i, j, k]| faces.at_cells(offset + Vec4::new(i as f32, j as f32, k as f32, 0.0)),
-        false,
+        Faces::CLOSED,
         &mut out,
     );
     out
@@ -226,7 +237,7 @@ pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) 
         u,
         &centred,
         dt,
-        false,
+        Faces::CLOSED,
         &mut Advection::default(),
         &mut out,
     );
@@ -235,13 +246,13 @@ pub fn advect_velocity(grid: &Grid, u: &MacField, velocity: &MacField, dt: f32) 
 
 /// Each component of `u` advected into `out` by the cells' velocity `velocity` (m/s) over
 /// `dt` (s) ([`maccormack`], each trace through [`Centred::at`]), with `scratch` kept
-/// between calls; `open`: the box's faces are open (traces from beyond them bring no u_g).
+/// between calls; traces from beyond the box's open `faces` bring no u_g.
 pub fn advect_velocity_into(
     grid: &Grid,
     u: &MacField,
     velocity: &Centred,
     dt: f32,
-    open: bool,
+    faces: Faces,
     scratch: &mut Advection,
     out: &mut MacField,
 ) {
@@ -259,7 +270,7 @@ pub fn advect_velocity_into(
                 velocity,
                 dt,
                 |i| velocity.at_face(0, i),
-                open,
+                faces,
                 comp,
             ),
             1 => scratch.maccormack(
@@ -268,7 +279,7 @@ pub fn advect_velocity_into(
                 velocity,
                 dt,
                 |i| velocity.at_face(1, i),
-                open,
+                faces,
                 comp,
             ),
             _ => scratch.maccormack(
@@ -277,7 +288,7 @@ pub fn advect_velocity_into(
                 velocity,
                 dt,
                 |i| velocity.at_face(2, i),
-                open,
+                faces,
                 comp,
             ),
         }

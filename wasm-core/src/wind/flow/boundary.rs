@@ -20,13 +20,25 @@
 use super::grid::Grid;
 use super::mac::MacField;
 
-/// What the box's six faces do.
+/// What the box's six faces do, the two across each axis alike: open (air enters and leaves:
+/// p = 0 beyond the face, zero normal derivative of u) or closed (a wall: (u_p + u_g)·n = 0).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Faces {
-    /// Air enters and leaves: p = 0 beyond the face, zero normal derivative of u.
-    Open,
-    /// A wall: (u_p + u_g)·n = 0.
-    Closed,
+pub struct Faces {
+    /// Whether the faces across x, y and z are closed.
+    pub closed: [bool; 3],
+}
+
+impl Faces {
+    /// Every face open.
+    pub const OPEN: Self = Self { closed: [false; 3] };
+    /// Every face closed.
+    pub const CLOSED: Self = Self { closed: [true; 3] };
+
+    /// Whether the faces across `axis` are open.
+    #[inline]
+    pub fn open(self, axis: usize) -> bool {
+        !self.closed[axis]
+    }
 }
 
 /// The grid's solid cells and each one's velocity (m/s).
@@ -114,10 +126,7 @@ pub fn fixed_normal(
     let s = idx[axis];
     if s == 0 || s == n {
         let inner = cell(if s == 0 { 0 } else { n - 1 });
-        return solid_v(inner).or(match faces {
-            Faces::Open => None,
-            Faces::Closed => Some(0.0),
-        });
+        return solid_v(inner).or(faces.closed[axis].then_some(0.0));
     }
     match (solid_v(cell(s - 1)), solid_v(cell(s))) {
         (Some(a), Some(b)) => Some(0.5 * (a + b)),

@@ -495,7 +495,6 @@ pub fn project(
 fn subtract_gradient(grid: &Grid, system: &System, faces: Faces, u_g: &mut MacField, phi: &[f64]) {
     let n = grid.cells;
     let inv_h = 1.0 / f64::from(grid.h);
-    let open = faces == Faces::Open;
     for a in 0..3 {
         let d = grid.face_dims(a);
         let st = system.stride[a];
@@ -507,13 +506,14 @@ fn subtract_gradient(grid: &Grid, system: &System, faces: Faces, u_g: &mut MacFi
                     let mut c = idx;
                     c[a] = s.min(n[a] - 1);
                     let cell = grid.cell(c[0], c[1], c[2]);
+                    let open = faces.open(a) && system.diag[cell] > 0.0;
                     let (below, above) = if s == 0 {
-                        if !(open && system.diag[cell] > 0.0) {
+                        if !open {
                             continue;
                         }
                         (0.0, phi[cell])
                     } else if s == n[a] {
-                        if !(open && system.diag[cell] > 0.0) {
+                        if !open {
                             continue;
                         }
                         (phi[cell], 0.0)
@@ -547,9 +547,9 @@ mod tests {
             *v = (seed >> 8) as f32 / (1u32 << 24) as f32 - 0.5;
         }
         let still = MacField::zeros(&grid);
-        super::super::boundary::impose(&grid, &solids, Faces::Closed, &still, &mut u);
+        super::super::boundary::impose(&grid, &solids, Faces::CLOSED, &still, &mut u);
         let mut phi = Vec::new();
-        let report = project(&grid, &solids, Faces::Closed, &mut u, 1e-6, 500, &mut phi);
+        let report = project(&grid, &solids, Faces::CLOSED, &mut u, 1e-6, 500, &mut phi);
         assert!(report.residual <= 1e-6, "{report:?}");
         let worst = u
             .divergence(&grid)

@@ -18,7 +18,7 @@ use super::project::Projection;
 use super::step::Flow;
 use crate::error::ParamError;
 use crate::scene::bodies::Body;
-use crate::scene::flow_settings::{FlowFaces, FlowSettings};
+use crate::scene::flow_settings::FlowSettings;
 use crate::scene::scene_format::Scene;
 use crate::wind::Wind;
 use glam::Vec3A;
@@ -77,9 +77,8 @@ impl SceneFlow {
         let h = settings.h() as f32;
         let origin = std::array::from_fn(|a| settings.bounds[a] as f32);
         let grid = Grid::new(origin, settings.cells, h);
-        let faces = match settings.faces {
-            FlowFaces::Open => Faces::Open,
-            FlowFaces::Closed => Faces::Closed,
+        let faces = Faces {
+            closed: settings.faces.closed(),
         };
         let mut flow = Flow::new(grid.clone(), faces);
         flow.eddies = true;
@@ -118,7 +117,7 @@ impl SceneFlow {
     pub fn same_grid(&self, other: &FlowSettings) -> bool {
         self.settings.bounds == other.bounds
             && self.settings.cells == other.cells
-            && self.settings.faces == other.faces
+            && self.settings.faces.closed() == other.faces.closed()
     }
 
     /// The grid.

@@ -114,8 +114,8 @@ impl Flow {
         let carrier = scratch.carrier.get_or_insert_with(|| Centred::new(g));
         carrier.set_sum(g, u_p, &self.u_g);
         let u = scratch.advected.get_or_insert_with(|| MacField::zeros(g));
-        let open = self.faces == Faces::Open;
-        advect_velocity_into(g, &self.u_g, carrier, dt, open, &mut scratch.advection, u);
+        let faces = self.faces;
+        advect_velocity_into(g, &self.u_g, carrier, dt, faces, &mut scratch.advection, u);
         diffuse(g, kinds, u_p, u, self.viscosity, dt);
         if self.eddies {
             eddy_viscosity(g, &self.u_g, dt, &mut self.eddy_viscosity);
