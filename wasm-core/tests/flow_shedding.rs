@@ -7,9 +7,10 @@
 //!
 //! The box (cells of h = 5 cm): 10 D along the wind, 6 D across it, 3 cells along the
 //! cylinder's axis. The two layers at the ends of the axis are slipping solids at rest (planes
-//! of symmetry, so the one layer of air between them is a two-dimensional flow); the wind
-//! enters either as a first layer of solid cells moving at U or through the box's open face,
-//! and the box's other faces are open. The cylinder is no-slip, 8 cells across, at Re = 5,000;
+//! of symmetry, so the one layer of air between them is a two-dimensional flow), or the box is
+//! that one layer with its faces across the axis closed (walls the air slips along, as a
+//! scene's `flow.faces` `{"z": "closed"}` says); the wind enters either as a first layer of
+//! solid cells moving at U or through the box's open face, and the box's other faces are open. The cylinder is no-slip, 8 cells across, at Re = 5,000;
 //! the advection's own viscosity (about 0.06 h·U, `flow.rs`) brings the effective Re nearer 130.
 
 use windfield::wind::flow::{Faces, Flow, Grid, MacField};
@@ -56,17 +57,30 @@ fn crossing_strouhal(signal: &[f32], dt: f32) -> f32 {
     }
 }
 
+/// What holds the air at the ends of the cylinder's axis.
+#[derive(Clone, Copy, PartialEq)]
+enum Ends {
+    /// Two layers of slipping solid cells inside an open box.
+    SlippingPlates,
+    /// The box's own faces across the axis, closed.
+    ClosedFaces,
+}
+
 /// The street behind the cylinder, the wind entering through a solid layer moving at U
-/// (`moving_inflow`) or through the box's open face: its measures 2 D behind, printed under
-/// `case` and held to a regular street at St 0.15–0.25.
-fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
-    let cells = [80, 48, 3];
+/// (`moving_inflow`) or through the box's open face, the axis's `ends` held as they say: its
+/// measures 2 D behind, printed under `case` and held to a regular street at St 0.15–0.25.
+fn sheds_a_regular_street(case: &str, moving_inflow: bool, ends: Ends) {
+    let plates = ends == Ends::SlippingPlates;
+    let cells = [80, 48, if plates { 3 } else { 1 }];
     let grid = Grid::new([0.0; 3], cells, H);
     let width = cells[1] as f32 * H;
     let depth = cells[2] as f32 * H;
     let centre = [3.0 * DIAMETER, 0.5 * width];
     let radius = 0.5 * DIAMETER;
-    let mut flow = Flow::new(grid.clone(), Faces::OPEN);
+    let faces = Faces {
+        closed: [false, false, !plates],
+    };
+    let mut flow = Flow::new(grid.clone(), faces);
     flow.viscosity = WIND * DIAMETER / REYNOLDS;
     flow.solids.add(&grid, [0.0; 3], |x| {
         (x[0] - centre[0]).powi(2) + (x[1] - centre[1]).powi(2) < radius * radius
@@ -74,8 +88,10 @@ fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
     if moving_inflow {
         flow.solids.add(&grid, [WIND, 0.0, 0.0], |x| x[0] < H);
     }
-    flow.solids
-        .add_slipping(&grid, [0.0; 3], |x| x[2] < H || x[2] > depth - H);
+    if plates {
+        flow.solids
+            .add_slipping(&grid, [0.0; 3], |x| x[2] < H || x[2] > depth - H);
+    }
     let u_p = MacField::from_fn(&grid, |_| [WIND, 0.0, 0.0]);
     // The symmetry broken once: a cross-wind push of 0.05 U over a diameter of the near wake.
     flow.u_g = MacField::from_fn(&grid, |x| {
@@ -144,12 +160,19 @@ fn sheds_a_regular_street(case: &str, moving_inflow: bool) {
 
 #[test]
 fn a_wind_past_a_cylinder_sheds_vortices_at_a_strouhal_number_near_0_2() {
-    sheds_a_regular_street("inflow a layer moving at U", true);
+    sheds_a_regular_street("inflow a layer moving at U", true, Ends::SlippingPlates);
 }
 
 /// The wind as a scene's flow takes it: u_p through the open faces, nothing moving at the
 /// inflow.
 #[test]
 fn a_wind_through_an_open_face_sheds_as_well() {
-    sheds_a_regular_street("inflow through the open face", false);
+    sheds_a_regular_street("inflow through the open face", false, Ends::SlippingPlates);
+}
+
+/// The same between the box's own closed faces across the axis, the others open: the ends a
+/// scene's `flow.faces` gives a post (its cylinder-wake preset's).
+#[test]
+fn a_wind_between_closed_faces_sheds_as_well() {
+    sheds_a_regular_street("between closed faces", false, Ends::ClosedFaces);
 }
