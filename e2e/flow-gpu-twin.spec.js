@@ -36,12 +36,15 @@ function hotInClosedBox() {
   return scene;
 }
 
-/** Serves web/src/flow-gpu/ to the page as ./flow-gpu/ (the module has no imports beyond it). */
+/**
+ * Serves web/src/flow-gpu/ to the page as ./flow-gpu/, with the two modules it imports from
+ * beyond it (the wind table's GLSL and the generated contract).
+ */
 async function serveModule(page) {
-  await page.route('**/flow-gpu/*.js', (route) => {
-    const name = new URL(route.request().url()).pathname.split('/').pop();
-    route.fulfill({ contentType: 'text/javascript', body: readFileSync(new URL(`../web/src/flow-gpu/${name}`, import.meta.url), 'utf8') });
-  });
+  const source = (path) => (route) => route.fulfill({ contentType: 'text/javascript', body: readFileSync(new URL(`../web/src/${path}`, import.meta.url), 'utf8') });
+  await page.route('**/flow-gpu/*.js', (route) => source(`flow-gpu/${new URL(route.request().url()).pathname.split('/').pop()}`)(route));
+  await page.route('**/stepper/wind-glsl.js', source('stepper/wind-glsl.js'));
+  await page.route('**/generated/contract.js', source('generated/contract.js'));
 }
 
 /** A 16³ closed box of still air, stirred. */

@@ -102,14 +102,15 @@ test('the solid objects\' signed distances: a sphere, a plane, a capped cylinder
   assert.equal(solidDistance({ type: 'box' }, [0, 0, 0]), Infinity);
 });
 
-test('the GPU takes a scene\'s flow under uniform winds without a decay, and says why it does not take any other', () => {
+test('the GPU takes a scene\'s flow under any primitives but a repulsor, and says why it does not take one', () => {
   const flow = { box: [0, 0, 0, 1, 1, 1], cells: [8, 8, 8] };
   const uniform = { type: 'uniform', velocity: [0.5, 0, 0], decay: null };
   assert.equal(gpuFlowRefusesScene({ flow, wind: [uniform, { ...uniform, velocity: [0, 0.1, 0] }] }), null);
   assert.equal(gpuFlowRefusesScene({ flow, wind: [] }), null);
-  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'source', position: [0, 0, 0], strength: 1, enabled: false }] }), null);
-  assert.match(gpuFlowRefusesScene({ flow, wind: [{ ...uniform, decay: 0.5 }] }), /uniform winds only \(the scene has a uniform with a decay\)/);
-  assert.match(gpuFlowRefusesScene({ flow, wind: [uniform, { type: 'repulsor', radius: 0.1 }] }), /uniform winds only \(the scene has a repulsor\)/);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ ...uniform, decay: 0.5 }, { type: 'source', position: [0, 0, 0], strength: 1 }] }), null);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'vortex', position: [0, 0, 0], axis: [0, 1, 0], strength: 1 }] }), null);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'repulsor', radius: 0.1, enabled: false }] }), null);
+  assert.match(gpuFlowRefusesScene({ flow, wind: [uniform, { type: 'repulsor', radius: 0.1 }] }), /no repulsor/);
   assert.match(gpuFlowRefusesScene({ flow: { ...flow, enabled: false }, wind: [] }), /no flow/);
   assert.match(gpuFlowRefusesScene({ wind: [] }), /no flow/);
 });

@@ -31,6 +31,7 @@ import { boundaryOf, closedAxes, faceDims, noSolids } from './boundary.js';
 import { atlasFor, Lattice, latticeBytes, Pass, passState } from './gl.js';
 import {
   ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, EDDY_DIFFUSE, EDDY_VISCOSITY, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
+  WIND_ON_FACES,
 } from './passes.js';
 
 /** How long a stir takes to bring the flow at its centre to its velocity (s, `scene_flow::STIR_TIME`). */
@@ -140,7 +141,9 @@ export class GpuFlow {
     this.omega = omega ?? 2 / (1 + Math.sin(Math.PI / side));
     const dims = [0, 1, 2].map((a) => faceDims(cells, a));
     this.u = dims.map((d) => new Pair(gl, d));
-    this.up = dims.map((d) => new Lattice(gl, d, 1, false));
+    this.up = dims.map((d) => new Lattice(gl, d));
+    // The wind table u_p is read from where the primitives are not uniform (`setWindTable`).
+    this.table = null;
     this.carrier = new Lattice(gl, cells, 4);
     this.back = dims.map((d) => new Lattice(gl, d, 4));
     this.kind = dims.map((d) => new Lattice(gl, d, 2, false));
@@ -160,7 +163,7 @@ export class GpuFlow {
       this.sums.push(new Lattice(gl, [w, hh, 1]));
     }
     this.passes = Object.fromEntries(Object.entries({
-      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, EDDY_VISCOSITY, EDDY_DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B,
+      CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, EDDY_VISCOSITY, EDDY_DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B, WIND_ON_FACES,
     }).map(([name, body]) => [name, new Pass(gl, body)]));
     this.setSolids(noSolids(cells));
     this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
@@ -208,6 +211,25 @@ export class GpuFlow {
       const d = faceDims(this.cells, a);
       return new Float32Array(d[0] * d[1] * d[2]).fill(v[a]);
     }));
+  }
+
+  /**
+   * u_p on every face from the wind table `table` (a Float32Array of one time in the core's
+   * `WindFrame::write_gpu_table` layout, the step's start): the constant wind and the scene's
+   * own primitives (not their mirror images) at each face, as the core's `SceneFlow::step`.
+   */
+  setWindTable(table) {
+    const gl = this.gl;
+    const texels = table.length / 4;
+    if (this.table?.atlas.dims[0] !== texels) {
+      this.table?.dispose();
+      this.table = new Lattice(gl, [texels, 1, 1], 4, false);
+    }
+    this.table.upload(table);
+    passState(gl);
+    for (let a = 0; a < 3; a++) {
+      this.passes.WIND_ON_FACES.draw(this.up[a], { ...this.#grid, windTable: this.table, offset: { vec3: offsetOf(a) }, axis: { int: a } });
+    }
   }
 
   /** Draws `pass` into component `a`'s next u_g with `uniforms` and makes it the current one. */
@@ -404,6 +426,7 @@ export class GpuFlow {
 
   dispose() {
     for (const l of this.#lattices()) l.dispose();
+    this.table?.dispose();
     for (const p of Object.values(this.passes)) p.dispose();
   }
 }

@@ -16,6 +16,8 @@
 //   mean of its two cells' ν_t, over its free neighbours only (no eddy flux through walls).
 // - BUOYANCY: b = −β T g, T averaged onto each face from its two cells (`forces.rs`).
 // - SPLAT: a Gaussian force splat within four widths of its centre (`forces.rs`).
+// - WIND_ON_FACES: u_p on one component's faces, the scene's own primitives read from a wind
+//   table (`SceneFlow::step`, `WindFrame::primitive_wind` at each face).
 // - IMPOSE: each fixed face's u_g = v·n − u_p (`boundary.rs`).
 // - DIVERGENCE: the Poisson right-hand side b = −h² ∇·u_g of each fluid cell (`project.rs`);
 //   with no open face, REDUCE (sums over blocks, down to one texel) and CENTRE_B take out b's
@@ -28,6 +30,8 @@
 //
 // Every pass starts from `s`, the sample of its texel in the target's lattice, and writes 0 past
 // the lattice's last slice.
+
+import { PRIMITIVES_GLSL } from '../stepper/wind-glsl.js';
 
 const SAMPLE = /* glsl */ `
   ivec3 s = sampleOf(ivec2(gl_FragCoord.xy), target);
@@ -289,6 +293,20 @@ void main() {${SAMPLE}
     v += dtForce * exp(-q / (radius * radius));
   }
   outValue = vec4(v, 0.0, 0.0, 0.0);
+}`;
+
+/**
+ * u_p (m/s) on component `axis`'s faces, each at origin + h·(index + offset): the constant wind
+ * and every primitive of the wind table's row 0 that is not a mirror image.
+ */
+export const WIND_ON_FACES = /* glsl */ `
+${PRIMITIVES_GLSL}
+uniform vec3 offset;
+uniform int axis;
+${OUT}
+void main() {${SAMPLE}
+  vec3 x = origin + h * (vec3(s) + offset);
+  outValue = vec4(primitivesWind(0, x)[axis], 0.0, 0.0, 0.0);
 }`;
 
 /** Each fixed face's u_g = v − u_p (so u_p + u_g carries v); free faces as they are. */

@@ -4,9 +4,9 @@
 // Smagorinsky's eddy viscosity (a scene's flow always has it; `options.eddies` false leaves it
 // out), the solid objects' cells (a cell whose centre is inside: the signed distance of the
 // sphere, the plane or the capped cylinder below 0) and the primitives' wind u_p on the faces.
-// Only uniform winds are taken here (u_p the same on every face); any other primitive, a
-// repulsor's moving sphere among them, needs u_p and the solids set each step from the wind
-// table, and is refused with the reason.
+// u_p is set here from the uniform winds without a decay (the same on every face); with other
+// primitives the GPU stepper sets each step's on the faces from its wind table. A repulsor's
+// moving sphere would need the solid cells set each step, and is refused with the reason.
 
 import { GpuFlow } from './gpu-flow.js';
 import { addSolid, noSolids } from './boundary.js';
@@ -38,15 +38,14 @@ export function solidDistance(o, x) {
 
 /**
  * Why the GPU's flow cannot take `scene` whatever the GPU, or null when it can: it needs an
- * enabled flow, and primitives that are uniform winds without a decay (u_p the same on every
- * face; any other, a repulsor's moving sphere among them, is stepped by the worker).
+ * enabled flow and no repulsor (whose moving sphere the worker's flow makes solid cells each
+ * step).
  */
 export function gpuFlowRefusesScene(scene) {
   const f = scene.flow;
   if (!f || f.enabled === false) return 'the scene has no flow';
   const winds = (scene.wind ?? []).filter((p) => p.enabled !== false);
-  const other = winds.find((p) => p.type !== 'uniform' || (p.decay ?? null) !== null);
-  if (other) return `the GPU's flow takes uniform winds only (the scene has a ${other.type}${(other.decay ?? null) !== null ? ' with a decay' : ''})`;
+  if (winds.some((p) => p.type === 'repulsor')) return 'the GPU\'s flow takes no repulsor (its moving sphere is solid cells the worker sets each step)';
   return null;
 }
 
@@ -79,6 +78,9 @@ export function gpuFlowOfScene(gl, scene, options = {}) {
     addSolid(solids, { origin: flow.origin, cells, h: flow.h }, (x) => solidDistance(o, x) < 0);
   }
   flow.setSolids(solids);
-  flow.setUniformWind([0, 1, 2].map((a) => f32(winds.reduce((s, p) => f32(s + p.velocity[a]), 0))));
+  // u_p from the uniform winds without a decay; the GPU stepper sets each step's from its wind
+  // table where the scene has other primitives (`GpuFlow.setWindTable`).
+  const constant = winds.filter((p) => p.type === 'uniform' && (p.decay ?? null) === null);
+  flow.setUniformWind([0, 1, 2].map((a) => f32(constant.reduce((s, p) => f32(s + p.velocity[a]), 0))));
   return { flow, solids };
 }

@@ -33,7 +33,7 @@ export function flowMemoryRefuses(cells, maxTextureSize, most) {
 
 /**
  * Why the GPU of `gl` cannot step `scene`'s flow beside the blobs, or null when it can (or the
- * scene has no flow): uniform winds only, float render targets and blending, textures large
+ * scene has no flow): no repulsor, float render targets and blending, textures large
  * enough for its cells, and their bytes within the `most` a memory budget gives a flow.
  */
 export function flowKeepsGpuAway(scene, gl, most = Infinity) {

@@ -217,17 +217,23 @@ export class GpuStepper {
 
   /**
    * The flow's part of one step from the state now (`wind::flow::SceneFlow::step` on the GPU):
-   * u_p from the step's first wind table `table` (its constant: the GPU's flow takes uniform
-   * winds only), the gas's heat deposited on the cells (the blobs of the first `slots` slots,
+   * u_p from the step's first wind table `table` (its constant where the primitives are all
+   * uniform winds without a decay, else each face's from the table's primitives), the gas's heat deposited on the cells (the blobs of the first `slots` slots,
    * none wider than `sigmaMax`, m), the stir `stir` if any, then the flow's step of `dt` (s);
    * the step pass is then given the flow's new u_g.
    */
   #stepFlow(link, table, dt, slots, sigmaMax) {
     const { flow, heat } = link;
-    const up = Array.from(table.subarray(CONSTANT_WIND, CONSTANT_WIND + 3));
-    if (!link.up || link.up.some((v, a) => v !== up[a])) {
-      flow.setUniformWind(up);
-      link.up = up;
+    if (table[CONSTANT_WIND + 3] > 0) {
+      // Primitives beyond the constant wind: u_p on the faces from this table.
+      flow.setWindTable(table);
+      link.up = null;
+    } else {
+      const up = Array.from(table.subarray(CONSTANT_WIND, CONSTANT_WIND + 3));
+      if (!link.up || link.up.some((v, a) => v !== up[a])) {
+        flow.setUniformWind(up);
+        link.up = up;
+      }
     }
     const t0 = performance.now();
     link.timer?.begin();

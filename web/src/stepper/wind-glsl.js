@@ -28,17 +28,68 @@ const SOLID_GRID_TEXELS = SOLID_GRID_HEADER / 4;
 const f = (v) => (Number.isInteger(v) ? v.toFixed(1) : String(v));
 
 /**
+ * `vec3 primitiveWind(int row, int j, vec3 x)`: primitive j's wind (m/s) at `x` (m), its decay
+ * with it, from row `row` of `windTable` (`tableTexel(row, i)` its texel i), and
+ * `vec3 primitivesWind(int row, vec3 x)`: u_p, the scene's own primitives' (the constant wind
+ * and every primitive that is not a mirror image: `WindFrame::primitive_wind`).
+ */
+export const PRIMITIVES_GLSL = /* glsl */ `
+uniform highp sampler2D windTable;
+
+vec4 tableTexel(int row, int i) { return texelFetch(windTable, ivec2(i, row), 0); }
+
+vec3 primitiveWind(int row, int j, vec3 x) {
+  int at = ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j;
+  vec4 head = tableTexel(row, at);
+  vec3 origin = tableTexel(row, at + 1).xyz;
+  vec3 p = tableTexel(row, at + 2).xyz;
+  vec3 q = tableTexel(row, at + 3).xyz;
+  float kind = head.x;
+  float a = head.z;
+  float b = head.w;
+  vec3 r = x - p;
+  vec3 u;
+  if (kind == ${SOURCE_KIND.toFixed(1)}) {
+    float d2 = dot(r, r) + b;
+    u = r * (a / (d2 * sqrt(d2)));
+  } else if (kind == ${VORTEX_KIND.toFixed(1)}) {
+    vec3 c = cross(q, r);
+    u = c * (a / (dot(c, c) + b));
+  } else if (kind == ${REPULSOR_KIND.toFixed(1)}) {
+    float d = length(r);
+    vec3 n = d > 1e-6 ? r / d : vec3(0.0, 1.0, 0.0);
+    if (d < a) {
+      u = q + n * b;
+    } else {
+      float s = a / d;
+      u = (n * (3.0 * dot(q, n)) - q) * (0.5 * s * s * s) + n * (b * s * s);
+    }
+  } else {
+    u = p;
+  }
+  return head.y > 0.0 ? u * exp(-length(x - origin) * head.y) : u;
+}
+
+vec3 primitivesWind(int row, vec3 x) {
+  vec4 constant = tableTexel(row, 4);
+  vec3 u = constant.xyz;
+  int n = int(constant.w);
+  for (int j = 0; j < n; j++) {
+    if (tableTexel(row, ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j + 1).w < -0.5) u += primitiveWind(row, j, x);
+  }
+  return u;
+}
+`;
+
+/**
  * `vec3 wind(int row, vec3 x)`: the wind (m/s) at `x` (m) from row `row` of `windTable` (row 0
  * the step's start, row 1 its middle). `lattice` holds the field's points (xyz, then 0), point
  * ((t·nz + z)·ny + y)·nx + x at texel (index mod `latticeWidth`, index / `latticeWidth`).
  */
-export const WIND_GLSL = /* glsl */ `
-uniform highp sampler2D windTable;
+export const WIND_GLSL = /* glsl */ `${PRIMITIVES_GLSL}
 uniform highp sampler2D lattice;
 uniform ivec4 latticeSize;
 uniform int latticeWidth;
-
-vec4 tableTexel(int row, int i) { return texelFetch(windTable, ivec2(i, row), 0); }
 
 vec3 latticePoint(highp sampler2D tex, ivec3 c, int t) {
   ivec3 n = latticeSize.xyz;
@@ -72,38 +123,6 @@ vec3 latticeSample(highp sampler2D tex, int row, vec3 x, vec3 scale) {
 }
 
 vec3 smallScale(int row, vec3 x) { return latticeSample(lattice, row, x, tableTexel(row, 3).xyz); }
-
-vec3 primitiveWind(int row, int j, vec3 x) {
-  int at = ${HEADER_TEXELS} + ${PRIMITIVE_TEXELS} * j;
-  vec4 head = tableTexel(row, at);
-  vec3 origin = tableTexel(row, at + 1).xyz;
-  vec3 p = tableTexel(row, at + 2).xyz;
-  vec3 q = tableTexel(row, at + 3).xyz;
-  float kind = head.x;
-  float a = head.z;
-  float b = head.w;
-  vec3 r = x - p;
-  vec3 u;
-  if (kind == ${SOURCE_KIND.toFixed(1)}) {
-    float d2 = dot(r, r) + b;
-    u = r * (a / (d2 * sqrt(d2)));
-  } else if (kind == ${VORTEX_KIND.toFixed(1)}) {
-    vec3 c = cross(q, r);
-    u = c * (a / (dot(c, c) + b));
-  } else if (kind == ${REPULSOR_KIND.toFixed(1)}) {
-    float d = length(r);
-    vec3 n = d > 1e-6 ? r / d : vec3(0.0, 1.0, 0.0);
-    if (d < a) {
-      u = q + n * b;
-    } else {
-      float s = a / d;
-      u = (n * (3.0 * dot(q, n)) - q) * (0.5 * s * s * s) + n * (b * s * s);
-    }
-  } else {
-    u = p;
-  }
-  return head.y > 0.0 ? u * exp(-length(x - origin) * head.y) : u;
-}
 
 vec3 wind(int row, vec3 x) {
   vec4 constant = tableTexel(row, 4);
