@@ -57,28 +57,50 @@ function offsetOf(axis) {
 }
 
 /**
+ * The textures of a `GpuFlow` on `cells` [nx, ny, nz] on a GPU whose textures are at most
+ * `maxTextureSize` a side, by the field that holds them: each a lattice's `dims`, `channels`
+ * (1 unless said), whether it is drawn into (`renderable`, unless false) and whether it is a
+ * ping-pong `pair`; a list where the field holds one a component (or a reduction level).
+ */
+function textureTable(cells, maxTextureSize) {
+  const faces = [0, 1, 2].map((a) => faceDims(cells, a));
+  // The sums of b, block by block down to one texel.
+  const sums = [];
+  const atlas = atlasFor(cells, maxTextureSize);
+  for (let [w, hh] = [atlas.width, atlas.height]; w > 1 || hh > 1;) {
+    [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
+    sums.push({ dims: [w, hh, 1] });
+  }
+  return {
+    // u_g's pair, u_p, the traces' values and bounds, the faces' kinds.
+    u: faces.map((dims) => ({ dims, pair: true })),
+    up: faces.map((dims) => ({ dims })),
+    back: faces.map((dims) => ({ dims, channels: 4 })),
+    kind: faces.map((dims) => ({ dims, channels: 2, renderable: false })),
+    // The carrier, the Poisson rows, T, b, φ's pair, the cells' velocity out, b centred, the
+    // cells' velocity centred, ν_t; the probe.
+    carrier: { dims: cells, channels: 4 },
+    rows: { dims: cells, channels: 4, renderable: false },
+    temperature: { dims: cells },
+    b: { dims: cells },
+    phi: { dims: cells, pair: true },
+    cellOut: { dims: cells, channels: 4 },
+    bCentred: { dims: cells },
+    centred: { dims: cells, channels: 4 },
+    nuT: { dims: cells },
+    probe: { dims: [1, 1, 1], channels: 4 },
+    sums,
+  };
+}
+
+/**
  * The bytes of the textures a `GpuFlow` on `cells` [nx, ny, nz] holds on a GPU whose textures
  * are at most `maxTextureSize` a side (float32 atlases: per cell about 196 B), worked out before
  * one is made, so that a memory budget can refuse it first (`GpuFlow.bytes` once made).
  */
 export function gpuFlowBytes(cells, maxTextureSize) {
-  const of = (dims, channels = 1) => latticeBytes(dims, channels, maxTextureSize);
-  let bytes = 0;
-  for (let a = 0; a < 3; a++) {
-    const d = faceDims(cells, a);
-    // u_g's pair, u_p, the traces' values and bounds, the faces' kinds.
-    bytes += 2 * of(d) + of(d) + of(d, 4) + of(d, 2);
-  }
-  // The carrier, the Poisson rows, the cells' velocity out and centred; T, b, φ's pair, b
-  // centred and ν_t; the probe.
-  bytes += 4 * of(cells, 4) + 6 * of(cells) + of([1, 1, 1], 4);
-  // b's sums, block by block down to one texel.
-  const atlas = atlasFor(cells, maxTextureSize);
-  for (let [w, hh] = [atlas.width, atlas.height]; w > 1 || hh > 1;) {
-    [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
-    bytes += of([w, hh, 1]);
-  }
-  return bytes;
+  const specs = Object.values(textureTable(cells, maxTextureSize)).flat();
+  return specs.reduce((n, t) => n + (t.pair ? 2 : 1) * latticeBytes(t.dims, t.channels ?? 1, maxTextureSize), 0);
 }
 
 /** A ping-pong pair of lattices: `now` read, `next` written, then swapped. */
@@ -139,34 +161,17 @@ export class GpuFlow {
     // problem's smallest eigenvalue but the constant's is a third of the Dirichlet one's).
     const side = allClosed ? Math.sqrt(3) * longest : longest;
     this.omega = omega ?? 2 / (1 + Math.sin(Math.PI / side));
-    const dims = [0, 1, 2].map((a) => faceDims(cells, a));
-    this.u = dims.map((d) => new Pair(gl, d));
-    this.up = dims.map((d) => new Lattice(gl, d));
+    const textures = textureTable(cells, gl.getParameter(gl.MAX_TEXTURE_SIZE));
+    const make = (t) => (t.pair ? new Pair(gl, t.dims, t.channels) : new Lattice(gl, t.dims, t.channels, t.renderable));
+    for (const [name, t] of Object.entries(textures)) this[name] = Array.isArray(t) ? t.map(make) : make(t);
+    this.textureNames = Object.keys(textures);
     // The wind table u_p is read from where the primitives are not uniform (`setWindTable`).
     this.table = null;
-    this.carrier = new Lattice(gl, cells, 4);
-    this.back = dims.map((d) => new Lattice(gl, d, 4));
-    this.kind = dims.map((d) => new Lattice(gl, d, 2, false));
-    this.rows = new Lattice(gl, cells, 4, false);
-    this.temperature = new Lattice(gl, cells, 1);
-    this.b = new Lattice(gl, cells);
-    this.phi = new Pair(gl, cells);
-    this.cellOut = new Lattice(gl, cells, 4);
-    this.probe = new Lattice(gl, [1, 1, 1], 4);
-    this.bCentred = new Lattice(gl, cells);
-    this.centred = new Lattice(gl, cells, 4);
-    this.nuT = new Lattice(gl, cells);
-    // The sums of b, block by block down to one texel.
-    this.sums = [];
-    for (let [w, hh] = [this.b.atlas.width, this.b.atlas.height]; w > 1 || hh > 1;) {
-      [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
-      this.sums.push(new Lattice(gl, [w, hh, 1]));
-    }
     this.passes = Object.fromEntries(Object.entries({
       CARRIER, ADVECT_BACK, ADVECT_CORRECT, DIFFUSE, EDDY_VISCOSITY, EDDY_DIFFUSE, BUOYANCY, SPLAT, IMPOSE, DIVERGENCE, RELAX, RESIDUAL, GRADIENT, CENTRES, PROBE, REDUCE, CENTRE_B, WIND_ON_FACES,
     }).map(([name, body]) => [name, new Pass(gl, body)]));
     this.setSolids(noSolids(cells));
-    this.setWind(dims.map((d) => new Float32Array(d[0] * d[1] * d[2])));
+    this.setUniformWind([0, 0, 0]);
     this.clear();
   }
 
@@ -415,8 +420,9 @@ export class GpuFlow {
   }
 
   /** Every lattice (and pair of them) it holds. */
+  /** Its textures (`textureTable`'s), each a Lattice or a Pair. */
   #lattices() {
-    return [...this.u, ...this.up, this.carrier, ...this.back, ...this.kind, this.rows, this.temperature, this.b, this.phi, this.cellOut, this.probe, this.bCentred, this.centred, this.nuT, ...this.sums];
+    return this.textureNames.flatMap((name) => this[name]);
   }
 
   /** The bytes of its textures (`gpuFlowBytes` beforehand). */
