@@ -218,9 +218,10 @@ export class GpuStepper {
   /**
    * The flow's part of one step from the state now (`wind::flow::SceneFlow::step` on the GPU):
    * u_p from the step's first wind table `table` (its constant where the primitives are all
-   * uniform winds without a decay, else each face's from the table's primitives), the gas's heat deposited on the cells (the blobs of the first `slots` slots,
-   * none wider than `sigmaMax`, m), the stir `stir` if any, then the flow's step of `dt` (s);
-   * the step pass is then given the flow's new u_g.
+   * uniform winds without a decay, else each face's from the table's primitives), the gas's
+   * heat deposited on the cells (the blobs of the first `slots` slots, none wider than
+   * `sigmaMax`, m), the stir `stir` if any, then the flow's step of `dt` (s); the step pass is
+   * then given the flow's new u_g.
    */
   #stepFlow(link, table, dt, slots, sigmaMax) {
     const { flow, heat } = link;
