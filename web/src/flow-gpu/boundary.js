@@ -62,38 +62,41 @@ export function addSolid(solids, { origin, cells, h }, inside, v = [0, 0, 0], sl
   return solids;
 }
 
-/**
- * The total normal velocity (m/s) face `idx` of component `axis` must carry, or null where it
- * is free (the core's `boundary::fixed_normal`); `closed`: whether each axis's box faces are.
- */
-function fixedNormal(cells, solids, closed, axis, idx) {
-  const n = cells[axis];
-  const cell = (m) => {
-    const c = [...idx];
-    c[axis] = m;
-    return cellIndex(cells, c[0], c[1], c[2]);
-  };
-  const solidV = (c) => (solids.solid[c] ? solids.velocity[3 * c + axis] : null);
-  const s = idx[axis];
-  if (s === 0 || s === n) {
-    const v = solidV(cell(s === 0 ? 0 : n - 1));
-    if (v !== null) return v;
-    return closed[axis] ? 0 : null;
-  }
-  const a = solidV(cell(s - 1));
-  const b = solidV(cell(s));
-  if (a !== null && b !== null) return Math.fround(0.5 * Math.fround(a + b));
-  return a ?? b;
+/** Cell index strides of `cells` along x, y and z. */
+function stridesOf(cells) {
+  return [1, cells[0], cells[0] * cells[1]];
 }
 
-/** Whether face `idx` of component `axis` touches a no-slip solid cell (`boundary::holds`). */
-function holds(cells, solids, axis, idx) {
-  const s = idx[axis];
+/**
+ * The total normal velocity (m/s) face (i, j, k) of component `axis` must carry, or null where
+ * it is free (the core's `boundary::fixed_normal`); `closed`: whether each axis's box faces are,
+ * `stride` the cells' strides (`stridesOf`).
+ */
+function fixedNormal(cells, solids, closed, stride, axis, i, j, k) {
   const n = cells[axis];
+  const s = axis === 0 ? i : axis === 1 ? j : k;
+  // The cell at index 0 along the axis, the face's others as they are.
+  const base = i + cells[0] * (j + cells[1] * k) - s * stride[axis];
+  const { solid, velocity } = solids;
+  if (s === 0 || s === n) {
+    const c = base + (s === 0 ? 0 : n - 1) * stride[axis];
+    if (solid[c]) return velocity[3 * c + axis];
+    return closed[axis] ? 0 : null;
+  }
+  const a = base + (s - 1) * stride[axis];
+  const b = a + stride[axis];
+  if (solid[a] && solid[b]) return Math.fround(0.5 * Math.fround(velocity[3 * a + axis] + velocity[3 * b + axis]));
+  if (solid[a]) return velocity[3 * a + axis];
+  return solid[b] ? velocity[3 * b + axis] : null;
+}
+
+/** Whether face (i, j, k) of component `axis` touches a no-slip solid cell (`boundary::holds`). */
+function holds(cells, solids, stride, axis, i, j, k) {
+  const n = cells[axis];
+  const s = axis === 0 ? i : axis === 1 ? j : k;
+  const base = i + cells[0] * (j + cells[1] * k) - s * stride[axis];
   const holding = (m) => {
-    const c = [...idx];
-    c[axis] = m;
-    const q = cellIndex(cells, c[0], c[1], c[2]);
+    const q = base + m * stride[axis];
     return solids.solid[q] === 1 && solids.slip[q] === 0;
   };
   return (s > 0 && holding(s - 1)) || (s < n && holding(s));
@@ -106,16 +109,17 @@ function holds(cells, solids, axis, idx) {
  */
 export function boundaryOf(cells, solids, faces) {
   const closed = closedAxes(faces);
+  const stride = stridesOf(cells);
   const kinds = [0, 1, 2].map((axis) => {
     const d = faceDims(cells, axis);
     const out = new Float32Array(2 * d[0] * d[1] * d[2]);
+    let f = 0;
     for (let k = 0; k < d[2]; k++) {
       for (let j = 0; j < d[1]; j++) {
-        for (let i = 0; i < d[0]; i++) {
-          const v = fixedNormal(cells, solids, closed, axis, [i, j, k]);
+        for (let i = 0; i < d[0]; i++, f += 2) {
+          const v = fixedNormal(cells, solids, closed, stride, axis, i, j, k);
           if (v === null) continue;
-          const f = 2 * (i + d[0] * (j + d[1] * k));
-          out[f] = holds(cells, solids, axis, [i, j, k]) ? HOLDING : SLIPPING;
+          out[f] = holds(cells, solids, stride, axis, i, j, k) ? HOLDING : SLIPPING;
           out[f + 1] = v;
         }
       }
@@ -125,21 +129,23 @@ export function boundaryOf(cells, solids, faces) {
   const count = cells[0] * cells[1] * cells[2];
   const diag = new Uint8Array(count);
   const links = new Uint8Array(count);
-  const stride = [1, cells[0], cells[0] * cells[1]];
+  const dims = [0, 1, 2].map((a) => faceDims(cells, a));
   let definite = false;
   for (let k = 0; k < cells[2]; k++) {
     for (let j = 0; j < cells[1]; j++) {
       for (let i = 0; i < cells[0]; i++) {
         const c = cellIndex(cells, i, j, k);
         if (solids.solid[c]) continue;
-        const idx = [i, j, k];
         for (let a = 0; a < 3; a++) {
+          const d = dims[a];
+          // The cell's lower face across axis a, and its upper one a face further on.
+          const lower = i + d[0] * (j + d[1] * k);
+          const step = a === 0 ? 1 : a === 1 ? d[0] : d[0] * d[1];
+          const s = a === 0 ? i : a === 1 ? j : k;
           for (let side = 0; side < 2; side++) {
-            const f = [...idx];
-            f[a] += side;
-            if (fixedNormal(cells, solids, closed, a, f) !== null) continue;
+            if (kinds[a][2 * (lower + side * step)] !== FREE) continue;
             diag[c] += 1;
-            if (f[a] === 0 || f[a] === cells[a]) definite = true;
+            if (s + side === 0 || s + side === cells[a]) definite = true;
             else if (side === 1) {
               links[c] |= 1 << a;
               links[c + stride[a]] |= 8 << a;
