@@ -6,7 +6,9 @@
 // and leaves the same flow and heat; 40 steps on the GPU, and 20 more in the worker once the gas
 // and its flow came back, agree with 60 in the worker in the flow (within 1e-3 of max|u_g|) and in
 // the gas's count, mass and statistics, as the GPU stepper's own checks ask; a drag of the pointer
-// pushes the GPU's flow as the same drag pushes the worker's.
+// pushes the GPU's flow as the same drag pushes the worker's. The same under a vortex and a
+// decaying wind (u_p set on the faces from the wind table) and beside a repulsor crossing the
+// box (its sphere solid cells that move with it).
 import { readFileSync } from 'node:fs';
 import { test, expect } from './helpers.js';
 import { encodeScene } from '../web/src/state/url-codec.js';
@@ -38,6 +40,16 @@ function hotInVortex() {
   return scene;
 }
 
+/**
+ * The same with a repulsor crossing the box beside the plume at 0.35 m/s: its sphere is solid
+ * cells of the flow where it is at each step, moving with it.
+ */
+function hotBesideRepulsor() {
+  const scene = hotPastSphere();
+  scene.wind.push({ type: 'repulsor', radius: 0.16, strength: 0.05, path: [[0, -0.35, 0.95, 0.05], [2, 0.35, 0.95, 0.05]] });
+  return scene;
+}
+
 async function open(page, scene) {
   await page.addInitScript(installApart);
   await page.goto(`./?view=points#${await encodeScene(scene)}`);
@@ -59,7 +71,7 @@ function installApart() {
   };
 }
 
-for (const [name, make] of [['a crosswind', hotPastSphere], ['a vortex and a decaying wind', hotInVortex]]) {
+for (const [name, make] of [['a crosswind', hotPastSphere], ['a vortex and a decaying wind', hotInVortex], ['a crosswind with a repulsor crossing the box', hotBesideRepulsor]]) {
   test(`one step from the same state in ${name}: the GPU steps the flow from the blobs' heat and moves every blob where the core does`, async ({ page }) => {
     const scene = make();
     await open(page, scene);
@@ -105,57 +117,59 @@ for (const [name, make] of [['a crosswind', hotPastSphere], ['a vortex and a dec
   });
 }
 
-test('40 steps on the GPU with its flow, then 20 in the worker with the flow handed back: the flow and the gas agree with 60 in the worker', async ({ page }) => {
-  const scene = hotPastSphere();
-  await open(page, scene);
-  const out = await page.evaluate(async (scene) => {
-    const { apartOf } = window;
-    const w = window.windfield;
-    const blobs = async () => (await w.exportBlobs({ width: 32, height: 24 })).blobs;
-    await w.setStepper('gpu');
-    await w.setScene(scene);
-    await w.step(40);
-    const onGpu = [w.stats().stepper, w.stats().flowStepper];
-    const flowMs = w.stats().flowMs;
-    const gpuFlow = await w.exportFlow();
-    await w.setStepper('cpu');
-    // Handed back as it was: the worker's flow now is the GPU's.
-    const handed = apartOf((await w.exportFlow()).velocity, gpuFlow.velocity);
-    await w.step(20);
-    const after = [w.stats().stepper, w.stats().flowStepper];
-    const mixedFlow = await w.exportFlow();
-    const mixed = await blobs();
-    await w.setScene(scene);
-    await w.step(40);
-    const cpuAt40 = await w.exportFlow();
-    await w.step(20);
-    const cpuFlow = await w.exportFlow();
-    return {
-      onGpu, flowMs, after, handed, mixed, cpu: await blobs(),
-      at40: apartOf(gpuFlow.velocity, cpuAt40.velocity), at60: apartOf(mixedFlow.velocity, cpuFlow.velocity),
-    };
-  }, scene);
-  expect(out.onGpu).toEqual(['gpu', 'gpu']);
-  // The GPU's own time of a flow step (a timer query, SwiftShader has one), or the page's.
-  expect(out.flowMs).toBeGreaterThan(0);
-  expect(out.after).toEqual(['cpu', 'cpu']);
-  console.log(`40 steps on the GPU (the last flow step ${out.flowMs.toFixed(1)} ms): u_g ${out.at40.apart.toExponential(2)} of ${out.at40.largest.toFixed(4)} m/s from the worker's; handed back ${out.handed.apart.toExponential(2)} apart; 20 more in the worker: ${out.at60.apart.toExponential(2)} of ${out.at60.largest.toFixed(4)} m/s`);
-  expect(out.handed.apart).toBeLessThanOrEqual(1e-6 * out.handed.largest);
-  for (const f of [out.at40, out.at60]) {
-    expect(f.finite).toBe(true);
-    expect(f.largest).toBeGreaterThan(0.05);
-    expect(f.apart).toBeLessThanOrEqual(1e-3 * f.largest);
-  }
-  const { mixed, cpu } = out;
-  expect(mixed.length).toBe(cpu.length);
-  expect(mixed.length).toBeGreaterThan(80);
-  expect(Math.abs(totalMass(mixed) - totalMass(cpu)) / totalMass(cpu)).toBeLessThan(1e-4);
-  const [g, c] = [centreStatistics(mixed), centreStatistics(cpu)];
-  for (let a = 0; a < 3; a++) {
-    expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
-    expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);
-  }
-});
+for (const [name, make] of [['a crosswind', hotPastSphere], ['a crosswind with a repulsor crossing the box', hotBesideRepulsor]]) {
+  test(`40 steps on the GPU with its flow in ${name}, then 20 in the worker with the flow handed back: the flow and the gas agree with 60 in the worker`, async ({ page }) => {
+    const scene = make();
+    await open(page, scene);
+    const out = await page.evaluate(async (scene) => {
+      const { apartOf } = window;
+      const w = window.windfield;
+      const blobs = async () => (await w.exportBlobs({ width: 32, height: 24 })).blobs;
+      await w.setStepper('gpu');
+      await w.setScene(scene);
+      await w.step(40);
+      const onGpu = [w.stats().stepper, w.stats().flowStepper];
+      const flowMs = w.stats().flowMs;
+      const gpuFlow = await w.exportFlow();
+      await w.setStepper('cpu');
+      // Handed back as it was: the worker's flow now is the GPU's.
+      const handed = apartOf((await w.exportFlow()).velocity, gpuFlow.velocity);
+      await w.step(20);
+      const after = [w.stats().stepper, w.stats().flowStepper];
+      const mixedFlow = await w.exportFlow();
+      const mixed = await blobs();
+      await w.setScene(scene);
+      await w.step(40);
+      const cpuAt40 = await w.exportFlow();
+      await w.step(20);
+      const cpuFlow = await w.exportFlow();
+      return {
+        onGpu, flowMs, after, handed, mixed, cpu: await blobs(),
+        at40: apartOf(gpuFlow.velocity, cpuAt40.velocity), at60: apartOf(mixedFlow.velocity, cpuFlow.velocity),
+      };
+    }, scene);
+    expect(out.onGpu).toEqual(['gpu', 'gpu']);
+    // The GPU's own time of a flow step (a timer query, SwiftShader has one), or the page's.
+    expect(out.flowMs).toBeGreaterThan(0);
+    expect(out.after).toEqual(['cpu', 'cpu']);
+    console.log(`${name}: 40 steps on the GPU (the last flow step ${out.flowMs.toFixed(1)} ms): u_g ${out.at40.apart.toExponential(2)} of ${out.at40.largest.toFixed(4)} m/s from the worker's; handed back ${out.handed.apart.toExponential(2)} apart; 20 more in the worker: ${out.at60.apart.toExponential(2)} of ${out.at60.largest.toFixed(4)} m/s`);
+    expect(out.handed.apart).toBeLessThanOrEqual(1e-6 * out.handed.largest);
+    for (const f of [out.at40, out.at60]) {
+      expect(f.finite).toBe(true);
+      expect(f.largest).toBeGreaterThan(0.05);
+      expect(f.apart).toBeLessThanOrEqual(1e-3 * f.largest);
+    }
+    const { mixed, cpu } = out;
+    expect(mixed.length).toBe(cpu.length);
+    expect(mixed.length).toBeGreaterThan(80);
+    expect(Math.abs(totalMass(mixed) - totalMass(cpu)) / totalMass(cpu)).toBeLessThan(1e-4);
+    const [g, c] = [centreStatistics(mixed), centreStatistics(cpu)];
+    for (let a = 0; a < 3; a++) {
+      expect(Math.abs(g[a].mean - c[a].mean), `centroid ${'xyz'[a]}`).toBeLessThan(0.02 * c[a].spread);
+      expect(Math.abs(g[a].spread - c[a].spread) / c[a].spread, `spread ${'xyz'[a]}`).toBeLessThan(0.02);
+    }
+  });
+}
 
 test('a drag while the GPU steps the gas pushes its flow as the same drag pushes the worker\'s', async ({ page }) => {
   const scene = hotPastSphere();

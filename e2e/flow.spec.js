@@ -2,8 +2,8 @@
 // grid (`exportFlow`: u_g (nz, ny, nx, 3) and T (nz, ny, nx), whole Float32Arrays), warm where a
 // hot emitter's gas is; `stats()` says who steps it (`flowStepper`: the worker, 'cpu', where it
 // steps the gas, and 'gpu' once the GPU stepper takes the gas and the flow with it) and times its
-// last step (`flowMs`); a flow the GPU cannot step (beside a repulsor, whose sphere moves) keeps
-// the gas in the worker, and says why, also when an edit brings one to a GPU-stepped scene; an
+// last step (`flowMs`); a scene the GPU cannot step (one that splits its blobs) keeps the gas
+// and its flow in the worker, and says why, also when an edit makes a GPU-stepped scene one; an
 // edit that adds a flow the GPU can step leaves the gas and the new flow on the GPU; a scene
 // without a flow hands out null. The same on a <wind-field> element.
 import { readFileSync } from 'node:fs';
@@ -84,9 +84,9 @@ test('a scene with a flow: exportFlow hands out its grid, warm near the hot emit
     const stepper = await w.setStepper('gpu');
     await w.step(1);
     const onGpu = { summary: window.flowSummary(await w.exportFlow(), near), stats: w.stats() };
-    // A flow beside a repulsor: the GPU's flow takes none (its moving sphere is solid cells).
+    // A scene the GPU cannot step (it splits blobs): the gas and its flow stay in the worker.
     const sourced = structuredClone(w.getScene());
-    sourced.wind.push({ type: 'repulsor', radius: 0.1, strength: 0.1, path: [[0, -0.5, 0.6, 0], [8, 0.5, 0.6, 0]] });
+    sourced.gas.split_sigma = 0.2;
     await w.setScene(sourced);
     await w.step(1);
     return { summary: window.flowSummary(grid, near), stats, stepper, onGpu, sourced: w.stats() };
@@ -102,7 +102,7 @@ test('a scene with a flow: exportFlow hands out its grid, warm near the hot emit
   expectHotGrid(out.onGpu.summary, out.onGpu.stats.time);
   expect(out.sourced.stepper).toBe('cpu');
   expect(out.sourced.flowStepper).toBe('cpu');
-  expect(out.sourced.stepperReason).toMatch(/flow.*no repulsor/);
+  expect(out.sourced.stepperReason).toMatch(/splits blobs/);
   expect(errors).toEqual([]);
 });
 
@@ -124,9 +124,9 @@ test('a scene without a flow hands out null; an edit that adds one takes the flo
     await w.step(20);
     const grid = await w.exportFlow();
     const stats = w.stats();
-    // A repulsor joins the wind: the gas and the flow come back to the worker, u_g as it was.
+    // The gas starts to split: it and the flow come back to the worker, u_g as it was.
     const sourced = structuredClone(edited);
-    sourced.wind.push({ type: 'repulsor', radius: 0.1, strength: 0.1, path: [[0, -0.5, 0.6, 0], [8, 0.5, 0.6, 0]] });
+    sourced.gas.split_sigma = 0.2;
     await w.editScene(sourced);
     const back = { stats: w.stats(), grid: await w.exportFlow() };
     const same = back.grid.velocity.every((v, i) => Math.abs(v - grid.velocity[i]) <= 1e-7);
@@ -144,7 +144,7 @@ test('a scene without a flow hands out null; an edit that adds one takes the flo
   expectHotGrid(out.grid, out.stats.time);
   expect(out.back.stepper).toBe('cpu');
   expect(out.back.flowStepper).toBe('cpu');
-  expect(out.back.stepperReason).toMatch(/flow/);
+  expect(out.back.stepperReason).toMatch(/splits blobs/);
   expect(out.same).toBe(true);
   expect(errors).toEqual([]);
 });

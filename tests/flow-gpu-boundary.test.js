@@ -6,7 +6,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { addSolid, boundaryOf, closedAxes, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
 import { atlasOf, atlasTexel, flowGpuRefuses } from '../web/src/flow-gpu/gl.js';
-import { gpuFlowRefusesScene, solidDistance } from '../web/src/flow-gpu/scene.js';
+import { gpuFlowRefusesScene, repulsorSolids, sameSolids, solidDistance } from '../web/src/flow-gpu/scene.js';
+import { REPULSOR_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE } from '../web/src/generated/contract.js';
 
 const cells = [3, 3, 3];
 const grid = { origin: [0, 0, 0], cells, h: 1 };
@@ -102,15 +103,41 @@ test('the solid objects\' signed distances: a sphere, a plane, a capped cylinder
   assert.equal(solidDistance({ type: 'box' }, [0, 0, 0]), Infinity);
 });
 
-test('the GPU takes a scene\'s flow under any primitives but a repulsor, and says why it does not take one', () => {
+test('the GPU takes a scene\'s flow under any primitives, and says why it does not take one without a flow', () => {
   const flow = { box: [0, 0, 0, 1, 1, 1], cells: [8, 8, 8] };
   const uniform = { type: 'uniform', velocity: [0.5, 0, 0], decay: null };
   assert.equal(gpuFlowRefusesScene({ flow, wind: [uniform, { ...uniform, velocity: [0, 0.1, 0] }] }), null);
   assert.equal(gpuFlowRefusesScene({ flow, wind: [] }), null);
   assert.equal(gpuFlowRefusesScene({ flow, wind: [{ ...uniform, decay: 0.5 }, { type: 'source', position: [0, 0, 0], strength: 1 }] }), null);
-  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'vortex', position: [0, 0, 0], axis: [0, 1, 0], strength: 1 }] }), null);
-  assert.equal(gpuFlowRefusesScene({ flow, wind: [{ type: 'repulsor', radius: 0.1, enabled: false }] }), null);
-  assert.match(gpuFlowRefusesScene({ flow, wind: [uniform, { type: 'repulsor', radius: 0.1 }] }), /no repulsor/);
+  assert.equal(gpuFlowRefusesScene({ flow, wind: [uniform, { type: 'repulsor', radius: 0.1 }] }), null);
   assert.match(gpuFlowRefusesScene({ flow: { ...flow, enabled: false }, wind: [] }), /no flow/);
   assert.match(gpuFlowRefusesScene({ wind: [] }), /no flow/);
+});
+
+test('a wind table\'s repulsors are solid cells over the objects\' where their spheres are, moving with them; their mirror images are not', () => {
+  const grid = { origin: [0, 0, 0], cells: [8, 8, 8], h: 0.125 };
+  const fixed = noSolids(grid.cells);
+  addSolid(fixed, grid, (x) => x[1] < 0.125);
+  const table = new Float32Array(WIND_TABLE_HEADER + 2 * WIND_TABLE_PRIMITIVE);
+  table[19] = 2;
+  const put = (j, plane, centre) => {
+    const at = WIND_TABLE_HEADER + WIND_TABLE_PRIMITIVE * j;
+    table.set([REPULSOR_KIND, 0, 0.2, 0.1, 0, 0, 0, plane, ...centre, -1, 0.3, -0.1, 0, 0], at);
+  };
+  put(0, -1, [0.5, 0.5, 0.5]);
+  // An image of it in a solid plane (plane 0): no solid cells of its own.
+  put(1, 0, [0.5, 0.5, 0.9]);
+  const solids = repulsorSolids(fixed, grid, table);
+  const cell = (i, j, k) => i + 8 * (j + 8 * k);
+  // Centres 0.0625 + 0.125·n: (0.4375, 0.4375, 0.4375) is 0.108 m from the centre, (0.1875, …) 0.54.
+  assert.equal(solids.solid[cell(3, 3, 3)], 1);
+  assert.deepEqual(Array.from(solids.velocity.subarray(3 * cell(3, 3, 3), 3 * cell(3, 3, 3) + 3)), [0.3, -0.1, 0].map(Math.fround));
+  assert.equal(solids.solid[cell(1, 3, 3)], 0);
+  assert.equal(solids.solid[cell(3, 3, 7)], 0);
+  assert.equal(solids.solid[cell(5, 0, 2)], 1);
+  assert.equal(solids.solid.reduce((n, v) => n + v, 0), 64 + 8);
+  assert.equal(fixed.solid.reduce((n, v) => n + v, 0), 64);
+  assert.ok(sameSolids(fixed, noSolids(grid.cells)) === false && sameSolids(solids, repulsorSolids(fixed, grid, table)));
+  table[19] = 0;
+  assert.equal(repulsorSolids(fixed, grid, table), null);
 });

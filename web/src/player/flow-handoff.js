@@ -33,7 +33,7 @@ export function flowMemoryRefuses(cells, maxTextureSize, most) {
 
 /**
  * Why the GPU of `gl` cannot step `scene`'s flow beside the blobs, or null when it can (or the
- * scene has no flow): no repulsor, float render targets and blending, textures large
+ * scene has no flow): float render targets and blending, textures large
  * enough for its cells, and their bytes within the `most` a memory budget gives a flow.
  */
 export function flowKeepsGpuAway(scene, gl, most = Infinity) {
@@ -88,14 +88,15 @@ export class FlowHandoff {
   start(run, faces = null) {
     this.dispose();
     if (!run) return;
-    const { flow, refused } = gpuFlowOfScene(this.#gl, { flow: run.flow, wind: run.wind, render: { objects: run.objects } });
+    const { flow, solids, refused } = gpuFlowOfScene(this.#gl, { flow: run.flow, wind: run.wind, render: { objects: run.objects } });
     if (refused) throw new Error(`the GPU cannot step this flow: ${refused}`);
     if (faces) flow.setFaces([faces.u, faces.v, faces.w]);
     this.#flow = flow;
     this.#heat = new HeatDeposit(this.#gl);
     this.#grid = gridOf(run);
     this.#box = run.flow.box;
-    this.#link = { flow, heat: this.#heat, cooling: f32(run.flow.cooling), stir: null, ms: 0, timer: new GpuTimer(this.#gl) };
+    // The objects' solid cells, and those of the last step (a repulsor's sphere over them).
+    this.#link = { flow, heat: this.#heat, cooling: f32(run.flow.cooling), stir: null, ms: 0, timer: new GpuTimer(this.#gl), fixed: solids, solids };
   }
 
   /**

@@ -23,6 +23,7 @@ import { BLOB_FLOATS, BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB
 import { Binning } from './binning.js';
 import { binClasses, binLayout } from './class-bins.js';
 import { flowUniforms } from '../flow-gpu/sample-glsl.js';
+import { repulsorSolids, sameSolids } from '../flow-gpu/scene.js';
 import { BoundsPass, NewbornPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
 import { HEADER_TEXELS, PRIMITIVE_TEXELS, SOLID_TEXELS } from './wind-glsl.js';
@@ -218,10 +219,11 @@ export class GpuStepper {
   /**
    * The flow's part of one step from the state now (`wind::flow::SceneFlow::step` on the GPU):
    * u_p from the step's first wind table `table` (its constant where the primitives are all
-   * uniform winds without a decay, else each face's from the table's primitives), the gas's
-   * heat deposited on the cells (the blobs of the first `slots` slots, none wider than
-   * `sigmaMax`, m), the stir `stir` if any, then the flow's step of `dt` (s); the step pass is
-   * then given the flow's new u_g.
+   * uniform winds without a decay, else each face's from the table's primitives) and the solid
+   * cells with the table's repulsors' spheres (`repulsorSolids`), the gas's heat deposited on
+   * the cells (the blobs of the first `slots` slots, none wider than `sigmaMax`, m), the stir
+   * `stir` if any, then the flow's step of `dt` (s); the step pass is then given the flow's new
+   * u_g.
    */
   #stepFlow(link, table, dt, slots, sigmaMax) {
     const { flow, heat } = link;
@@ -235,6 +237,12 @@ export class GpuStepper {
         flow.setUniformWind(up);
         link.up = up;
       }
+    }
+    if (link.fixed) {
+      // A repulsor's sphere is solid cells where it is now (the objects' alone once none is).
+      const solids = repulsorSolids(link.fixed, flow, table) ?? link.fixed;
+      if (solids !== link.solids && !sameSolids(solids, link.solids)) flow.setSolids(solids);
+      link.solids = solids;
     }
     const t0 = performance.now();
     link.timer?.begin();
