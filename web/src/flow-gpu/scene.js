@@ -87,8 +87,8 @@ export function sameSolids(a, b) {
 }
 
 /**
- * The flow of `scene` on the GPU of `gl` at rest (`{flow}`), or why not (`{refused}`): no
- * enabled flow, primitives other than uniform winds, or a grid too large for its textures.
+ * The flow of `scene` on the GPU of `gl` at rest (`{flow, solids}`, solids its objects' cells),
+ * or why not (`{refused}`): no enabled flow, or a grid too large for its textures.
  * `options` override GpuFlow's settings (`eddies: false`, the SOR's `iterations`, ...).
  */
 export function gpuFlowOfScene(gl, scene, options = {}) {
