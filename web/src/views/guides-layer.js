@@ -1,10 +1,11 @@
 // Wind guides: what the large-scale primitives and the emitters are, drawn in the scene
 // (arrows for uniform wind, sources and sinks; a circulating ring for a vortex; the path of a
-// repulsor; the outline of each emitter; the edges of the flow's box), and a drag handle (three.js TransformControls) that
+// repulsor; the outline of each emitter; the edges of the flow's box and its closed faces), and a drag handle (three.js TransformControls) that
 // moves one of them. Guides are a view aid: captures and recordings leave them out.
 
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
+import { closedAxes } from '../flow-gpu/boundary.js';
 
 const WIND = 0x6fc3ff;
 const SINK = 0xff8a65;
@@ -97,16 +98,38 @@ function emitterGuide(e) {
   return lines;
 }
 
-/** The flow's box (paper §7: the grid the large scales are solved on): its twelve edges. */
+/**
+ * The flow's box (paper §7: the grid the large scales are solved on): its twelve edges, and each
+ * closed face (a wall the air does not cross) a faint pane.
+ */
 export function flowGuide(flow) {
   const [x0, y0, z0, x1, y1, z1] = flow.box;
+  const size = [x1 - x0, y1 - y0, z1 - z0];
+  const guide = new THREE.Group();
+  guide.position.set((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2);
   const lines = new THREE.LineSegments(
-    new THREE.EdgesGeometry(new THREE.BoxGeometry(x1 - x0, y1 - y0, z1 - z0)),
+    new THREE.EdgesGeometry(new THREE.BoxGeometry(...size)),
     new THREE.LineDashedMaterial({ color: FLOW, dashSize: 0.06, gapSize: 0.04 }),
   );
   lines.computeLineDistances();
-  lines.position.set((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2);
-  return lines;
+  guide.add(lines);
+  closedAxes(flow.faces).forEach((closed, a) => {
+    if (!closed) return;
+    // A pane across axis a: a plane in x and y (its width along x, its height along y), turned
+    // to face along a (across x its width then lies along z; across y its height along z).
+    const [width, height] = [[size[2], size[1]], [size[0], size[2]], [size[0], size[1]]][a];
+    for (const side of [-0.5, 0.5]) {
+      const pane = new THREE.Mesh(
+        new THREE.PlaneGeometry(width, height),
+        new THREE.MeshBasicMaterial({ color: FLOW, transparent: true, opacity: 0.08, side: THREE.DoubleSide, depthWrite: false }),
+      );
+      if (a === 0) pane.rotation.y = Math.PI / 2;
+      if (a === 1) pane.rotation.x = -Math.PI / 2;
+      pane.position.setComponent(a, side * size[a]);
+      guide.add(pane);
+    }
+  });
+  return guide;
 }
 
 /** A guide of something switched off (`enabled: false`) is drawn faint. */
@@ -115,7 +138,7 @@ function faintIfOff(guide, enabled) {
     guide.traverse((o) => {
       if (o.material) {
         o.material.transparent = true;
-        o.material.opacity = 0.3;
+        o.material.opacity *= 0.3;
       }
     });
   }
