@@ -62,21 +62,24 @@ export function addSolid(solids, { origin, cells, h }, inside, v = [0, 0, 0], sl
   return solids;
 }
 
+/** Index `axis` of (i, j, k), with no array made. */
+function along(axis, i, j, k) {
+  return axis === 0 ? i : axis === 1 ? j : k;
+}
+
 /** Cell index strides of `cells` along x, y and z. */
 function stridesOf(cells) {
   return [1, cells[0], cells[0] * cells[1]];
 }
 
 /**
- * The total normal velocity (m/s) face (i, j, k) of component `axis` must carry, or null where
- * it is free (the core's `boundary::fixed_normal`); `closed`: whether each axis's box faces are,
- * `stride` the cells' strides (`stridesOf`).
+ * The total normal velocity (m/s) that a face of component `axis` must carry, or null where it
+ * is free (the core's `boundary::fixed_normal`): the face `s` along the axis from the cell
+ * `base` (the cell at 0 along the axis, the face's other indices as they are); `closed`:
+ * whether each axis's box faces are, `stride` the cells' strides (`stridesOf`).
  */
-function fixedNormal(cells, solids, closed, stride, axis, i, j, k) {
+function fixedNormal(cells, solids, closed, stride, axis, s, base) {
   const n = cells[axis];
-  const s = axis === 0 ? i : axis === 1 ? j : k;
-  // The cell at index 0 along the axis, the face's others as they are.
-  const base = i + cells[0] * (j + cells[1] * k) - s * stride[axis];
   const { solid, velocity } = solids;
   if (s === 0 || s === n) {
     const c = base + (s === 0 ? 0 : n - 1) * stride[axis];
@@ -90,16 +93,13 @@ function fixedNormal(cells, solids, closed, stride, axis, i, j, k) {
   return solid[b] ? velocity[3 * b + axis] : null;
 }
 
-/** Whether face (i, j, k) of component `axis` touches a no-slip solid cell (`boundary::holds`). */
-function holds(cells, solids, stride, axis, i, j, k) {
-  const n = cells[axis];
-  const s = axis === 0 ? i : axis === 1 ? j : k;
-  const base = i + cells[0] * (j + cells[1] * k) - s * stride[axis];
+/** Whether that face touches a no-slip solid cell (`boundary::holds`), `s` and `base` as there. */
+function holds(cells, solids, stride, axis, s, base) {
   const holding = (m) => {
     const q = base + m * stride[axis];
     return solids.solid[q] === 1 && solids.slip[q] === 0;
   };
-  return (s > 0 && holding(s - 1)) || (s < n && holding(s));
+  return (s > 0 && holding(s - 1)) || (s < cells[axis] && holding(s));
 }
 
 /**
@@ -117,9 +117,11 @@ export function boundaryOf(cells, solids, faces) {
     for (let k = 0; k < d[2]; k++) {
       for (let j = 0; j < d[1]; j++) {
         for (let i = 0; i < d[0]; i++, f += 2) {
-          const v = fixedNormal(cells, solids, closed, stride, axis, i, j, k);
+          const s = along(axis, i, j, k);
+          const base = cellIndex(cells, i, j, k) - s * stride[axis];
+          const v = fixedNormal(cells, solids, closed, stride, axis, s, base);
           if (v === null) continue;
-          out[f] = holds(cells, solids, stride, axis, i, j, k) ? HOLDING : SLIPPING;
+          out[f] = holds(cells, solids, stride, axis, s, base) ? HOLDING : SLIPPING;
           out[f + 1] = v;
         }
       }
@@ -130,6 +132,7 @@ export function boundaryOf(cells, solids, faces) {
   const diag = new Uint8Array(count);
   const links = new Uint8Array(count);
   const dims = [0, 1, 2].map((a) => faceDims(cells, a));
+  const faceStrides = dims.map(stridesOf);
   let definite = false;
   for (let k = 0; k < cells[2]; k++) {
     for (let j = 0; j < cells[1]; j++) {
@@ -137,13 +140,11 @@ export function boundaryOf(cells, solids, faces) {
         const c = cellIndex(cells, i, j, k);
         if (solids.solid[c]) continue;
         for (let a = 0; a < 3; a++) {
-          const d = dims[a];
           // The cell's lower face across axis a, and its upper one a face further on.
-          const lower = i + d[0] * (j + d[1] * k);
-          const step = a === 0 ? 1 : a === 1 ? d[0] : d[0] * d[1];
-          const s = a === 0 ? i : a === 1 ? j : k;
+          const lower = cellIndex(dims[a], i, j, k);
+          const s = along(a, i, j, k);
           for (let side = 0; side < 2; side++) {
-            if (kinds[a][2 * (lower + side * step)] !== FREE) continue;
+            if (kinds[a][2 * (lower + side * faceStrides[a][a])] !== FREE) continue;
             diag[c] += 1;
             if (s + side === 0 || s + side === cells[a]) definite = true;
             else if (side === 1) {

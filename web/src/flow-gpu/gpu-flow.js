@@ -135,9 +135,9 @@ export class GpuFlow {
   /**
    * The flow at rest on the grid of `origin` (m), `cells` [nx, ny, nz] and cube edge `h` (m)
    * with `faces` 'open', 'closed' or {x, y, z} of those (each axis's two faces), ν `viscosity`
-   * (m²/s), β `buoyancy` (1/K), `gravity` (m/s²), Smagorinsky's eddy viscosity when `eddies` (a scene's flow has it, the core's bare
-   * `Flow` not), and the SOR's `iterations` a step and `omega`, on the WebGL2 context `gl`
-   * (float render targets: `flowGpuUnsupported`).
+   * (m²/s), β `buoyancy` (1/K), `gravity` (m/s²), Smagorinsky's eddy viscosity when `eddies`
+   * (a scene's flow has it, the core's bare `Flow` not), and the SOR's `iterations` a step and
+   * `omega`, on the WebGL2 context `gl` (float render targets: `flowGpuUnsupported`).
    */
   constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], eddies = false, iterations, omega }) {
     this.gl = gl;
