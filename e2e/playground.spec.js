@@ -383,11 +383,15 @@ test('the wind slice draws the wind on a plane over the view and stays out of ca
   await open(page);
   await page.evaluate(() => window.windfield.pause());
   const capture = () => page.evaluate(() => window.windfield.captureGPU({ mode: 'points', width: 160, height: 120 }));
+  // The view's resolution held at 100 %: on a loaded machine the pace would otherwise lower it
+  // between the shots compared below, and the canvas with it.
+  const sim = await openFolder(page, 'Simulation');
+  await sim.locator('.lil-controller', { hasText: 'resolution' }).locator('select').selectOption({ label: '100 %' });
+  await expect.poll(() => page.evaluate(() => window.windfield.stats().scale)).toBe(1);
   await settle(page);
   const plain = decodePng(dataUrlBytes(await canvasShot(page))).rgb;
   const captured = await capture();
   await page.keyboard.press('w');
-  const sim = await openFolder(page, 'Simulation');
   await expect(sim.locator('.lil-controller', { hasText: 'wind slice' }).locator('select')).toHaveValue('xy');
   await settle(page);
   await settle(page);
