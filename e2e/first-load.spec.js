@@ -5,15 +5,23 @@
 import { gzipSync } from 'node:zlib';
 import { expect, test, bare, collectErrors } from './helpers.js';
 
-/** Records every script and WASM response, the worker's too: {path, gzip (bytes gzipped)}. */
+/**
+ * Records every script and WASM response, the worker's too: {path, gzip (bytes gzipped)}, each
+ * path as its response arrives and its size once its body has (`sized()` waits for those).
+ */
 function recordCode(page) {
   const fetched = [];
-  page.context().on('response', async (response) => {
+  const bodies = [];
+  page.context().on('response', (response) => {
     const url = response.url();
     if (!/^https?:/.test(url) || !/\.(m?js|wasm)(\?|$)/.test(url)) return;
-    const body = await response.body().catch(() => Buffer.alloc(0));
-    fetched.push({ path: new URL(url).pathname, gzip: gzipSync(body, { level: 9 }).length });
+    const entry = { path: new URL(url).pathname, gzip: 0 };
+    fetched.push(entry);
+    bodies.push(response.body().catch(() => Buffer.alloc(0)).then((body) => {
+      entry.gzip = gzipSync(body, { level: 9 }).length;
+    }));
   });
+  fetched.sized = () => Promise.all(bodies);
   return fetched;
 }
 
@@ -27,6 +35,7 @@ test('a player\'s first load fetches the core\'s first module only; its first ex
   await page.evaluate(() => document.querySelector('#p').ready);
   await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().blobs)).toBeGreaterThan(0);
   await page.waitForLoadState('networkidle');
+  await fetched.sized();
   const first = fetched.map((f) => ({ ...f }));
   const kib = first.reduce((sum, f) => sum + f.gzip, 0) / 1024;
   test.info().annotations.push({ type: 'first load', description: `${kib.toFixed(1)} KiB gzipped: ${first.map((f) => f.path.split('/').pop()).join(', ')}` });
@@ -43,6 +52,7 @@ test('a player\'s first load fetches the core\'s first module only; its first ex
   expect(sizes[0]).toBeGreaterThan(0);
   expect(sizes[1]).toBe(sizes[0]);
   await page.waitForLoadState('networkidle');
+  await fetched.sized();
   const full = fetched.filter((f) => fullModule.test(f.path));
   test.info().annotations.push({ type: 'on the first export', description: `${(full.reduce((s, f) => s + f.gzip, 0) / 1024).toFixed(1)} KiB gzipped (the full module)` });
   expect(full).toHaveLength(1);
