@@ -135,6 +135,50 @@ test('a card chosen while the link\'s preset is still on its way: the card\'s sc
   expect(errors).toEqual([]);
 });
 
+test('a card chosen while the last scene\'s link is still being written keeps its preset in the URL', async ({ page }) => {
+  // Each scene shown is compressed into the URL's hash; the test holds each compression until it
+  // lets it go, in turn.
+  await page.addInitScript(() => {
+    const Real = window.CompressionStream;
+    window.heldCompressions = [];
+    window.CompressionStream = class {
+      constructor(format) {
+        const real = new Real(format);
+        const gate = window.holdCompressions ? new Promise((r) => window.heldCompressions.push(r)) : null;
+        this.writable = real.writable;
+        this.readable = real.readable.pipeThrough(new TransformStream({ flush: () => gate }));
+      }
+    };
+  });
+  const errors = collectErrors(page);
+  await open(page);
+  await page.evaluate(() => window.windfield.pause());
+  const before = new URL(page.url()).hash;
+  const chosen = catalog[1].name;
+  // An edit of the default scene: its hash is being written when the card is chosen.
+  await page.evaluate(() => {
+    window.holdCompressions = true;
+    const scene = window.windfield.getScene();
+    window.editShown = window.windfield.setScene({ ...scene, seed: scene.seed + 1 });
+  });
+  await expect.poll(() => page.evaluate(() => window.heldCompressions.length)).toBe(1);
+  await page.locator('#picker [role="radio"]').nth(1).click();
+  expect(new URL(page.url()).searchParams.get('preset')).toBe(chosen);
+  // The edit's hash arrives after the card was chosen; then the card's scene loads, its own hash
+  // held: the card's preset stays in the URL meanwhile.
+  await page.evaluate(() => window.heldCompressions[0]());
+  await expect.poll(() => page.evaluate(() => window.windfield.getScene().seed)).toBe(presetFile(chosen).seed);
+  await expect.poll(() => page.evaluate(() => window.heldCompressions.length)).toBe(2);
+  expect(new URL(page.url()).searchParams.get('preset')).toBe(chosen);
+  // Then the card's own scene is written.
+  await page.evaluate(() => window.heldCompressions[1]());
+  await expect.poll(() => new URL(page.url()).hash).not.toBe('');
+  const url = new URL(page.url());
+  expect(url.searchParams.get('preset')).toBe(chosen);
+  expect(url.hash).not.toBe(before);
+  expect(errors).toEqual([]);
+});
+
 test('an edit of a wind primitive and of an emitter keeps the blob count and the time', async ({ page }) => {
   await open(page);
   const out = await page.evaluate(async () => {

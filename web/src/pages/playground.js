@@ -41,6 +41,8 @@ let lastStatus = 0;
 /** `?timeout=S`: seconds (1 to 3600) the engine may go without answering a request. */
 const timeout = query.has('timeout') ? Number(query.get('timeout')) : null;
 const timeoutOk = timeout === null || (Number.isFinite(timeout) && timeout >= 1 && timeout <= 3600);
+/** Scenes the player has shown so far; only the latest one's hash goes in the URL. */
+let scenesShown = 0;
 const player = new Player($('#canvas'), {
   playing: !reduceMotion,
   ...(timeout !== null && timeoutOk && { requestTimeoutMs: 1000 * timeout }),
@@ -56,7 +58,13 @@ const player = new Player($('#canvas'), {
   },
   onScene: async (scene) => {
     $('#canvas').setAttribute('aria-label', `Gas in a turbulent wind: ${sceneName}, ${scene.emitters.length} emitter${scene.emitters.length === 1 ? '' : 's'}, ${scene.wind.length} wind primitive${scene.wind.length === 1 ? '' : 's'}`);
-    history.replaceState(null, '', `${location.pathname}${location.search}#${await encodeScene(scene)}`);
+    // The URL is read after the scene is encoded: a card chosen meanwhile has pushed its
+    // `?preset=`, which stays, and its own scene's hash follows. Only the latest scene shown,
+    // with no other asked for since, writes its hash.
+    const shown = ++scenesShown;
+    const ask = asks;
+    const hash = await encodeScene(scene);
+    if (shown === scenesShown && ask === asks) history.replaceState(null, '', `${location.pathname}${location.search}#${hash}`);
     controls?.refresh();
   },
 });
