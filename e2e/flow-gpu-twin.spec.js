@@ -91,7 +91,7 @@ function installGpuFlowOf() {
 }
 
 /**
- * In the page: `scene`'s flow stepped STEPS times by the worker (`exportFlow()` after each step
+ * In the page: `scene`'s flow stepped STEPS times by the worker (`exportFlow()` before each step
  * for its temperature when `heated`) and by the GPU from the same inputs; their u_g at the cells'
  * centres compared.
  */
@@ -101,9 +101,10 @@ function twin(page, scene, heated) {
     await w.setScene(scene);
     const temperatures = [];
     if (heated) {
+      // The T each step of the worker's starts from: the grid's before it.
       for (let n = 0; n < steps; n++) {
-        await w.step(1);
         temperatures.push((await w.exportFlow()).temperature);
+        await w.step(1);
       }
     } else {
       await w.step(steps);

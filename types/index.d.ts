@@ -70,7 +70,7 @@ export interface WindFieldFlowGrid {
   /** The box `[x0, y0, z0, x1, y1, z1]` (m). */
   box: number[];
   /** The cells `[nx, ny, nz]`. */
-  cells: Uint32Array;
+  cells: number[];
   /** The simulated time of the grid (s). */
   time: number;
   /** u_g at the cells' centres (m/s): `(nz, ny, nx, 3)`, x fastest, 3·nx·ny·nz floats. */

@@ -368,7 +368,7 @@ export interface Emitter {
    * Temperature excess (K over the ambient air) of each blob at birth: its heat
    * h0 = temperature·(2π)^{3/2}·σ0³ drives the flow's buoyancy (read only with a `flow`).
    */
-  temperature?: number;
+  temperature: number;
   /**
    * Initial velocity of a blob relative to the wind (m/s); it relaxes to zero as
    * exp(−age/`velocity_time`).

@@ -1321,3 +1321,20 @@ fn an_out_naming_a_format_its_command_does_not_write_is_refused_before_any_work(
         assert!(dir.join(file).exists(), "{file}");
     }
 }
+
+/// A reader that closed the pipe before the output came (`windfield schema | head -c 0`) ends
+/// the output quietly: exit status 0 and no panic, as other tools do.
+#[test]
+fn output_into_a_closed_pipe_ends_quietly() {
+    for args in [&["schema"][..], &["contract"][..]] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(bin())
+            .args(args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+        assert_eq!(stderr(&out), "", "{args:?}");
+    }
+}

@@ -216,6 +216,42 @@ fn a_flow_scene_gives_the_same_bytes_twice() {
     assert_eq!(a.1, b.1);
 }
 
+/// The exported grid's T is the gas's at the grid's time: Σ T h³ over the cells is the blobs'
+/// heat then, Σ h0 exp(−c·age) (each blob's normalised Gaussian averaged over the cells sums to
+/// 1 inside the box), after one step as after many, newborns included.
+#[test]
+fn the_exported_temperature_holds_the_blobs_heat_at_its_time() {
+    let (temperature, cooling) = (60.0, 0.5);
+    // plume_at's emitter, raised to 0.5 m so that no blob's Gaussian reaches past the box.
+    let text = format!(
+        r#"{{"version": 1, "seed": 3,
+            "field": {{"size": [16, 16, 16, 16], "period": [1, 1, 1], "time_period": 2, "amplitude": 0}},
+            "emitters": [{{"shape": "disk", "radius": 0.05, "center": [0, 0.5, 0], "rate": 200,
+                          "sigma0": 0.06, "mass0": 1, "temperature": {temperature}}}],
+            "gas": {{"diffusion": 0.002, "dissipation": 0}},
+            "simulation": {{"dt": 0.02}},
+            "flow": {{"box": [-0.6, 0, -0.6, 0.6, 2.4, 0.6], "cells": [16, 32, 16],
+                      "cooling": {cooling}}}}}"#
+    );
+    let mut sim = Simulation::new(Scene::from_json(&text).expect("valid scene")).expect("runs");
+    let sigma0 = 0.06f64;
+    let h0 = temperature * (2.0 * std::f64::consts::PI).powf(1.5) * sigma0.powi(3);
+    for steps in [1, 24] {
+        sim.run(steps);
+        let grid = sim.flow_grid().expect("a flow");
+        let t = sim.time();
+        let b = sim.blobs();
+        let heat: f64 = (0..b.len())
+            .map(|i| h0 * (-cooling * (t - b.birth[i])).exp())
+            .sum();
+        let cell = (grid.bounds[3] - grid.bounds[0]) / grid.cells[0] as f64;
+        let held: f64 = grid.temperature.iter().map(|&v| f64::from(v)).sum::<f64>() * cell.powi(3);
+        println!("after {steps} more steps, t = {t:.2} s: the grid holds {held:.5} K m³ of the blobs' {heat:.5}");
+        assert!(!b.is_empty() && heat > 0.0);
+        assert!((held / heat - 1.0).abs() < 1e-4, "{held} against {heat}");
+    }
+}
+
 /// Every new key is checked, naming its path; a flow too large for memory or time is refused
 /// before any work.
 #[test]

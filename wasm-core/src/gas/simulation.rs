@@ -418,12 +418,17 @@ impl Simulation {
         self.flow.as_ref()
     }
 
-    /// The flow's grid now (u_g and T on its cells), if the scene has a flow: at rest with no
-    /// heat before the first step.
+    /// The flow's grid now (u_g and T on its cells), if the scene has a flow: u_g at rest
+    /// before the first step, T from the blobs and their heat now.
     pub fn flow_grid(&self) -> Option<FlowGrid> {
-        self.flow.as_ref().map(|f| FlowGrid {
-            time: self.time(),
-            ..f.export()
+        let flow = self.flow.as_ref()?;
+        let t = self.time();
+        let mut heat = Vec::new();
+        self.gas.heat_into(t, &mut heat);
+        let b = &self.gas.blobs;
+        Some(FlowGrid {
+            time: t,
+            ..flow.export(&b.position, &b.sigma, &heat)
         })
     }
 

@@ -317,13 +317,8 @@ pub struct Emitter {
     pub path: Vec<[f64; 4]>,
     /// Temperature excess (K over the ambient air) of each blob at birth: its heat
     /// h0 = temperature·(2π)^{3/2}·σ0³ drives the flow's buoyancy (read only with a `flow`).
-    #[serde(skip_serializing_if = "is_zero")]
     #[schemars(range(min = TEMPERATURE[0], max = TEMPERATURE[1]))]
     pub temperature: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
 }
 
 impl Default for Emitter {

@@ -327,9 +327,9 @@ export function createHandlers(core, progress, memory = () => 0, full = null) {
     exportFlow: () => {
       const grid = sim().exportFlow();
       if (!grid) return { result: null };
-      const { cells, velocity, temperature } = grid;
-      const result = { box: Array.from(grid.box), cells, time: grid.time, velocity, temperature };
-      return { result, transfer: [cells.buffer, velocity.buffer, temperature.buffer] };
+      const { velocity, temperature } = grid;
+      const result = { box: Array.from(grid.box), cells: Array.from(grid.cells), time: grid.time, velocity, temperature };
+      return { result, transfer: [velocity.buffer, temperature.buffer] };
     },
     // The blob list for the page (docs/FORMATS.md: `exportBlobs`).
     blobList: ({ camera, image }) => ({ result: session.blobList(camera, image) }),

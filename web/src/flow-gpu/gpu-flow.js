@@ -1,4 +1,4 @@
-// The flow stepped on the GPU (DESIGN of the flow, paper §7): the grid's velocity u_g (m/s) on a
+// The flow stepped on the GPU (paper §7's physical large scales; docs/CONVENTIONS.md, the flow): the grid's velocity u_g (m/s) on a
 // MAC grid, each component's faces in an R32F atlas (`gl.js`), stepped by the core's laws in the
 // core's order (`wind::flow::step`): advect u_g by u_p + u_g (semi-Lagrangian with MacCormack's
 // clamped correction, the traces in cells through the cells' velocity), diffuse it (explicit
@@ -402,7 +402,7 @@ export class GpuFlow {
     return this.u.map((p) => p.now.read());
   }
 
-  /** T on the cells of the last step (K, x fastest: as `exportFlow()`), read back. */
+  /** T on the cells (K, x fastest: as `exportFlow()`), the last step's or the last one laid there, read back. */
   temperatures() {
     passState(this.gl);
     return this.temperature.read();

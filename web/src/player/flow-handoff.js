@@ -1,6 +1,5 @@
-// A scene's flow on the GPU beside the GPU stepper's blobs (the flow's design: "where the
-// browser can, the grid lives and is stepped on the GPU beside the blobs, read back only on
-// demand"): set up from the scene the worker runs and its u_g when the gas crosses
+// A scene's flow on the GPU beside the GPU stepper's blobs (where the browser can, the grid lives
+// and is stepped on the GPU beside the blobs, read back only on demand): set up from the scene the worker runs and its u_g when the gas crosses
 // (`flow-gpu/scene.js`), stepped by the GPU stepper step by step from the blobs' heat
 // (`flow-gpu/heat.js`), kept through an edit as the core keeps its own (the same box, cells,
 // faces and render objects: new constants; else at rest), and read back for `exportFlow()` or
@@ -135,12 +134,14 @@ export class FlowHandoff {
   }
 
   /**
-   * The flow's grid at `time` (s) as `exportFlow()` gives it: {box, cells, time, velocity,
-   * temperature} read back (the temperature the last step's blobs left on the cells).
+   * The flow's grid as `exportFlow()` gives it at the time of `stepper` (the GpuStepper that
+   * steps it): {box, cells, time, velocity, temperature} read back, the temperature laid on the
+   * cells from the stepper's blobs as they are then.
    */
-  export(time) {
+  export(stepper) {
     const f = this.#flow;
-    return { box: [...this.#box], cells: Uint32Array.from(f.cells), time, velocity: f.cellVelocity(), temperature: f.temperatures() };
+    stepper.depositHeat(this.#link);
+    return { box: [...this.#box], cells: [...f.cells], time: stepper.time, velocity: f.cellVelocity(), temperature: f.temperatures() };
   }
 
   dispose() {

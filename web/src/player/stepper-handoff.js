@@ -105,7 +105,7 @@ export class StepperHandoff {
 
   /** The flow's grid read back from the GPU while it steps the flow (`exportFlow()`), else null. */
   gpuFlowGrid() {
-    return this.flowStepper === 'gpu' ? this.#flow.export(this.#gpu.time) : null;
+    return this.flowStepper === 'gpu' ? this.#flow.export(this.#gpu) : null;
   }
 
   /** The GPU stepper while it steps the gas, else null. */

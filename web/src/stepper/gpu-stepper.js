@@ -269,6 +269,23 @@ export class GpuStepper {
   }
 
   /**
+   * T (K) on the cells of the flow of `link` (as #stepFlow's) from the blobs as they are now:
+   * `exportFlow()`'s temperature at the state's time (a step lays T before it moves the blobs
+   * and writes the newborns).
+   */
+  depositHeat(link) {
+    link.heat.deposit(link.flow, {
+      centres: this.#raw(this.state.now, 0),
+      masses: this.#raw(this.state.now, 1),
+      slotsPerRow: BLOBS_PER_ROW,
+      slots: Math.min(this.state.capacity, this.highWater),
+      sigmaMax: this.sigmaRange[1],
+      cooling: link.cooling,
+    });
+    this.renderer.resetState();
+  }
+
+  /**
    * Takes the steps the core took (`steps`: its `stepForGpu` result) with time step `dt` (s),
    * diffusion κ (m²/s), dissipation α (1/s) and the RK2 midpoint rule or Euler; with `flow`
    * (`{flow: GpuFlow, heat: HeatDeposit, cooling (1/s), stir}`, the scene's flow on the GPU)

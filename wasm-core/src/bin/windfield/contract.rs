@@ -1,9 +1,8 @@
 //! `windfield contract`: the JavaScript module of the constants the core shares with the
 //! page's code on stdout (`web/src/generated/contract.js`).
 
-use super::failure::Failure;
+use super::failure::{print_out, Failure};
 
 pub fn run() -> Result<(), Failure> {
-    print!("{}", windfield::contract::javascript());
-    Ok(())
+    print_out(&windfield::contract::javascript())
 }

@@ -25,3 +25,16 @@ pub fn flag_for(path: &str) -> String {
 pub fn input_error(e: ParamError) -> Failure {
     Failure::Input(format!("{}: {}", flag_for(&e.path), e.message))
 }
+
+/// Writes `text` to stdout. A reader that closed the pipe early (`windfield schema | head`)
+/// ends the output quietly, as other tools do; any other failure to write is an I/O failure.
+pub fn print_out(text: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(Failure::Io(format!("stdout: {e}")))
+        }
+        _ => Ok(()),
+    }
+}

@@ -2,7 +2,7 @@
 //! (docs/CONVENTIONS.md, statistics): the flags, else the parameters stored beside the file,
 //! else the paper's defaults.
 
-use super::failure::{flag_for, input_error, Failure};
+use super::failure::{flag_for, input_error, print_out, Failure};
 use super::input::open_input;
 use super::spectrum::{resolve_spectrum, sidecar, SpectrumArgs};
 use clap::Args;
@@ -61,12 +61,9 @@ pub fn run(args: StatsArgs) -> Result<(), Failure> {
         .map_err(|e| Failure::Input(format!("{}: {e}", args.file.display())))?;
     let report = statistics::analyse(&field, &spectrum);
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string(&report).expect("stats serialise")
-        );
+        let json = serde_json::to_string(&report).expect("stats serialise");
+        print_out(&format!("{json}\n"))
     } else {
-        print!("{}", report.to_text());
+        print_out(&report.to_text())
     }
-    Ok(())
 }

@@ -16,7 +16,8 @@
 //! - [`diffuse`]: ν∇²u_g; [`forces`]: the buoyancy b = −β T g and force splats.
 //! - [`project`]: the pressure projection.
 //! - [`step`]: one step of them all ([`Flow`]); [`subgrid`]: Smagorinsky's eddy viscosity, the
-//!   statistical model of the small scales LES adds (off unless a scene's flow asks).
+//!   statistical model of the small scales LES adds (on in every scene's flow, off in a bare
+//!   [`Flow`] unless asked for).
 //! - [`heat`]: the gas's heat on the cells; [`scene_flow`]: a scene's flow stepped under its
 //!   primitives, solids and stirs; [`frozen_flow`]: u_g as the blobs read it, faded beyond
 //!   the box.

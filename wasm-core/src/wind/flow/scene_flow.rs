@@ -240,14 +240,22 @@ impl SceneFlow {
         &self.flow.u_g.u
     }
 
-    /// The grid as the exports write it ([`FlowGrid`]) at the time of the last step.
-    pub fn export(&self) -> FlowGrid {
+    /// The grid as the exports write it ([`FlowGrid`]) at the time of the last step, its T
+    /// (K) laid on the cells from the blobs as they are then: `centres` (m, xyz interleaved),
+    /// `sigma` (m) and `heat` (K·m³, each blob's h at that time). A step lays T from the blobs
+    /// at its start, before they move and the newborns come; the export's T is the grid's at
+    /// its own time.
+    pub fn export(&self, centres: &[f32], sigma: &[f32], heat: &[f32]) -> FlowGrid {
+        let mut temperature = vec![0.0; self.flow.grid.cell_count()];
+        if heat.iter().any(|&q| q != 0.0) {
+            deposit(&self.flow.grid, centres, sigma, heat, &mut temperature);
+        }
         FlowGrid {
             bounds: self.settings.bounds,
             cells: self.settings.cells,
             time: self.time,
             velocity: self.cell_velocity(),
-            temperature: self.temperature.clone(),
+            temperature,
         }
     }
 
