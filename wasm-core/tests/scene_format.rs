@@ -197,6 +197,12 @@ fn malformed_scenes_are_rejected_with_their_path() {
             "must be the number 1 (got the string \"one\")",
         ),
         (insert("", "colour", json!(1)), "colour", "unknown field"),
+        // A required key left out is named by its own path.
+        (
+            set("/wind/0", json!({"type": "uniform"})),
+            "wind[0].velocity",
+            "missing: this key has no default",
+        ),
         (
             set("/seed", json!(-1)),
             "seed",

@@ -41,6 +41,15 @@ fn at_path(
         }
     }
     let mut message = describe(e.inner(), text);
+    // A required key left out is named by its own path, not its parent's.
+    let missing = message.strip_prefix("missing field `").and_then(|m| m.strip_suffix('`'));
+    if let Some(key) = missing {
+        path = match path == root {
+            true => key.to_string(),
+            false => format!("{path}.{key}"),
+        };
+        message = "missing: this key has no default".to_string();
+    }
     if e.inner().classify() == serde_json::error::Category::Data {
         if let Some(range) = range_of(root, &path, text, tree) {
             if let Some((_, got)) = message.split_once(" (got ") {
