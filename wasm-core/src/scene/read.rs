@@ -42,7 +42,9 @@ fn at_path(
     }
     let mut message = describe(e.inner(), text);
     // A required key left out is named by its own path, not its parent's.
-    let missing = message.strip_prefix("missing field `").and_then(|m| m.strip_suffix('`'));
+    let missing = message
+        .strip_prefix("missing field `")
+        .and_then(|m| m.strip_suffix('`'));
     if let Some(key) = missing {
         path = match path == root {
             true => key.to_string(),
