@@ -67,12 +67,12 @@ async function open(page, scene) {
 
 /** The GPU's flow of `scene` (`gpuFlowOfScene`), in the page. */
 function installGpuFlowOf() {
-  window.gpuFlowOf = async (scene) => {
+  window.gpuFlowOf = async (scene, options = {}) => {
     const { flowGpuUnsupported, gpuFlowBytes, gpuFlowOfScene } = await import('./flow-gpu/index.js');
     const gl = document.createElement('canvas').getContext('webgl2');
     const unsupported = flowGpuUnsupported(gl);
     if (unsupported) return { unsupported };
-    const { flow, solids, refused } = gpuFlowOfScene(gl, scene);
+    const { flow, solids, refused } = gpuFlowOfScene(gl, scene, options);
     if (refused) return { unsupported: refused };
     // What a memory budget is told beforehand, against the textures made.
     const bytes = { counted: gpuFlowBytes(scene.flow.cells, gl.getParameter(gl.MAX_TEXTURE_SIZE)), made: flow.bytes };
@@ -175,6 +175,38 @@ test('a hot gas in a closed box, 60 steps: the GPU\'s buoyant flow agrees with t
   expect(out.largest).toBeGreaterThan(0.01);
   for (const r of out.residuals) expect(r).toBeLessThanOrEqual(1e-4);
   expect(out.apart).toBeLessThanOrEqual(1e-3 * out.largest);
+});
+
+test('the GPU\'s projection sizes its iterations to the tolerance: started with too few, it adds iterations from its 10th step until its residual is within 1e-4', async ({ page }) => {
+  const scene = sphereInWind();
+  await open(page, scene);
+  const out = await page.evaluate(async (scene) => {
+    const { SIZING_STEP } = await import('./flow-gpu/gpu-flow.js');
+    const run = async (options, steps) => {
+      const { flow, unsupported } = await window.gpuFlowOf(scene, options);
+      if (unsupported) return { unsupported };
+      const first = flow.iterations;
+      let before = null;
+      for (let n = 1; n <= steps; n++) {
+        flow.step(scene.simulation.dt);
+        if (n === SIZING_STEP - 1) before = flow.residual();
+      }
+      const result = { first, before, iterations: flow.iterations, sized: flow.sizedResidual, after: flow.residual() };
+      flow.dispose();
+      return result;
+    };
+    return { few: await run({ iterations: 4 }, 40), usual: await run({}, SIZING_STEP + 2) };
+  }, scene);
+  expect(out.few.unsupported).toBeUndefined();
+  console.log(`from 4 iterations a step: residual ${out.few.before.toExponential(1)} before the sizing, ${out.few.after.toExponential(1)} after it at ${out.few.iterations} iterations; the usual ${out.usual.first}: ${out.usual.sized.toExponential(1)}, kept at ${out.usual.iterations}`);
+  // Four iterations leave the projection far from the tolerance; the sizing brings it within.
+  expect(out.few.before).toBeGreaterThan(1e-3);
+  expect(out.few.iterations).toBeGreaterThan(4);
+  expect(out.few.sized).toBeLessThanOrEqual(1e-4);
+  expect(out.few.after).toBeLessThanOrEqual(1e-4);
+  // The usual count is within the tolerance at once and stays.
+  expect(out.usual.sized).toBeLessThanOrEqual(1e-4);
+  expect(out.usual.iterations).toBe(out.usual.first);
 });
 
 test('a stir in a closed box, 20 steps stirred and 40 after: the GPU\'s flow agrees with the core\'s within 1e-3 of max|u_g|', async ({ page }) => {

@@ -8,12 +8,16 @@
 // and project: the divergence, a Poisson solve for φ = p·dt/ρ, and the free faces lose ∇φ.
 //
 // The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ (a warm
-// start, as the core's conjugate gradients take), a fixed number of iterations a step (two passes
-// each): by default 3 × the longest side of cells + 30 with open faces, 5 × + 30 with closed ones
+// start, as the core's conjugate gradients take), a number of iterations a step (two passes
+// each): at first 3 × the longest side of cells + 30 with open faces, 5 × + 30 with closed ones
 // (the Neumann problem converges slower), which reached a relative residual max|b − Aφ| / max|b|
 // of 1e-4 or better on the boxes checked (`residual()` measures it: at 32³ round a sphere in a
 // wind and a stir, 3e-6–7e-7 open, 3e-6–7e-5 closed, where f32 sets the floor: φ is some n times
-// b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop at 1e-5 in f64). With no
+// b, and A·φ cancels to b; the core's MIC(0) conjugate gradients stop at 1e-5 in f64). The count
+// is then sized to the tolerance, GPU_TOLERANCE: at the SIZING_STEP-th step the residual is read
+// back, and while it is above the tolerance the next step takes half as many iterations again
+// and is measured in turn (`#size`), up to MOST_ITERATIONS × that first count; where more
+// iterations gain little (f32's floor) the count before them stays. With no
 // open face b's mean over the fluid cells is taken out first, as the core does. Where b is 0 on
 // every cell the core sets φ = 0; the sweeps here relax the last φ towards 0 instead (the same
 // from rest). Nothing is read back unless asked (`faces`, `cellVelocity`, `velocityAt`,
@@ -38,6 +42,12 @@ import {
 export const STIR_TIME = 0.05;
 /** A stir's width in cells, fewest and most (`scene_flow::STIR_CELLS`). */
 export const STIR_CELLS = [1.5, 4];
+/** The relative residual max|b − Aφ| / max|b| the projection is held to (the flow's, 1e-4). */
+export const GPU_TOLERANCE = 1e-4;
+/** The step at which the projection's residual is first read back to size its iterations. */
+export const SIZING_STEP = 10;
+/** The most iterations the sizing takes, as a multiple of the first count. */
+const MOST_ITERATIONS = 4;
 /** Texels a side summed by one reduction pass. */
 const REDUCE_BLOCK = 8;
 /** The largest ν·dt/h² of one diffusion substep (the core's `diffuse::STABLE`). */
@@ -132,12 +142,14 @@ class Pair {
 }
 
 export class GpuFlow {
+  #sizing = null;
+
   /**
    * The flow at rest on the grid of `origin` (m), `cells` [nx, ny, nz] and cube edge `h` (m)
    * with `faces` 'open', 'closed' or {x, y, z} of those (each axis's two faces), ν `viscosity`
    * (m²/s), β `buoyancy` (1/K), `gravity` (m/s²), Smagorinsky's eddy viscosity when `eddies`
-   * (a scene's flow has it, the core's bare `Flow` not), and the SOR's `iterations` a step and
-   * `omega`, on the WebGL2 context `gl` (float render targets: `flowGpuUnsupported`).
+   * (a scene's flow has it, the core's bare `Flow` not), and the SOR's `iterations` a step to
+   * start from (sized to the tolerance from the SIZING_STEP-th step) and `omega`, on the WebGL2 context `gl` (float render targets: `flowGpuUnsupported`).
    */
   constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], eddies = false, iterations, omega }) {
     this.gl = gl;
@@ -155,7 +167,12 @@ export class GpuFlow {
     this.gravity = gravity.map(f32);
     this.eddies = eddies;
     const longest = Math.max(...cells);
-    this.iterations = iterations ?? (allClosed ? 5 : 3) * longest + 30;
+    const first = (allClosed ? 5 : 3) * longest + 30;
+    this.iterations = iterations ?? first;
+    // The sizing of the iterations to the tolerance (`#size`): when it next reads the residual,
+    // the last residual it read and the count then. `sizedResidual` is the last it read.
+    this.#sizing = { due: SIZING_STEP, last: Infinity, previous: this.iterations, most: MOST_ITERATIONS * Math.max(first, this.iterations) };
+    this.sizedResidual = null;
     // SOR's best ω for the model problem on a cube of the longest side: 2/(1 + π/n) with the
     // box's faces open (p = 0 beyond them), 2/(1 + π/(√3 n)) with them closed (the Neumann
     // problem's smallest eigenvalue but the constant's is a third of the Dirichlet one's).
@@ -287,6 +304,31 @@ export class GpuFlow {
     }
     for (let a = 0; a < 3; a++) this.#update(a, 'IMPOSE', { u: this.u[a].now, up: this.up[a], kind: this.kind[a] });
     this.#project();
+    if (this.#sizing && --this.#sizing.due === 0) this.#size();
+  }
+
+  /**
+   * Sizes the SOR's iterations to GPU_TOLERANCE from the residual the last projection left (a
+   * read-back): within it, or at the most, the count stays; above it the next step takes half as
+   * many iterations again and is measured in turn, unless this count's residual is more than
+   * two thirds of the last one's (f32's floor: more iterations would only cost), when the last
+   * count comes back.
+   */
+  #size() {
+    const s = this.#sizing;
+    const r = this.residual();
+    this.sizedResidual = r;
+    if (r <= GPU_TOLERANCE || this.iterations >= s.most) {
+      this.#sizing = null;
+    } else if (r > (2 / 3) * s.last) {
+      this.iterations = s.previous;
+      this.#sizing = null;
+    } else {
+      s.previous = this.iterations;
+      s.last = r;
+      this.iterations = Math.min(s.most, Math.ceil(1.5 * this.iterations));
+      s.due = 1;
+    }
   }
 
   /** ν∇²(u_p + u_g) for `dt` (s) in explicit substeps. */
