@@ -1,11 +1,12 @@
-// The flow stepped on the GPU (paper §7's physical large scales; docs/CONVENTIONS.md, the flow): the grid's velocity u_g (m/s) on a
-// MAC grid, each component's faces in an R32F atlas (`gl.js`), stepped by the core's laws in the
-// core's order (`wind::flow::step`): advect u_g by u_p + u_g (semi-Lagrangian with MacCormack's
-// clamped correction, the traces in cells through the cells' velocity), diffuse it (explicit
-// substeps, ν·dt_sub/h² ≤ 1/8), with `eddies` let Smagorinsky's eddy viscosity ν_t act on it
-// (`wind::flow::subgrid`: ν_t from the step's first u_g, one explicit pass on the free faces),
-// add the buoyancy −β T g and the force splats, set the fixed faces so that (u_p + u_g)·n = v·n,
-// and project: the divergence, a Poisson solve for φ = p·dt/ρ, and the free faces lose ∇φ.
+// The flow stepped on the GPU (paper §7's physical large scales; docs/CONVENTIONS.md, the flow):
+// the grid's velocity u_g (m/s) on a MAC grid, each component's faces in an R32F atlas (`gl.js`),
+// stepped by the core's laws in the core's order (`wind::flow::step`): advect u_g by u_p + u_g
+// (semi-Lagrangian with MacCormack's clamped correction, the traces in cells through the cells'
+// velocity), diffuse it (explicit substeps, ν·dt_sub/h² ≤ 1/8), with `eddies` let Smagorinsky's
+// eddy viscosity ν_t act on it (`wind::flow::subgrid`: ν_t from the step's first u_g, one explicit
+// pass on the free faces), add the buoyancy −β T g and the force splats, set the fixed faces so
+// that (u_p + u_g)·n = v·n, and project: the divergence, a Poisson solve for φ = p·dt/ρ, and the
+// free faces lose ∇φ.
 //
 // The Poisson solve is red-black successive over-relaxation in f32 from the last step's φ (a warm
 // start, as the core's conjugate gradients take), a number of iterations a step (two passes
@@ -149,7 +150,8 @@ export class GpuFlow {
    * with `faces` 'open', 'closed' or {x, y, z} of those (each axis's two faces), ν `viscosity`
    * (m²/s), β `buoyancy` (1/K), `gravity` (m/s²), Smagorinsky's eddy viscosity when `eddies`
    * (a scene's flow has it, the core's bare `Flow` not), and the SOR's `iterations` a step to
-   * start from (sized to the tolerance from the SIZING_STEP-th step) and `omega`, on the WebGL2 context `gl` (float render targets: `flowGpuUnsupported`).
+   * start from (sized to the tolerance from the SIZING_STEP-th step) and `omega`, on the
+   * WebGL2 context `gl` (float render targets: `flowGpuUnsupported`).
    */
   constructor(gl, { origin, cells, h, faces = 'open', viscosity = AIR.viscosity, buoyancy = AIR.buoyancy, gravity = [0, -9.81, 0], eddies = false, iterations, omega }) {
     this.gl = gl;
@@ -444,7 +446,7 @@ export class GpuFlow {
     return this.u.map((p) => p.now.read());
   }
 
-  /** T on the cells (K, x fastest: as `exportFlow()`), the last step's or the last one laid there, read back. */
+  /** T on the cells (K, x fastest: as `exportFlow()`), the last laid there, read back. */
   temperatures() {
     passState(this.gl);
     return this.temperature.read();

@@ -1,9 +1,9 @@
 // A scene's flow on the GPU beside the GPU stepper's blobs (where the browser can, the grid lives
-// and is stepped on the GPU beside the blobs, read back only on demand): set up from the scene the worker runs and its u_g when the gas crosses
-// (`flow-gpu/scene.js`), stepped by the GPU stepper step by step from the blobs' heat
-// (`flow-gpu/heat.js`), kept through an edit as the core keeps its own (the same box, cells,
-// faces and render objects: new constants; else at rest), and read back for `exportFlow()` or
-// when the gas goes back to the worker.
+// and is stepped on the GPU beside the blobs, read back only on demand): set up from the scene the
+// worker runs and its u_g when the gas crosses (`flow-gpu/scene.js`), stepped by the GPU stepper
+// step by step from the blobs' heat (`flow-gpu/heat.js`), kept through an edit as the core keeps
+// its own (the same box, cells, faces and render objects: new constants; else at rest), and read
+// back for `exportFlow()` or when the gas goes back to the worker.
 
 import { flowGpuRefuses, flowGpuUnsupported } from '../flow-gpu/gl.js';
 import { HeatDeposit, heatGpuUnsupported } from '../flow-gpu/heat.js';

@@ -226,7 +226,7 @@ export class GpuStepper {
    * u_g.
    */
   #stepFlow(link, table, dt, slots, sigmaMax) {
-    const { flow, heat } = link;
+    const { flow } = link;
     if (table[CONSTANT_WIND + 3] > 0) {
       // Primitives beyond the constant wind: u_p on the faces from this table.
       flow.setWindTable(table);
@@ -246,14 +246,7 @@ export class GpuStepper {
     }
     const t0 = performance.now();
     link.timer?.begin();
-    heat.deposit(flow, {
-      centres: this.#raw(this.state.now, 0),
-      masses: this.#raw(this.state.now, 1),
-      slotsPerRow: BLOBS_PER_ROW,
-      slots,
-      sigmaMax,
-      cooling: link.cooling,
-    });
+    this.#depositHeat(link, slots, sigmaMax);
     flow.step(dt, flow.temperature, link.stir ? [flow.splatOf(link.stir)] : []);
     link.timer?.end();
     // The GPU's own time of the last flow step it finished where it can say, else the page's
@@ -274,15 +267,23 @@ export class GpuStepper {
    * and writes the newborns).
    */
   depositHeat(link) {
+    this.#depositHeat(link, Math.min(this.state.capacity, this.highWater), this.sigmaRange[1]);
+    this.renderer.resetState();
+  }
+
+  /**
+   * T on the cells of `link`'s flow from the blobs in the current state's first `slots` slots,
+   * none wider than `sigmaMax` (m).
+   */
+  #depositHeat(link, slots, sigmaMax) {
     link.heat.deposit(link.flow, {
       centres: this.#raw(this.state.now, 0),
       masses: this.#raw(this.state.now, 1),
       slotsPerRow: BLOBS_PER_ROW,
-      slots: Math.min(this.state.capacity, this.highWater),
-      sigmaMax: this.sigmaRange[1],
+      slots,
+      sigmaMax,
       cooling: link.cooling,
     });
-    this.renderer.resetState();
   }
 
   /**

@@ -63,7 +63,7 @@ pub struct SceneFlow {
     /// The solid objects' cells (the repulsors' spheres join them each step).
     fixed: Solids,
     /// T on the cells of the last step, K.
-    pub temperature: Vec<f32>,
+    temperature: Vec<f32>,
     /// The stir acting from the next step, if any.
     pub stir: Option<Stir>,
     frozen: Arc<FrozenFlow>,
@@ -246,10 +246,8 @@ impl SceneFlow {
     /// at its start, before they move and the newborns come; the export's T is the grid's at
     /// its own time.
     pub fn export(&self, centres: &[f32], sigma: &[f32], heat: &[f32]) -> FlowGrid {
-        let mut temperature = vec![0.0; self.flow.grid.cell_count()];
-        if heat.iter().any(|&q| q != 0.0) {
-            deposit(&self.flow.grid, centres, sigma, heat, &mut temperature);
-        }
+        let mut temperature = Vec::new();
+        deposit(&self.flow.grid, centres, sigma, heat, &mut temperature);
         FlowGrid {
             bounds: self.settings.bounds,
             cells: self.settings.cells,
