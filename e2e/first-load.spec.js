@@ -1,7 +1,8 @@
 // What a player fetches: its first load brings the core's first module only (the field, the
 // scene, the simulation and the frames: web/pkg/windfield.js), and the full module
 // (windfield_full.js: the exports, the reference renderer, the statistics) comes with the first
-// request that needs it, once. Counted from the page's network responses.
+// request that needs it, once; the drag handle's code (three.js TransformControls) with the wind
+// guides. Counted from the page's network responses.
 import { gzipSync } from 'node:zlib';
 import { expect, test, bare, collectErrors } from './helpers.js';
 
@@ -41,6 +42,8 @@ test('a player\'s first load fetches the core\'s first module only; its first ex
   test.info().annotations.push({ type: 'first load', description: `${kib.toFixed(1)} KiB gzipped: ${first.map((f) => f.path.split('/').pop()).join(', ')}` });
   expect(first.filter((f) => firstModule.test(f.path))).toHaveLength(1);
   expect(first.filter((f) => /windfield_full/.test(f.path))).toEqual([]);
+  // The drag handle's code comes with the wind guides, which a docs page's player never shows.
+  expect(first.filter((f) => /TransformControls/.test(f.path))).toEqual([]);
 
   const sizes = await page.evaluate(async () => {
     const p = document.querySelector('#p');

@@ -16,9 +16,9 @@ const plume = {
   flow: { box: [-0.8, 0, -0.8, 0.8, 1.6, 0.8], cells: [32, 32, 32] },
 };
 
-/** Opens the playground on the plume; resolves with the flow's cells, the scene's and the lighter version's words. */
-async function open(page) {
-  await page.goto(`./#${await encodeScene(plume)}`);
+/** Opens the playground on `scene`; resolves with the flow's cells, the scene's and the lighter version's words. */
+async function open(page, scene = plume) {
+  await page.goto(`./#${await encodeScene(scene)}`);
   await page.waitForFunction(() => window.windfield !== undefined);
   await page.evaluate(() => window.windfield.ready);
   await page.evaluate(() => window.windfield.step(3));
@@ -39,6 +39,20 @@ test('in software, a scene\'s flow is stepped on a coarser grid, and the notice 
   await expect(page.locator('#message')).toContainText(words);
   // The status line shows the flow's step.
   await expect(page.locator('#status')).toContainText(/ · flow \d+\.\d ms · /);
+  expect(errors).toEqual([]);
+});
+
+test('a flow with no coarser grid runs on its own cells, and the notice does not say it was coarsened', async ({ page }) => {
+  // 12 × 36 × 12 halves to 8 × 18 × 8 (8 the least), whose cells are no longer cubes: the
+  // candle's case, and the cylinder wake's.
+  const errors = collectErrors(page);
+  const tall = { ...plume, flow: { box: [-0.3, 0, -0.3, 0.3, 1.8, 0.3], cells: [12, 36, 12] } };
+  const got = await open(page, tall);
+  expect(got.stepped).toEqual([12, 36, 12]);
+  expect(got.lighter.reason).toBe('software');
+  expect(got.lighter.gaveUp.length).toBeGreaterThan(0);
+  expect(got.lighter.gaveUp.filter((g) => g.includes('flow'))).toEqual([]);
+  await expect(page.locator('#message')).not.toContainText('flow');
   expect(errors).toEqual([]);
 });
 

@@ -64,14 +64,14 @@ export class LighterVersion {
 
   /**
    * The running scene's flow runs on `cells` in place of its own `from` (the engine's answer to a
-   * load or an edit; `cells` null: on its own, or no flow). A change the lighter version made
-   * is told as the lighter version is (`onLighter`), naming the grids.
+   * load or an edit; `cells` null: on its own, or no flow). A change is told as the lighter
+   * version is (`onLighter`): the grids named, or the flow's line gone.
    */
   flowRuns(cells, from) {
     const next = cells && from ? { cells: [...cells], from: [...from] } : null;
     const same = JSON.stringify(next) === JSON.stringify(this.#coarserFlow);
     this.#coarserFlow = next;
-    if (!same && next && this.#reason) this.#tell();
+    if (!same && this.#reason) this.#tell();
   }
 
   /** `stats().lighter`: why the lighter version is shown and what it gave up, or null. */
@@ -135,13 +135,17 @@ export class LighterVersion {
   }
 
   /**
-   * What the lighter version gave up, in words (empty when it is not shown); the flow's grid
-   * named where the running scene's flow is on the coarser one.
+   * What the lighter version gives up now, in words (empty when it is not shown). The flow is
+   * named only where the running scene's flow is on the coarser grid, with both grids: a scene
+   * without a flow, or one whose flow has no coarser grid (`coarserCells`), gives up none.
    */
   #gaveUp() {
     if (!this.#reason) return [];
     const lightened = Object.keys(this.#from).filter((name) => this.#from[name] === 'light');
     const flow = this.#coarserFlow;
-    return lightened.flatMap((name) => (name === 'flow' && flow ? [coarserFlowWords(flow.cells, flow.from)] : lightenedWords([name])));
+    return lightened.flatMap((name) => {
+      if (name !== 'flow') return lightenedWords([name]);
+      return flow ? [coarserFlowWords(flow.cells, flow.from)] : [];
+    });
   }
 }

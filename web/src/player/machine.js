@@ -89,7 +89,7 @@ export function startingSettings(full, lighter, choices = userChoices()) {
 
 /**
  * What the lighter version gave up, in words, for `lightened` (names of `LIGHT`'s settings):
- * one phrase each.
+ * one phrase each; the flow's is `coarserFlowWords`, which names the grids.
  */
 export function lightenedWords(lightened) {
   const words = {
@@ -98,7 +98,6 @@ export function lightenedWords(lightened) {
     resolution: `${Math.round(LIGHT.resolution * 100)} % resolution`,
     stepper: 'the gas stepped by the worker',
     blobCap: `at most ${LIGHT.blobCap.toLocaleString('en')} blobs`,
-    flow: 'a scene’s flow on a coarser grid (half the cells along each side)',
   };
   return lightened.map((name) => words[name]).filter(Boolean);
 }

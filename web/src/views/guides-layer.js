@@ -1,11 +1,19 @@
 // Wind guides: what the large-scale primitives and the emitters are, drawn in the scene
 // (arrows for uniform wind, sources and sinks; a circulating ring for a vortex; the path of a
 // repulsor; the outline of each emitter; the edges of the flow's box and its closed faces), and a drag handle (three.js TransformControls) that
-// moves one of them. Guides are a view aid: captures and recordings leave them out.
+// moves one of them. Guides are a view aid: captures and recordings leave them out. The drag
+// handle's code is fetched when the guides are first shown or something is first picked, so a
+// player that never shows them (a docs page's) never fetches it.
 
 import * as THREE from 'three';
-import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import { closedAxes } from '../flow-gpu/boundary.js';
+
+/** three.js's TransformControls, fetched once, on first use. */
+let transformControls = null;
+function loadTransformControls() {
+  transformControls ??= import('three/examples/jsm/controls/TransformControls.js').then((m) => m.TransformControls);
+  return transformControls;
+}
 
 const WIND = 0x6fc3ff;
 const SINK = 0xff8a65;
@@ -146,6 +154,13 @@ function faintIfOff(guide, enabled) {
 }
 
 export class GuidesLayer {
+  /** The drag handle (TransformControls), null until its code has come. */
+  #drag = null;
+  /** Its helper, drawn in the guides' scene, null until then. */
+  #helper = null;
+  /** Whether the drag handle's code was asked for. */
+  #asked = false;
+
   /**
    * @param {THREE.Scene} scene
    * @param {THREE.Camera} camera
@@ -158,20 +173,34 @@ export class GuidesLayer {
     scene.add(this.group);
     this.handle = new THREE.Object3D();
     scene.add(this.handle);
-    this.drag = new TransformControls(camera, canvas);
-    this.drag.setSize(0.8);
-    this.drag.enabled = false;
-    this.helper = this.drag.getHelper();
-    this.helper.visible = false;
-    scene.add(this.helper);
-    this.drag.addEventListener('dragging-changed', (event) => {
-      orbit.enabled = !event.value;
-      if (!event.value && this.selected) this.onMoved?.(this.selected, this.handle.position.toArray());
-    });
+    this.overlay = scene;
+    this.camera = camera;
+    this.canvas = canvas;
+    this.orbit = orbit;
     this.key = '';
     this.selected = null;
     /** Called with (selection, [x, y, z]) when a drag ends. */
     this.onMoved = null;
+  }
+
+  /** Fetches the drag handle's code once and makes the handle; it then follows the selection and the guides' visibility. */
+  #wantDrag() {
+    if (this.#asked) return;
+    this.#asked = true;
+    loadTransformControls().then((TransformControls) => {
+      const drag = new TransformControls(this.camera, this.canvas);
+      drag.setSize(0.8);
+      drag.enabled = false;
+      this.#helper = drag.getHelper();
+      this.#helper.visible = false;
+      this.overlay.add(this.#helper);
+      drag.addEventListener('dragging-changed', (event) => {
+        this.orbit.enabled = !event.value;
+        if (!event.value && this.selected) this.onMoved?.(this.selected, this.handle.position.toArray());
+      });
+      this.#drag = drag;
+      this.select(this.selected);
+    });
   }
 
   /** Rebuilds the guides when the scene's primitives, emitters or flow change (a new scene is compared once). */
@@ -197,8 +226,10 @@ export class GuidesLayer {
   /** Shows or hides the guides and the drag handle. */
   setVisible(visible) {
     this.group.visible = visible;
-    this.helper.visible = visible && this.selected !== null;
-    this.drag.enabled = this.helper.visible;
+    if (visible) this.#wantDrag();
+    if (!this.#helper) return;
+    this.#helper.visible = visible && this.selected !== null;
+    this.#drag.enabled = this.#helper.visible;
   }
 
   /** Attaches the drag handle to `selection` ({list: 'wind'|'emitters', index}) or to nothing. */
@@ -207,9 +238,10 @@ export class GuidesLayer {
     this.selected = item ? selection : null;
     if (item) {
       this.handle.position.fromArray(anchorOf(item));
-      this.drag.attach(this.handle);
+      this.#wantDrag();
+      this.#drag?.attach(this.handle);
     } else {
-      this.drag.detach();
+      this.#drag?.detach();
     }
     this.setVisible(this.group.visible);
   }
