@@ -2,7 +2,8 @@
 // scene, the simulation and the frames: web/pkg/windfield.js), and the full module
 // (windfield_full.js: the exports, the reference renderer, the statistics) comes with the first
 // request that needs it, once; the drag handle's code (three.js TransformControls) with the wind
-// guides. Counted from the page's network responses.
+// guides, and the GPU flow's passes (player/flow-handoff.js) with the first scene whose flow the
+// GPU steps. Counted from the page's network responses.
 import { gzipSync } from 'node:zlib';
 import { expect, test, bare, collectErrors } from './helpers.js';
 
@@ -60,5 +61,29 @@ test('a player\'s first load fetches the core\'s first module only; its first ex
   test.info().annotations.push({ type: 'on the first export', description: `${(full.reduce((s, f) => s + f.gzip, 0) / 1024).toFixed(1)} KiB gzipped (the full module)` });
   expect(full).toHaveLength(1);
   expect(fetched.filter((f) => firstModule.test(f.path))).toHaveLength(1);
+  expect(errors).toEqual([]);
+});
+
+const flowHandoff = /^\/wind-field\/flow-handoff-[^/]*\.js$/;
+
+test('the GPU flow\'s code comes with the first scene whose flow the GPU steps, not before', async ({ page }) => {
+  const errors = collectErrors(page);
+  const fetched = recordCode(page);
+  await bare(page, 'flow-code', '<wind-field id="p" preset="default" style="width: 320px"></wind-field>');
+  await page.evaluate(() => document.querySelector('#p').ready);
+  // The gas on the GPU without a flow: the flow's passes are not fetched.
+  await page.evaluate(() => document.querySelector('#p').setStepper('gpu'));
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().stepper)).toBe('gpu');
+  await page.waitForLoadState('networkidle');
+  expect(fetched.filter((f) => flowHandoff.test(f.path))).toEqual([]);
+  // An edit that gives the running scene a flow brings them, once, and the GPU steps it.
+  await page.evaluate(async () => {
+    const p = document.querySelector('#p');
+    const scene = p.getScene();
+    await p.editScene({ ...scene, flow: { box: [-1, 0, -1, 1, 2, 1], cells: [8, 8, 8] } });
+    await p.step(2);
+  });
+  await expect.poll(() => page.evaluate(() => document.querySelector('#p').stats().flowStepper)).toBe('gpu');
+  expect(fetched.filter((f) => flowHandoff.test(f.path))).toHaveLength(1);
   expect(errors).toEqual([]);
 });

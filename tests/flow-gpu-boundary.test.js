@@ -4,9 +4,9 @@
 // grids too large for a GPU's textures, and the solid objects' signed distances.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { addSolid, boundaryOf, closedAxes, faceDims, FREE, HOLDING, noSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
+import { addSolid, boundaryOf, closedAxes, faceDims, FREE, HOLDING, noSolids, repulsorSolids, sameSolids, SLIPPING } from '../web/src/flow-gpu/boundary.js';
 import { atlasOf, atlasTexel, flowGpuRefuses } from '../web/src/flow-gpu/gl.js';
-import { gpuFlowRefusesScene, repulsorSolids, sameSolids, solidDistance } from '../web/src/flow-gpu/scene.js';
+import { gpuFlowRefusesScene, solidDistance } from '../web/src/flow-gpu/scene.js';
 import { REPULSOR_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE } from '../web/src/generated/contract.js';
 
 const cells = [3, 3, 3];

@@ -5,8 +5,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { formatsGaveUp, passPrecision } from '../web/src/views/precision.js';
 import { BYTES_PER_BLOB, memoryBudget, MemoryLimit } from '../web/src/player/memory.js';
-import { gpuFlowBytes } from '../web/src/flow-gpu/gpu-flow.js';
-import { flowMemoryRefuses } from '../web/src/player/flow-handoff.js';
+import { gpuFlowBytes } from '../web/src/flow-gpu/textures.js';
+import { flowMemoryRefuses } from '../web/src/player/flow-placement.js';
 import { atlasLayout, fitGrid, halved } from '../web/src/views/volume/grid.js';
 import { brickDims } from '../web/src/views/volume/occupancy-pass.js';
 

@@ -18,6 +18,11 @@ export function flowGpuUnsupported(gl) {
   return null;
 }
 
+/** Why `gl` cannot add the blobs' heat up on the GPU (`HeatDeposit`) (no float blending), or null when it can. */
+export function heatGpuUnsupported(gl) {
+  return gl.getExtension('EXT_float_blend') ? null : 'this GPU cannot add into float textures (no EXT_float_blend)';
+}
+
 /**
  * Why a flow of `cells` [nx, ny, nz] does not fit `gl`'s textures, or null when it does: every
  * lattice (each component's faces, one more along its own axis) must fit one atlas.

@@ -33,7 +33,8 @@
 // iterations, about 460 passes. A multigrid solve would take fewer.
 
 import { boundaryOf, closedAxes, faceDims, noSolids } from './boundary.js';
-import { atlasFor, Lattice, latticeBytes, Pass, passState } from './gl.js';
+import { REDUCE_BLOCK, textureTable } from './textures.js';
+import { Lattice, Pass, passState } from './gl.js';
 import {
   ADVECT_BACK, ADVECT_CORRECT, BUOYANCY, CARRIER, CENTRES, DIFFUSE, DIVERGENCE, EDDY_DIFFUSE, EDDY_VISCOSITY, GRADIENT, IMPOSE, PROBE, REDUCE, CENTRE_B, RELAX, RESIDUAL, SPLAT,
   WIND_ON_FACES,
@@ -49,8 +50,6 @@ export const GPU_TOLERANCE = 1e-4;
 export const SIZING_STEP = 10;
 /** The most iterations the sizing takes, as a multiple of the first count. */
 const MOST_ITERATIONS = 4;
-/** Texels a side summed by one reduction pass. */
-const REDUCE_BLOCK = 8;
 /** The largest ν·dt/h² of one diffusion substep (the core's `diffuse::STABLE`). */
 const STABLE = 0.125;
 /** Air's kinematic viscosity (m²/s) and an ideal gas's expansion at room temperature (1/K). */
@@ -65,53 +64,6 @@ function offsetOf(axis) {
   const o = [0.5, 0.5, 0.5];
   o[axis] = 0;
   return o;
-}
-
-/**
- * The textures of a `GpuFlow` on `cells` [nx, ny, nz] on a GPU whose textures are at most
- * `maxTextureSize` a side, by the field that holds them: each a lattice's `dims`, `channels`
- * (1 unless said), whether it is drawn into (`renderable`, unless false) and whether it is a
- * ping-pong `pair`; a list where the field holds one a component (or a reduction level).
- */
-function textureTable(cells, maxTextureSize) {
-  const faces = [0, 1, 2].map((a) => faceDims(cells, a));
-  // The sums of b, block by block down to one texel.
-  const sums = [];
-  const atlas = atlasFor(cells, maxTextureSize);
-  for (let [w, hh] = [atlas.width, atlas.height]; w > 1 || hh > 1;) {
-    [w, hh] = [Math.ceil(w / REDUCE_BLOCK), Math.ceil(hh / REDUCE_BLOCK)];
-    sums.push({ dims: [w, hh, 1] });
-  }
-  return {
-    // u_g's pair, u_p, the traces' values and bounds, the faces' kinds.
-    u: faces.map((dims) => ({ dims, pair: true })),
-    up: faces.map((dims) => ({ dims })),
-    back: faces.map((dims) => ({ dims, channels: 4 })),
-    kind: faces.map((dims) => ({ dims, channels: 2, renderable: false })),
-    // The carrier, the Poisson rows, T, b, φ's pair, the cells' velocity out, b centred, the
-    // cells' velocity centred, ν_t; the probe.
-    carrier: { dims: cells, channels: 4 },
-    rows: { dims: cells, channels: 4, renderable: false },
-    temperature: { dims: cells },
-    b: { dims: cells },
-    phi: { dims: cells, pair: true },
-    cellOut: { dims: cells, channels: 4 },
-    bCentred: { dims: cells },
-    centred: { dims: cells, channels: 4 },
-    nuT: { dims: cells },
-    probe: { dims: [1, 1, 1], channels: 4 },
-    sums,
-  };
-}
-
-/**
- * The bytes of the textures a `GpuFlow` on `cells` [nx, ny, nz] holds on a GPU whose textures
- * are at most `maxTextureSize` a side (float32 atlases: per cell about 196 B), worked out before
- * one is made, so that a memory budget can refuse it first (`GpuFlow.bytes` once made).
- */
-export function gpuFlowBytes(cells, maxTextureSize) {
-  const specs = Object.values(textureTable(cells, maxTextureSize)).flat();
-  return specs.reduce((n, t) => n + (t.pair ? 2 : 1) * latticeBytes(t.dims, t.channels ?? 1, maxTextureSize), 0);
 }
 
 /** A ping-pong pair of lattices: `now` read, `next` written, then swapped. */

@@ -101,11 +101,6 @@ void main() {
   added = vec4(w * share(x0.x, x1.x, blob.x, s), 0.0, 0.0, 0.0);
 }`;
 
-/** Why `gl` cannot add the heat up on the GPU (no float blending), or null when it can. */
-export function heatGpuUnsupported(gl) {
-  return gl.getExtension('EXT_float_blend') ? null : 'this GPU cannot add into float textures (no EXT_float_blend)';
-}
-
 export class HeatDeposit {
   constructor(gl) {
     this.gl = gl;

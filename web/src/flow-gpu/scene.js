@@ -7,12 +7,11 @@
 // u_p is set here from the uniform winds without a decay (the same on every face); with other
 // primitives the GPU stepper sets each step's on the faces from its wind table, and a
 // repulsor's sphere is solid cells over the objects' where the table puts it
-// (`repulsorSolids`).
+// (`boundary.js`'s `repulsorSolids`).
 
 import { GpuFlow } from './gpu-flow.js';
 import { addSolid, noSolids } from './boundary.js';
 import { flowGpuRefuses } from './gl.js';
-import { REPULSOR_KIND, WIND_TABLE_HEADER, WIND_TABLE_PRIMITIVE } from '../generated/contract.js';
 
 const f32 = Math.fround;
 
@@ -46,44 +45,6 @@ export function gpuFlowRefusesScene(scene) {
   const f = scene.flow;
   if (!f || f.enabled === false) return 'the scene has no flow';
   return null;
-}
-
-/**
- * The solid cells of a step whose wind table `table` (one time, the core's
- * `WindFrame::write_gpu_table` layout) has repulsors: the scene's own, `fixed`, with each
- * repulsor's sphere (not its mirror images) marked solid over them, moving at the sphere's
- * velocity (the core's `SceneFlow::step`: `Solids::add_sphere`, a cell whose centre lies within
- * the radius) on `grid` ({origin, cells, h}); null where the table has none.
- */
-export function repulsorSolids(fixed, grid, table) {
-  // The header's fifth texel: [constant wind xyz, primitive count].
-  const count = table[4 * 4 + 3];
-  let solids = null;
-  for (let j = 0; j < count; j++) {
-    const at = WIND_TABLE_HEADER + WIND_TABLE_PRIMITIVE * j;
-    // [kind, 1/decay, radius, strength], [origin, plane], [centre, first image], [velocity, images].
-    if (table[at] !== REPULSOR_KIND || table[at + 7] >= 0) continue;
-    solids ??= { solid: fixed.solid.slice(), velocity: fixed.velocity.slice(), slip: fixed.slip.slice() };
-    const radius = table[at + 2];
-    const centre = table.subarray(at + 8, at + 11);
-    const r2 = f32(radius * radius);
-    const inside = (x) => {
-      let d = 0;
-      for (let a = 0; a < 3; a++) {
-        const e = f32(x[a] - centre[a]);
-        d = f32(d + f32(e * e));
-      }
-      return d <= r2;
-    };
-    addSolid(solids, grid, inside, Array.from(table.subarray(at + 12, at + 15)));
-  }
-  return solids;
-}
-
-/** Whether two sets of solid cells (`noSolids`' layout) are the same cells, velocities and slips. */
-export function sameSolids(a, b) {
-  const same = (x, y) => x.length === y.length && x.every((v, i) => v === y[i]);
-  return same(a.solid, b.solid) && same(a.slip, b.slip) && same(a.velocity, b.velocity);
 }
 
 /**

@@ -3,46 +3,14 @@
 // worker runs and its u_g when the gas crosses (`flow-gpu/scene.js`), stepped by the GPU stepper
 // step by step from the blobs' heat (`flow-gpu/heat.js`), kept through an edit as the core keeps
 // its own (the same box, cells, faces and render objects: new constants; else at rest), and read
-// back for `exportFlow()` or when the gas goes back to the worker.
+// back for `exportFlow()` or when the gas goes back to the worker. Fetched with the first scene
+// whose flow the GPU steps (`stepper-handoff.js`); whether it can is `flow-placement.js`'s.
 
-import { flowGpuRefuses, flowGpuUnsupported } from '../flow-gpu/gl.js';
-import { HeatDeposit, heatGpuUnsupported } from '../flow-gpu/heat.js';
-import { gpuFlowBytes } from '../flow-gpu/gpu-flow.js';
-import { gpuFlowOfScene, gpuFlowRefusesScene } from '../flow-gpu/scene.js';
+import { HeatDeposit } from '../flow-gpu/heat.js';
+import { gpuFlowOfScene } from '../flow-gpu/scene.js';
 import { GpuTimer } from '../flow-gpu/timer.js';
 
 const f32 = Math.fround;
-
-/** Whether `scene` has a flow that acts: an enabled `flow`. */
-export function hasFlow(scene) {
-  return Boolean(scene?.flow && scene.flow.enabled !== false);
-}
-
-/**
- * Why a flow of `cells` must not take the GPU's memory, or null: its textures
- * (`gpuFlowBytes`, on a GPU of textures at most `maxTextureSize` a side) against the `most`
- * bytes a memory budget gives a flow (`MemoryLimit.flowBytes`; Infinity where none applies).
- */
-export function flowMemoryRefuses(cells, maxTextureSize, most) {
-  const bytes = gpuFlowBytes(cells, maxTextureSize);
-  if (bytes <= most) return null;
-  const mib = (n) => `${(n / 2 ** 20).toFixed(1)} MiB`;
-  return `its ${cells.join(' × ')} cells take ${mib(bytes)} of textures on the GPU, more than the ${mib(most)} this device's memory budget gives a flow`;
-}
-
-/**
- * Why the GPU of `gl` cannot step `scene`'s flow beside the blobs, or null when it can (or the
- * scene has no flow): float render targets and blending, textures large
- * enough for its cells, and their bytes within the `most` a memory budget gives a flow.
- */
-export function flowKeepsGpuAway(scene, gl, most = Infinity) {
-  if (!hasFlow(scene)) return null;
-  return gpuFlowRefusesScene(scene)
-    || flowGpuUnsupported(gl)
-    || heatGpuUnsupported(gl)
-    || flowGpuRefuses(gl, scene.flow.cells)
-    || flowMemoryRefuses(scene.flow.cells, gl.getParameter(gl.MAX_TEXTURE_SIZE), most);
-}
 
 /** What of a run scene's flow an edit may keep u_g through: the box, cells, faces and objects. */
 function gridOf(run) {

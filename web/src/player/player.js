@@ -20,7 +20,7 @@ import { SLICE_SAMPLES } from '../views/wind-slice-layer.js';
 import { browserApi } from './api.js';
 import { atLeast, nonFinite, shown } from './arguments.js';
 import { Captures } from './captures.js';
-import { hasFlow } from './flow-handoff.js';
+import { hasFlow } from './flow-placement.js';
 import { FramePace } from './frame-pace.js';
 import { LighterVersion } from './lighter.js';
 import { describeRenderer, userChoices } from './machine.js';
@@ -341,7 +341,7 @@ export class Player {
       onProgress: (p) => this.#hooks.onProgress?.(p.progress, `Generating the new field: ${p.stage}`),
     });
     this.#stats.sceneBlobCap = info.blobCap;
-    if (info.flowRun !== undefined) this.#handoff.edited(info.flowRun);
+    if (info.flowRun !== undefined) await this.#handoff.edited(info.flowRun);
     const camera = this.#state.scene?.render.camera;
     const next = this.#adopt(info.sceneJson);
     this.#lighter.flowRuns(info.flowCells, next.flow?.cells);

@@ -5,7 +5,7 @@
 // back to the worker as the GPU's centres (for good, or for a still, an export, a check).
 
 import { GpuStepper, gpuStepperRefuses, gpuStepperUnsupported, MAX_GPU_LATTICE } from '../stepper/gpu-stepper.js';
-import { FlowHandoff, flowKeepsGpuAway, hasFlow } from './flow-handoff.js';
+import { flowKeepsGpuAway, hasFlow } from './flow-placement.js';
 
 /** Why 'auto' steps in the worker on a browser that draws 3-D in software. */
 const SOFTWARE_STEPPER = 'this browser draws 3-D in software: the worker steps the gas faster than its GPU passes';
@@ -50,7 +50,10 @@ export class StepperHandoff {
   #gpu = null;
   /** The field version its lattice is. */
   #fieldVersion = -1;
-  /** The scene's flow on the GPU while the GPU steps the gas (`flow-handoff.js`), once made. */
+  /**
+   * The scene's flow on the GPU while the GPU steps the gas (`flow-handoff.js`, fetched with the
+   * first scene whose flow the GPU steps), once made.
+   */
   #flow = null;
   /** Most bytes of a flow's textures on the GPU (`MemoryLimit.flowBytes`). */
   #flowBytes;
@@ -150,24 +153,34 @@ export class StepperHandoff {
    * An edit the gas stayed on the GPU through: its flow as the worker now runs it (`run`: the
    * run scene's flow, primitives and objects; null without a flow), kept, restarted or gone.
    */
-  edited(run) {
-    if (this.#active === 'gpu' && this.#flow) {
-      this.#flow.edit(run);
-      this.#renderer.resetState();
+  async edited(run) {
+    if (this.#active !== 'gpu') return;
+    if (run) await this.#flowHandoff();
+    if (!this.#flow) return;
+    this.#flow.edit(run);
+    this.#renderer.resetState();
+  }
+
+  /** The flow's hand-off to the GPU, its code fetched and the hand-off made on first use. */
+  async #flowHandoff() {
+    if (!this.#flow) {
+      const { FlowHandoff } = await import('./flow-handoff.js');
+      this.#flow ??= new FlowHandoff(this.#renderer.getContext());
     }
+    return this.#flow;
   }
 
   /** Hands the worker's gas to the GPU stepper. */
   async #toGpu() {
     const start = await this.#engine.request('gpuStart');
+    if (start.flow) await this.#flowHandoff();
     const scene = this.#scene();
     const births = scene.emitters.reduce((n, e) => n + (e.enabled ? e.rate : 0), 0) * scene.simulation.dt;
     this.#gpu ??= new GpuStepper(this.#renderer);
     this.#gpu.start({ records: start.records, capacity: scene.gas.max_blobs + Math.ceil(4 * births) + 1024, time: start.time });
     this.#gpu.setLattice(start.lattice.data, start.lattice.size, start.lattice.potential);
     this.#fieldVersion = start.lattice.version;
-    this.#flow ??= new FlowHandoff(this.#renderer.getContext());
-    this.#flow.start(start.flow, start.flow?.faces);
+    this.#flow?.start(start.flow, start.flow?.faces);
     this.#renderer.resetState();
     this.#active = 'gpu';
   }
@@ -213,11 +226,12 @@ export class StepperHandoff {
     }
     // After an edit, the flow the worker now runs (kept, restarted or gone).
     if (steps.flowRun !== undefined) {
-      this.#flow.edit(steps.flowRun);
+      if (steps.flowRun) await this.#flowHandoff();
+      this.#flow?.edit(steps.flowRun);
       this.#renderer.resetState();
     }
     const { simulation, gas } = this.#scene();
-    const flow = this.#flow.link(steps.stir);
+    const flow = this.#flow?.link(steps.stir) ?? null;
     this.#gpu.apply(steps, { dt: simulation.dt, diffusion: gas.diffusion, alpha: gas.dissipation, rk2: simulation.integrator === 'rk2', flow });
   }
 

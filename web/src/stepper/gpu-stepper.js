@@ -23,7 +23,7 @@ import { BLOB_FLOATS, BLOBS_PER_ROW, INFO_HEADER, INFO_PER_CLASS, WORDS_PER_BLOB
 import { Binning } from './binning.js';
 import { binClasses, binLayout } from './class-bins.js';
 import { flowUniforms } from '../flow-gpu/sample-glsl.js';
-import { repulsorSolids, sameSolids } from '../flow-gpu/scene.js';
+import { repulsorSolids, sameSolids } from '../flow-gpu/boundary.js';
 import { BoundsPass, NewbornPass, PackPass, ScreenPass, StepPass, WritePass } from './passes.js';
 import { StepperState } from './state.js';
 import { HEADER_TEXELS, PRIMITIVE_TEXELS, SOLID_TEXELS } from './wind-glsl.js';
