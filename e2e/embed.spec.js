@@ -3,6 +3,7 @@
 // viewport (once for all of them); without autoplay a player shows its scene at poster-time
 // with a play button; ready/error events; attributes mirrored as properties and live changes.
 import { gzipSync } from 'node:zlib';
+import { test as lighterTest } from '@playwright/test';
 import { expect, test, canvasLuminance, bare, collectErrors } from './helpers.js';
 
 /** Records every script and WASM response: {url, gzip (bytes gzipped)}. */
@@ -222,6 +223,19 @@ test('attributes are mirrored as properties; changing preset or src loads the ne
   expect(out.afterSrc).toEqual({ emitters: 1, objects: 3 });
   expect(out.label).toBe('Gas in a turbulent wind: the scene default');
   expect(out.viewButton).toBe('View: points');
+  expect(errors).toEqual([]);
+});
+
+// Playwright's own `test`: the page as a machine that draws in software opens it, in the lighter version.
+lighterTest('the view button names the view shown: in software the lighter version\'s points, and a click brings the volume', async ({ page }) => {
+  const errors = collectErrors(page);
+  await bare(page, 'view-button', '<wind-field id="p" preset="default" controls loading="eager" style="width: 320px"></wind-field>');
+  await page.evaluate(() => document.querySelector('#p').ready);
+  const button = page.locator('#p').getByRole('button', { name: /^View: / });
+  await expect(button).toHaveText('View: points');
+  await button.click();
+  await expect(button).toHaveText('View: volume');
+  expect(await page.evaluate(() => document.querySelector('#p').view)).toBe('raymarch');
   expect(errors).toEqual([]);
 });
 

@@ -149,6 +149,46 @@ test('a scene without a flow hands out null; an edit that adds one takes the flo
   expect(errors).toEqual([]);
 });
 
+test('an edit that only recolours a solid keeps the flow, on the worker and on the GPU; one that turns the flow off sets flowMs to 0', async ({ page }) => {
+  const errors = collectErrors(page);
+  const scene = structuredClone(hotFlow);
+  scene.render.objects = [{ type: 'sphere', center: [0.3, 0.8, 0], radius: 0.15, color: [1, 1, 1], solid: true }];
+  await open(page, scene);
+  const out = await page.evaluate(async () => {
+    const w = window.windfield;
+    const fastest = async () => (await w.exportFlow()).velocity.reduce((m, v) => Math.max(m, Math.abs(v)), 0);
+    const recolour = async (color) => {
+      const edited = structuredClone(w.getScene());
+      edited.render.objects[0].color = color;
+      await w.editScene(edited);
+    };
+    const kept = {};
+    for (const stepper of ['cpu', 'gpu']) {
+      await w.setStepper(stepper);
+      await w.step(10);
+      const before = await fastest();
+      await recolour(stepper === 'cpu' ? [0.8, 0.2, 0.2] : [0.2, 0.8, 0.2]);
+      kept[stepper] = { before, after: await fastest(), stepper: w.stats().flowStepper };
+    }
+    await w.setStepper('cpu');
+    await w.step(2);
+    const timed = w.stats().flowMs;
+    const off = structuredClone(w.getScene());
+    off.flow.enabled = false;
+    await w.editScene(off);
+    return { kept, timed, off: w.stats() };
+  });
+  for (const stepper of ['cpu', 'gpu']) {
+    expect(out.kept[stepper].stepper).toBe(stepper);
+    expect(out.kept[stepper].before).toBeGreaterThan(0);
+    expect(out.kept[stepper].after).toBe(out.kept[stepper].before);
+  }
+  expect(out.timed).toBeGreaterThan(0);
+  expect(out.off.flowStepper).toBeNull();
+  expect(out.off.flowMs).toBe(0);
+  expect(errors).toEqual([]);
+});
+
 test('a <wind-field> element hands out its flow, and null for a scene without one', async ({ page }) => {
   const errors = collectErrors(page);
   await page.addInitScript(installSummary);

@@ -51,6 +51,8 @@ const CASES = [
   ['render.time beyond the longest run', changed((s) => { s.render.time = 2 * MAX_SECONDS; }), 'render.time: '],
   ['gas.max_blobs of 0', changed((s) => { s.gas.max_blobs = 0; }), 'gas.max_blobs: '],
   ['an image side of 0', changed((s) => { s.render.image.width = 0; }), 'render.image.width: '],
+  ['a spectrum law that is a number', changed((s) => { s.field.spectrum.law = 3; }), 'field.spectrum.law: must be "kolmogorov" or "paper-literal" (got 3)'],
+  ['a flow face that is no axis', changed((s) => { s.flow = { box: [-1, 0, -1, 1, 2, 1], cells: [8, 8, 8], faces: { w: 'closed' } }; }), 'flow.faces.w: '],
 ];
 
 /** The command line's prefix on stderr: `windfield: error: FILE: `. */

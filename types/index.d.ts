@@ -60,6 +60,14 @@ export interface WindFieldStats {
   memoryBudget?: { bytes: number; blobCap: number; volumeBytes: number } | null;
   /** What this device gives up against a full one, one phrase each (empty on a full GPU). */
   gaveUp?: string[];
+  /** The renderer WebGL names (the unmasked one where the browser gives it). */
+  renderer?: string;
+  /** Whether that renderer draws on the CPU (SwiftShader, llvmpipe, Microsoft Basic Render). */
+  software?: boolean;
+  /** While the lighter version is shown: why (`'software'`, the renderer; `'slow'`, the view kept under 10 frames a second at its lowest resolution) and the settings it gave up, in words; else null. */
+  lighter?: { reason: 'software' | 'slow'; gaveUp: string[] } | null;
+  /** The most live blobs the scene runs with under the lighter version's cap or the memory budget's (its own `gas.max_blobs` is larger); else null. */
+  sceneBlobCap?: number | null;
 }
 
 /**

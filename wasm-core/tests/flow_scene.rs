@@ -310,15 +310,15 @@ fn the_flows_keys_are_checked_and_budgeted() {
         ),
         (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": "ajar"}}"#),
-            "flow.faces",
+            "flow.faces: must be",
         ),
         (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {{"y": "ajar"}}}}"#),
-            "flow.faces",
+            "flow.faces.y: must be",
         ),
         (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {{"w": "open"}}}}"#),
-            "flow.faces",
+            "flow.faces.w:",
         ),
         (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "swirl": 1}}"#),
@@ -357,4 +357,46 @@ fn the_flows_keys_are_checked_and_budgeted() {
         let read = Scene::from_json(&scene(&flow, "")).expect(faces);
         assert_eq!(read.flow.expect("a flow").faces.closed(), closed, "{faces}");
     }
+}
+
+/// An edit keeps the flow's u_g while its grid and its solid objects' shapes stay: a new
+/// colour for the ceiling, or a new object that is not solid, keeps it; a ceiling moved starts
+/// the flow again at rest.
+#[test]
+fn an_edit_keeps_the_flow_unless_its_solids_change() {
+    let mut sim = plume_at(40.0, 0.0, 60.0, 0.5, CEILING);
+    sim.run(30);
+    let energy = |sim: &Simulation| {
+        let f = sim.flow().expect("a flow");
+        f.flow.u_g.kinetic_energy(&f.flow.grid)
+    };
+    let before = energy(&sim);
+    assert!(before > 0.0);
+    let edit = |sim: &mut Simulation, change: &dyn Fn(&mut serde_json::Value)| {
+        let mut value = serde_json::to_value(&sim.scene).expect("a scene writes");
+        change(&mut value);
+        let scene = Scene::from_value(value).expect("a valid edit");
+        sim.edit(scene, None).expect("applies");
+    };
+    edit(&mut sim, &|v| {
+        v["render"]["objects"][0]["color"] = serde_json::json!([0.9, 0.2, 0.2])
+    });
+    assert_eq!(energy(&sim), before, "a new colour keeps u_g");
+    edit(&mut sim, &|v| {
+        let sphere = serde_json::json!({"type": "sphere", "center": [0.3, 0.5, 0], "radius": 0.1,
+            "color": [1, 1, 1]});
+        v["render"]["objects"]
+            .as_array_mut()
+            .expect("a list")
+            .push(sphere);
+    });
+    assert_eq!(
+        energy(&sim),
+        before,
+        "an object that is not solid keeps u_g"
+    );
+    edit(&mut sim, &|v| {
+        v["render"]["objects"][0]["point"] = serde_json::json!([0, 1.2, 0])
+    });
+    assert_eq!(energy(&sim), 0.0, "a moved ceiling starts the flow at rest");
 }

@@ -197,6 +197,18 @@ fn malformed_scenes_are_rejected_with_their_path() {
             "must be the number 1 (got the string \"one\")",
         ),
         (insert("", "colour", json!(1)), "colour", "unknown field"),
+        // A key of named choices given another JSON type is told its choices, not that the
+        // document is not JSON.
+        (
+            set("/field/spectrum/law", json!(3)),
+            "field.spectrum.law",
+            "must be \"kolmogorov\" or \"paper-literal\" (got 3)",
+        ),
+        (
+            set("/simulation/integrator", json!([2])),
+            "simulation.integrator",
+            "must be \"rk2\" or \"euler\" (got a list)",
+        ),
         // A required key left out is named by its own path.
         (
             set("/wind/0", json!({"type": "uniform"})),

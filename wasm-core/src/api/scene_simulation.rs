@@ -111,7 +111,8 @@ impl SceneSimulation {
             .map_err(js_error)
     }
 
-    /// Runs `n` fixed steps, timing the flow's part of each (`flowMs`).
+    /// Runs `n` fixed steps, timing the flow's part of each (`flowMs`; an edit that leaves no
+    /// flow sets it to 0).
     pub fn step(&mut self, n: u32) {
         if self.inner.flow().is_none() {
             self.inner.run(n as u64);
@@ -350,6 +351,9 @@ impl SceneSimulation {
     ) -> Result<bool, JsError> {
         let scene = Scene::from_json(scene_json).map_err(js_error)?;
         let outcome = self.inner.edit(scene, field).map_err(js_error)?;
+        if self.inner.flow().is_none() {
+            self.flow_ms = 0.0;
+        }
         Ok(outcome == Edit::Restarted)
     }
 }

@@ -171,13 +171,21 @@ impl Simulation {
     }
 
     /// The flow after an edit to `scene`: kept (u_g and all) with its new constants while its
-    /// box, cells, faces and solid objects stay; else started again at rest; gone without an
-    /// enabled `flow`.
+    /// box, cells, faces and solid objects' shapes stay (an object's colour, its model or a
+    /// non-solid object may change); else started again at rest; gone without an enabled
+    /// `flow`.
     fn edit_flow(&mut self, scene: &Scene) {
         let stir = self.flow.as_ref().and_then(|f| f.stir);
+        let solids = |s: &Scene| -> Vec<_> {
+            s.render
+                .objects
+                .iter()
+                .filter_map(|o| o.solid_shape())
+                .collect()
+        };
         self.flow = match (self.flow.take(), scene.active_flow()) {
             (Some(mut old), Some(new))
-                if old.same_grid(new) && scene.render.objects == self.scene.render.objects =>
+                if old.same_grid(new) && solids(scene) == solids(&self.scene) =>
             {
                 old.retune(new);
                 Some(old)

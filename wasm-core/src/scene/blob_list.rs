@@ -203,6 +203,24 @@ impl Object {
             | Self::Cylinder { solid, .. } => *solid,
         }
     }
+
+    /// A solid object's shape and place alone: the object with what only the renderers read
+    /// (its colour, a cylinder's model) cleared; None for an object that is not solid. Two
+    /// lists of objects with the same solid shapes deflect the wind alike.
+    pub fn solid_shape(&self) -> Option<Self> {
+        if !self.solid() {
+            return None;
+        }
+        let mut shape = self.clone();
+        match &mut shape {
+            Self::Sphere { color, .. } | Self::Plane { color, .. } => *color = [0.0; 3],
+            Self::Cylinder { color, model, .. } => {
+                *color = [0.0; 3];
+                *model = None;
+            }
+        }
+        Some(shape)
+    }
 }
 
 /// Meshes the browser may draw in place of a cylinder stand-in.

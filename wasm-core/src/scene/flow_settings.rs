@@ -5,7 +5,8 @@
 
 use crate::scene::limits::{FLOW_CELLS, FLOW_VISCOSITY_STEP, MAX_COORD};
 use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
+use serde::de::{self, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// Air's kinematic viscosity ν, m²/s.
 pub const AIR_VISCOSITY: f64 = 1.5e-5;
@@ -44,13 +45,35 @@ pub struct AxisFaces {
 
 /// What the box's six faces do: all alike (`"open"` or `"closed"`), or the two across each
 /// axis as that axis says (`{"x": …, "y": …, "z": …}`, an axis not named open).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, JsonSchema)]
 #[serde(untagged)]
 pub enum FlowFaces {
     /// The six faces alike.
     All(Face),
     /// The two faces across each axis as that axis says.
     PerAxis(AxisFaces),
+}
+
+// Read by its JSON type (a string, or an object) rather than as serde's untagged enum, so that a
+// refusal within the object names its key (`flow.faces.w`, `flow.faces.y`).
+impl<'de> Deserialize<'de> for FlowFaces {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> Visitor<'de> for Either {
+            type Value = FlowFaces;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(r#""open", "closed" or an object {"x", "y", "z"} of those"#)
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<FlowFaces, E> {
+                Face::deserialize(de::value::StrDeserializer::new(v)).map(FlowFaces::All)
+            }
+            fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<FlowFaces, A::Error> {
+                AxisFaces::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(FlowFaces::PerAxis)
+            }
+        }
+        d.deserialize_any(Either)
+    }
 }
 
 impl Default for FlowFaces {

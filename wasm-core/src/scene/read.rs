@@ -52,6 +52,17 @@ fn at_path(
         };
         message = "missing: this key has no default".to_string();
     }
+    // A key of named choices given another JSON type: serde_json's text reader refuses it as
+    // though the document were not JSON, its value reader as `expected string or map`.
+    let category = e.inner().classify();
+    let other_type = category == serde_json::error::Category::Syntax
+        || (category == serde_json::error::Category::Data
+            && e.inner().to_string().contains(", expected string or map"));
+    if other_type {
+        if let Some(choices) = choices_of(root, &path, text, tree) {
+            message = choices;
+        }
+    }
     if e.inner().classify() == serde_json::error::Category::Data {
         if let Some(range) = range_of(root, &path, text, tree) {
             if let Some((_, got)) = message.split_once(" (got ") {
@@ -93,6 +104,38 @@ fn range_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) ->
         let (range, _) = refusal.message.split_once(" (got ")?;
         (refusal.path == path).then(|| range.to_string())
     })
+}
+
+/// What a key of a few named choices (`field.spectrum.law`, `simulation.integrator`) says of a
+/// value of another JSON type (`3`, a list), which serde_json refuses as though the document
+/// were not JSON (`expected value`): `must be "kolmogorov" or "paper-literal" (got 3)`. The
+/// document, valid JSON, is read again with a string that is none of the choices in the key's
+/// place, whose refusal lists them. `text` is the JSON read, when it was text, `tree` the value
+/// read, when it was a value. None where the document is not JSON, is longer than
+/// [`RANGE_PROBE_BYTES`], or the second reading stops elsewhere.
+fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
+    let mut probe: Value = match (tree, text) {
+        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t.clone(),
+        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok()?,
+        _ => return None,
+    };
+    let got = match lookup(&probe, path)? {
+        Value::Array(_) => "a list".to_string(),
+        Value::Object(_) => "an object".to_string(),
+        other => other.to_string(),
+    };
+    const NONE_OF_THEM: &str = "\u{1}";
+    *lookup_mut(&mut probe, path)? = Value::from(NONE_OF_THEM);
+    let refusal = match root {
+        "scene" => Scene::deserialize(&probe).err()?,
+        _ => BlobList::deserialize(&probe).err()?,
+    }
+    .to_string();
+    let expected = refusal.strip_prefix(&format!("unknown variant `{NONE_OF_THEM}`, expected "))?;
+    Some(format!(
+        "must be {} (got {got})",
+        expected.replace('`', "\"")
+    ))
 }
 
 /// Whether `value` written as compact JSON is at most `limit` bytes (counted, not written).

@@ -25,7 +25,7 @@ export const ControlsMixin = (Base) => class extends Base {
       this.pause().catch(() => {});
       this.step(1).catch(() => {});
     });
-    p.view.addEventListener('click', () => { this.view = this.view === 'points' ? 'raymarch' : 'points'; });
+    p.view.addEventListener('click', () => { this.view = this.#shownView() === 'points' ? 'raymarch' : 'points'; });
   }
 
   connectedCallback() {
@@ -53,6 +53,11 @@ export const ControlsMixin = (Base) => class extends Base {
     this[$updateControls]();
   }
 
+  /** The view the player shows (the lighter version's points where the page named none), else the `view` attribute's. */
+  #shownView() {
+    return this[$player]?.mode ?? this.view;
+  }
+
   [$wantsPlaying]() {
     return this.#playing ?? (this.autoplay && !reducedMotion());
   }
@@ -64,7 +69,7 @@ export const ControlsMixin = (Base) => class extends Base {
     p.play.hidden = playing || this[$failed];
     p.controls.hidden = !this.controls;
     p.toggle.textContent = playing ? 'Pause' : 'Play';
-    p.view.textContent = `View: ${VIEW_NAMES[this.view]}`;
+    p.view.textContent = `View: ${VIEW_NAMES[this.#shownView()]}`;
     p.view.title = 'Switch between the volume and points views';
   }
 };

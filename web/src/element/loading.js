@@ -182,9 +182,13 @@ export const LoadingMixin = (Base) => class extends Base {
       onFault: (message) => this.#fail(new Error(message)),
       onMessage: notify,
       // A machine that draws in software (or slowly) gets the lighter version, and is told.
-      onLighter: ({ reason, gaveUp }) => notify(`${reason === 'software'
-        ? 'This browser draws 3-D in software'
-        : 'This machine draws 3-D slowly'}: showing a lighter version (${gaveUp.join(', ')}).`),
+      onLighter: ({ reason, gaveUp }) => {
+        notify(`${reason === 'software'
+          ? 'This browser draws 3-D in software'
+          : 'This machine draws 3-D slowly'}: showing a lighter version (${gaveUp.join(', ')}).`);
+        // The view button names the view shown, which the lighter version may have changed.
+        this[$updateControls]();
+      },
     });
     // Vertical swipes scroll the page; horizontal ones (and mice) orbit.
     p.canvas.style.touchAction = 'pan-y';

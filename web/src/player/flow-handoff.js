@@ -12,10 +12,16 @@ import { GpuTimer } from '../flow-gpu/timer.js';
 
 const f32 = Math.fround;
 
-/** What of a run scene's flow an edit may keep u_g through: the box, cells, faces and objects. */
+/**
+ * What of a run scene's flow an edit may keep u_g through: the box, cells, faces and the solid
+ * objects' shapes (an object's colour, its model or a non-solid object may change), as the
+ * core's edit keeps its own.
+ */
 function gridOf(run) {
   const f = run.flow;
-  return JSON.stringify([f.box, f.cells, f.faces, run.objects]);
+  const shape = (o) => Object.fromEntries(Object.entries(o).filter(([key]) => key !== 'color' && key !== 'model'));
+  const solids = (run.objects ?? []).filter((o) => o.solid).map(shape);
+  return JSON.stringify([f.box, f.cells, f.faces, solids]);
 }
 
 export class FlowHandoff {
