@@ -1,7 +1,9 @@
 // The GPU's own time for a stretch of passes, where WebGL2 gives a timer query
 // (EXT_disjoint_timer_query_webgl2): a query per stretch, its result read once the GPU has it
 // (a later task, never the one that ended it), none kept over a disjoint period (the GPU's
-// clock was interrupted). Without the extension `ms` stays null.
+// clock was interrupted), nor the first stretch's: the first draw of each pass compiles its
+// program too (seconds in software), which is no step's time. Without the extension `ms` stays
+// null.
 
 /** Queries waiting for their results, at most; older ones are let go. */
 const MOST_PENDING = 8;
@@ -15,6 +17,8 @@ export class GpuTimer {
     this.active = null;
     /** The last stretch the GPU finished, ms; null before one (or without the extension). */
     this.ms = null;
+    /** Whether the first stretch's result, its programs' compilation in it, is still to be let go. */
+    this.warming = true;
   }
 
   /** Starts timing (nothing without the extension, or while a stretch is open). */
@@ -41,7 +45,8 @@ export class GpuTimer {
     const disjoint = gl.getParameter(this.ext.GPU_DISJOINT_EXT);
     while (this.pending.length > 0 && gl.getQueryParameter(this.pending[0], gl.QUERY_RESULT_AVAILABLE)) {
       const q = this.pending.shift();
-      if (!disjoint) this.ms = gl.getQueryParameter(q, gl.QUERY_RESULT) / 1e6;
+      if (this.warming) this.warming = false;
+      else if (!disjoint) this.ms = gl.getQueryParameter(q, gl.QUERY_RESULT) / 1e6;
       gl.deleteQuery(q);
     }
   }
