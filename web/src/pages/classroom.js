@@ -275,7 +275,12 @@ async function sphereLesson() {
   });
   panel('sphere-core', classroom.sphere.core, 'the core\'s wind');
   panel('sphere-closed', classroom.sphere.closedForm, 'potential flow');
-  $('#sphere-caption').textContent = `Streamlines traced by the fourth-order Runge–Kutta rule through each wind; the two sets part by at most ${flow.largestGap.toFixed(4)} a.`;
+  // A gap below the caption's four decimals is written with a power of ten (3.2 × 10⁻⁶), not as 0.0000.
+  const superscript = (digits) => [...digits].map((d) => '⁰¹²³⁴⁵⁶⁷⁸⁹'[d]).join('');
+  const gap = flow.largestGap === 0 ? '0'
+    : flow.largestGap >= 1e-4 ? flow.largestGap.toFixed(4)
+      : flow.largestGap.toExponential(1).replace(/e-(\d+)$/, (_, exp) => ` × 10⁻${superscript(exp)}`);
+  $('#sphere-caption').textContent = `Streamlines traced by the fourth-order Runge–Kutta rule through each wind; the two sets part by at most ${gap} a.`;
 }
 
 /**
