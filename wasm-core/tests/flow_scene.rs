@@ -321,6 +321,10 @@ fn the_flows_keys_are_checked_and_budgeted() {
             "flow.faces.w:",
         ),
         (
+            format!(r#"{{{unit}, "cells": [8, 8, 8], "faces": {{"x": 1}}}}"#),
+            r#"flow.faces.x: must be "open" or "closed" (got 1)"#,
+        ),
+        (
             format!(r#"{{{unit}, "cells": [8, 8, 8], "swirl": 1}}"#),
             "flow",
         ),

@@ -119,11 +119,7 @@ fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) 
         (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok()?,
         _ => return None,
     };
-    let got = match lookup(&probe, path)? {
-        Value::Array(_) => "a list".to_string(),
-        Value::Object(_) => "an object".to_string(),
-        other => other.to_string(),
-    };
+    let got = got_of(lookup(&probe, path)?);
     const NONE_OF_THEM: &str = "\u{1}";
     *lookup_mut(&mut probe, path)? = Value::from(NONE_OF_THEM);
     let refusal = match root {
@@ -136,6 +132,15 @@ fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) 
         "must be {} (got {got})",
         expected.replace('`', "\"")
     ))
+}
+
+/// A value as a refusal echoes it: a number or a string as written, `a list`, `an object`.
+fn got_of(value: &Value) -> String {
+    match value {
+        Value::Array(_) => "a list".to_string(),
+        Value::Object(_) => "an object".to_string(),
+        other => other.to_string(),
+    }
 }
 
 /// Whether `value` written as compact JSON is at most `limit` bytes (counted, not written).
