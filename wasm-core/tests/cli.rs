@@ -1338,3 +1338,63 @@ fn output_into_a_closed_pipe_ends_quietly() {
         assert_eq!(stderr(&out), "", "{args:?}");
     }
 }
+
+/// Input that is not what a command reads is refused as input (status 2), in words about the
+/// input: bytes that are not UTF-8; a blob list where a scene belongs, told it is no scene
+/// before its blobs are counted against a scene's lists. A flipbook's tile is asked for as
+/// W×H. The wind at any time is a number: past single precision's range too.
+#[test]
+fn input_that_is_not_a_scene_is_told_so_and_the_wind_at_any_time_is_finite() {
+    let dir = scratch("not-a-scene");
+    let bytes = dir.join("bytes.json");
+    std::fs::write(&bytes, [0xff, 0xfe, 0x00, b'{']).unwrap();
+    let out = dir.join("out.json");
+    let e = refused(&["simulate", s(&bytes), "--seconds", "0", "--out", s(&out)]);
+    assert!(e.contains("valid UTF-8"), "{e}");
+    let blobs: Vec<serde_json::Value> = (0..50)
+        .map(|i| serde_json::json!({"center": [i as f64 * 0.01, 0, 0], "sigma": 0.1, "mass": 1}))
+        .collect();
+    let list = write(&dir, "list.json", &serde_json::json!({ "blobs": blobs }));
+    let e = refused(&["simulate", &list, "--seconds", "0", "--out", s(&out)]);
+    assert!(e.contains("version: missing"), "{e}");
+    let sheet = dir.join("sheet.png");
+    let e = refused(&[
+        "flipbook",
+        &scene("default.json"),
+        "--frames",
+        "0..2",
+        "--fps",
+        "10",
+        "--grid",
+        "2x1",
+        "--tile",
+        "9000x12",
+        "--out",
+        s(&sheet),
+    ]);
+    assert!(
+        e.contains("--tile: expected two whole numbers from 1 to 8192 as W×H"),
+        "{e}"
+    );
+    let points = write(
+        &dir,
+        "points.json",
+        &serde_json::json!([[0, 1, 0], [0.5, 1, 0.2]]),
+    );
+    let wind = dir.join("wind.json");
+    ok(&[
+        "wind",
+        &scene("default.json"),
+        "--seconds",
+        "1e300",
+        "--points",
+        &points,
+        "--out",
+        s(&wind),
+    ]);
+    let w: Vec<[f64; 3]> = serde_json::from_str(&std::fs::read_to_string(&wind).unwrap()).unwrap();
+    assert!(
+        w.iter().flatten().all(|v| v.is_finite()) && w.iter().flatten().any(|&v| v != 0.0),
+        "{w:?}"
+    );
+}

@@ -201,7 +201,7 @@ fn twin_with(list: &BlobList, object_shadows: bool) -> Vec<f64> {
         None => (l.1, f64::INFINITY),
     };
     let phase = |cos: f64| match list.medium.phase {
-        windfield::scene::blob_list::Phase::Isotropic => 1.0,
+        windfield::scene::blob_list::Phase::Isotropic {} => 1.0,
         windfield::scene::blob_list::Phase::HenyeyGreenstein { g } => {
             let g = g as f64;
             (1.0 - g * g) / (1.0 + g * g - 2.0 * g * cos).powf(1.5)

@@ -215,6 +215,61 @@ fn malformed_scenes_are_rejected_with_their_path() {
             "wind[0].velocity",
             "missing: this key has no default",
         ),
+        // ... beside keys that were given, and within an element chosen by its type an unknown
+        // key and a list of the wrong length are named by their own paths too.
+        (
+            set("/wind/0", json!({"type": "source", "position": [0, 0, 0]})),
+            "wind[0].strength",
+            "missing: this key has no default",
+        ),
+        (
+            set(
+                "/wind/0",
+                json!({"type": "uniform", "velocity": [0, 0, 0], "speed": 1}),
+            ),
+            "wind[0].speed",
+            "unknown field `speed`",
+        ),
+        (
+            set(
+                "/wind/0",
+                json!({"type": "uniform", "velocity": [0, 0, 0, 0]}),
+            ),
+            "wind[0].velocity",
+            "must be a list of 3 numbers (got 4 items)",
+        ),
+        // An isotropic phase has no keys but its type.
+        (
+            set(
+                "/render/medium/phase",
+                json!({"type": "isotropic", "g": 0.5}),
+            ),
+            "render.medium.phase.g",
+            "unknown field `g`",
+        ),
+        // A value kept in single precision is echoed in its own digits; one extinction for all
+        // channels is named without an index.
+        (
+            set("/emitters/0/albedo", json!([1.1, 0.5, 0.5])),
+            "emitters[0].albedo[0]",
+            "must be a finite number between 0 and 1 (got 1.1)",
+        ),
+        (
+            set("/render/medium/extinction", json!(-1)),
+            "render.medium.extinction",
+            "must be a finite number between 0 and 1000000 (got -1)",
+        ),
+        // A list of a fixed length given more items is told its length, as one given fewer.
+        (
+            set("/field/size", json!([16, 16, 16, 16, 16])),
+            "field.size",
+            "must be a list of 4 numbers (got 5 items)",
+        ),
+        (
+            set("/field/size", json!([16, 16, 16])),
+            "field.size",
+            "must be a list of 4 numbers (got 3 items)",
+        ),
         (
             set("/seed", json!(-1)),
             "seed",

@@ -65,12 +65,16 @@ pub struct SettingNames {
     pub fade: &'static str,
 }
 
-/// Parses `C×R` (or `CxR`): two whole numbers from 1 to `max`.
-pub fn parse_pair(text: &str, what: &str, max: u32) -> Result<(u32, u32), ParamError> {
+/// Parses `A×B` (or `AxB`): two whole numbers from 1 to `max`; `form` names them as the flag
+/// does (`C×R`, the grid's columns and rows; `W×H`, a tile's width and height).
+pub fn parse_pair(text: &str, what: &str, form: &str, max: u32) -> Result<(u32, u32), ParamError> {
     let bad = || {
+        let ascii = form.replace('×', "x");
         ParamError::new(
             what,
-            format!("expected two whole numbers from 1 to {max} as C×R or CxR (got {text:?})"),
+            format!(
+                "expected two whole numbers from 1 to {max} as {form} or {ascii} (got {text:?})"
+            ),
         )
     };
     let (a, b) = text.split_once(['x', 'X', '×']).ok_or_else(bad)?;

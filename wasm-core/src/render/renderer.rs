@@ -113,7 +113,7 @@ impl Renderer {
             })
             .collect();
         let peak_phase = match list.medium.phase {
-            Phase::Isotropic => 1.0,
+            Phase::Isotropic {} => 1.0,
             Phase::HenyeyGreenstein { g } => phase(list.medium.phase, g.signum()),
         };
         let scatter_bound = list
@@ -427,7 +427,7 @@ impl Renderer {
 /// The phase function at cos θ = D·l (isotropic p ≡ 1; Henyey-Greenstein).
 pub fn phase(p: Phase, cos_theta: f32) -> f32 {
     match p {
-        Phase::Isotropic => 1.0,
+        Phase::Isotropic {} => 1.0,
         Phase::HenyeyGreenstein { g } => {
             (1.0 - g * g) / libm::powf(1.0 + g * g - 2.0 * g * cos_theta, 1.5)
         }

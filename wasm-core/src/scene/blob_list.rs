@@ -89,11 +89,12 @@ impl Extinction {
 }
 
 /// Phase function p(cos θ), normalised so that isotropic scattering is p ≡ 1.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum Phase {
-    #[default]
-    Isotropic,
+    // p ≡ 1. A variant with no keys rather than a unit one, so that a key given with it
+    // (`{"type": "isotropic", "g": 0.5}`) is refused as unknown, as in every other element.
+    Isotropic {},
     /// p = (1 − g²) / (1 + g² − 2g cos θ)^{3/2}, g in (−1, 1).
     HenyeyGreenstein {
         #[schemars(extend("exclusiveMinimum" = -1, "exclusiveMaximum" = 1))]
@@ -117,8 +118,14 @@ impl Default for Medium {
         Self {
             extinction: Extinction::Grey(1.0),
             albedo: [0.9, 0.9, 0.9],
-            phase: Phase::Isotropic,
+            phase: Phase::Isotropic {},
         }
+    }
+}
+
+impl Default for Phase {
+    fn default() -> Self {
+        Self::Isotropic {}
     }
 }
 

@@ -31,7 +31,20 @@ fn at_path(
         "." | "?" | "" => root.to_string(),
         known => known.to_string(),
     };
-    if e.inner().classify() == serde_json::error::Category::Data && tagged(&path).is_some() {
+    // A key left out is named below, by its element's path and its own; so is an unknown key
+    // of an element chosen by its `type` (serde reads such an element whole, and names it).
+    let error = e.inner().to_string();
+    let left_out = error.starts_with("missing field `");
+    let unknown = error
+        .strip_prefix("unknown field `")
+        .and_then(|m| m.split_once('`'))
+        .map(|(key, _)| key.to_string());
+    if let (Some(key), Some(_)) = (&unknown, tagged(&path)) {
+        path = format!("{path}.{key}");
+    } else if e.inner().classify() == serde_json::error::Category::Data
+        && !left_out
+        && tagged(&path).is_some()
+    {
         let parsed: Option<Value> = match tree {
             Some(_) => None,
             None => text.and_then(|t| serde_json::from_str(t).ok()),
@@ -61,6 +74,18 @@ fn at_path(
     if other_type {
         if let Some(choices) = choices_of(root, &path, text, tree) {
             message = choices;
+        }
+    }
+    // A list of a fixed length given more items: serde_json's text reader refuses the first
+    // item too many as trailing characters, its value reader as `fewer elements`, and within an
+    // element chosen by its `type` serde as `elements in sequence`.
+    let too_long = (category == serde_json::error::Category::Syntax
+        && error.starts_with("trailing characters"))
+        || error.contains(", expected fewer elements in array")
+        || error.contains(" elements in sequence");
+    if too_long {
+        if let Some(length) = length_of(root, &path, text, tree) {
+            message = length;
         }
     }
     if e.inner().classify() == serde_json::error::Category::Data {
@@ -132,6 +157,33 @@ fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) 
         "must be {} (got {got})",
         expected.replace('`', "\"")
     ))
+}
+
+/// What a list of a fixed length (`field.size`, `field.period`, a colour) says of one with more
+/// items, as it says of one with fewer: `must be a list of 4 numbers (got 5 items)`. The
+/// document, valid JSON, is read again with the list emptied, whose refusal states the length.
+/// None where the document is not JSON, is longer than [`RANGE_PROBE_BYTES`], the value there
+/// is not a list, or the second reading stops elsewhere.
+fn length_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
+    let mut probe: Value = match (tree, text) {
+        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t.clone(),
+        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok()?,
+        _ => return None,
+    };
+    let items = lookup(&probe, path)?.as_array()?.len();
+    *lookup_mut(&mut probe, path)? = Value::Array(Vec::new());
+    let refusal = match root {
+        "scene" => serde_path_to_error::deserialize::<_, Scene>(&probe).err()?,
+        _ => serde_path_to_error::deserialize::<_, BlobList>(&probe).err()?,
+    };
+    // Within an element chosen by its `type`, serde names the element.
+    let at = refusal.path().to_string();
+    if at != path && !(tagged(&at).is_some() && path.starts_with(&format!("{at}."))) {
+        return None;
+    }
+    let empty = describe(refusal.inner(), None);
+    let stated = empty.strip_suffix(" (got 0 items)")?;
+    Some(format!("{stated} (got {items} items)"))
 }
 
 /// A value as a refusal echoes it: a number or a string as written, `a list`, `an object`.
@@ -296,8 +348,9 @@ impl Scene {
     pub fn from_json(text: &str) -> Result<Self, ParamError> {
         check_scene_size(text.len() as u64)?;
         require_object(text, "scene")?;
-        check_lists(text, SCENE_LISTS, "scene")?;
-        // The version first, every other key skipped unread. Text that is not JSON is left to
+        // The version first, every other key skipped unread (nothing is built, so no list needs
+        // its budget yet): a document that is no scene, a blob list say, is told so before any
+        // of its lists is counted against a scene's budgets. Text that is not JSON is left to
         // the reading below, which names the path where it breaks.
         match serde_json::from_str::<VersionProbe>(text) {
             Ok(probe) => check_version(probe.version.as_ref())?,
@@ -310,6 +363,7 @@ impl Scene {
             }
             Err(_) => {}
         }
+        check_lists(text, SCENE_LISTS, "scene")?;
         let mut de = serde_json::Deserializer::from_str(text);
         let scene = read_scene(&mut de, text)?;
         de.end()

@@ -516,5 +516,35 @@ pub fn json_schema() -> String {
                 .into(),
         );
     }
+    single_precision_written_short(&mut schema);
     serde_json::to_string_pretty(&schema).expect("schema serialises") + "\n"
+}
+
+/// Writes each number of `v` that is a single-precision value widened to double (a default
+/// of an f32 key: 0.10000000149011612) as the single-precision number's own shortest digits
+/// (0.1), which read back as the same f32. A double-precision number is kept: one that is
+/// not exactly a single-precision value, or whose digits are as short either way.
+fn single_precision_written_short(v: &mut serde_json::Value) {
+    match v {
+        serde_json::Value::Number(n) => {
+            let Some(x) = n.as_f64().filter(|_| n.is_f64()) else {
+                return;
+            };
+            let single = x as f32;
+            if f64::from(single) != x {
+                return;
+            }
+            let short: f64 = single.to_string().parse().unwrap_or(x);
+            if short != x {
+                if let Some(s) = serde_json::Number::from_f64(short) {
+                    *n = s;
+                }
+            }
+        }
+        serde_json::Value::Array(items) => {
+            items.iter_mut().for_each(single_precision_written_short)
+        }
+        serde_json::Value::Object(map) => map.values_mut().for_each(single_precision_written_short),
+        _ => {}
+    }
 }

@@ -12,7 +12,7 @@ use crate::check;
 use crate::error::ParamError;
 use crate::field::MAX_SEED;
 use crate::scene::blob_list::{
-    Background, BlobList, Camera, Image, Light, Medium, Object, Phase, RenderSettings,
+    Background, BlobList, Camera, Extinction, Image, Light, Medium, Object, Phase, RenderSettings,
 };
 use crate::scene::bodies::Body;
 use crate::scene::flow_settings::FlowSettings;
@@ -80,8 +80,8 @@ impl BlobList {
         for (i, b) in self.blobs.iter().enumerate() {
             let bp = format!("blobs[{i}]");
             check::vector(&format!("{bp}.center"), b.center, MAX_COORD)?;
-            check::positive(&format!("{bp}.sigma"), b.sigma as f64, MAX_COORD)?;
-            check::range(&format!("{bp}.mass"), b.mass as f64, 0.0, MAX_MASS0)?;
+            check::positive(&format!("{bp}.sigma"), b.sigma, MAX_COORD)?;
+            check::range(&format!("{bp}.mass"), b.mass, 0.0, MAX_MASS0)?;
             if let Some(a) = b.albedo {
                 check::colour(&format!("{bp}.albedo"), a, f64::from(MAX_ALBEDO))?;
             }
@@ -201,7 +201,7 @@ fn emitters_outside_solids(scene: &Scene) -> Result<(), ParamError> {
 
 fn decay(path: &str, decay: Option<f32>) -> Result<(), ParamError> {
     match decay {
-        Some(l) => check::positive(&format!("{path}.decay"), l as f64, MAX_COORD),
+        Some(l) => check::positive(&format!("{path}.decay"), l, MAX_COORD),
         None => Ok(()),
     }
 }
@@ -228,8 +228,8 @@ fn primitive(path: &str, w: &Primitive) -> Result<(), ParamError> {
             ..
         } => {
             check::vector(&p("position"), *position, MAX_COORD)?;
-            check::range(&p("strength"), *strength as f64, -1e6, 1e6)?;
-            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            check::range(&p("strength"), *strength, -1e6, 1e6)?;
+            check::positive(&p("radius"), *radius, MAX_COORD)?;
             decay(path, *l)
         }
         Primitive::Vortex {
@@ -242,8 +242,8 @@ fn primitive(path: &str, w: &Primitive) -> Result<(), ParamError> {
         } => {
             check::vector(&p("position"), *position, MAX_COORD)?;
             check::direction(&p("axis"), *axis)?;
-            check::range(&p("strength"), *strength as f64, -1e6, 1e6)?;
-            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            check::range(&p("strength"), *strength, -1e6, 1e6)?;
+            check::positive(&p("radius"), *radius, MAX_COORD)?;
             decay(path, *l)
         }
         Primitive::Repulsor {
@@ -254,8 +254,8 @@ fn primitive(path: &str, w: &Primitive) -> Result<(), ParamError> {
             decay: l,
             ..
         } => {
-            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
-            check::range(&p("strength"), *strength as f64, 0.0, 1e4)?;
+            check::positive(&p("radius"), *radius, MAX_COORD)?;
+            check::range(&p("strength"), *strength, 0.0, 1e4)?;
             path_keys(path, keys)?;
             if let Some(c) = color {
                 check::colour(&p("color"), *c, 1.0)?;
@@ -296,14 +296,14 @@ fn emitter(path: &str, e: &Emitter) -> Result<(), ParamError> {
     }
     check::vector(&p("center"), e.center, MAX_COORD)?;
     check::direction(&p("normal"), e.normal)?;
-    check::range(&p("radius"), e.radius as f64, 0.0, MAX_COORD)?;
+    check::range(&p("radius"), e.radius, 0.0, MAX_COORD)?;
     for (i, &s) in e.size.iter().enumerate() {
-        check::range(&format!("{path}.size[{i}]"), s as f64, 0.0, MAX_COORD)?;
+        check::range(&format!("{path}.size[{i}]"), s, 0.0, MAX_COORD)?;
     }
     check::range(&p("rate"), e.rate, 0.0, 1e6)?;
     blob_birth(path, e.sigma0, e.mass0, e.albedo, e.emission)?;
     check::vector(&p("velocity"), e.velocity, 1e4)?;
-    check::positive(&p("velocity_time"), e.velocity_time as f64, 1e6)?;
+    check::positive(&p("velocity_time"), e.velocity_time, 1e6)?;
     let [lo, hi] = TEMPERATURE;
     check::range(&p("temperature"), e.temperature, lo, hi)
 }
@@ -401,8 +401,8 @@ fn blob_birth(
     albedo: Option<[f32; 3]>,
     emission: Option<[f32; 3]>,
 ) -> Result<(), ParamError> {
-    check::positive(&format!("{path}.sigma0"), sigma0 as f64, MAX_SIGMA0)?;
-    check::positive(&format!("{path}.mass0"), mass0 as f64, MAX_MASS0)?;
+    check::positive(&format!("{path}.sigma0"), sigma0, MAX_SIGMA0)?;
+    check::positive(&format!("{path}.mass0"), mass0, MAX_MASS0)?;
     if let Some(a) = albedo {
         check::colour(&format!("{path}.albedo"), a, f64::from(MAX_ALBEDO))?;
     }
@@ -455,8 +455,8 @@ fn shape(path: &str, s: &Shape) -> Result<(), ParamError> {
     let p = |name: &str| format!("{path}.{name}");
     check::vector(&p("center"), s.center, MAX_COORD)?;
     check::direction(&p("axis"), s.axis)?;
-    check::positive(&p("radius"), s.radius as f64, MAX_COORD)?;
-    check::positive(&p("thickness"), s.thickness as f64, MAX_COORD)?;
+    check::positive(&p("radius"), s.radius, MAX_COORD)?;
+    check::positive(&p("thickness"), s.thickness, MAX_COORD)?;
     if s.shape != Solid::Points {
         check::integer(&p("count"), s.count as u64, 1, MAX_SHAPE_BLOBS as u64)?;
     }
@@ -555,7 +555,7 @@ fn camera(c: &Camera, prefix: &str) -> Result<(), ParamError> {
     check::vector(&p("position"), c.position, MAX_COORD)?;
     check::vector(&p("target"), c.target, MAX_COORD)?;
     check::direction(&p("up"), c.up)?;
-    check::range(&p("fov_y_deg"), c.fov_y_deg as f64, 0.1, 179.0)?;
+    check::range(&p("fov_y_deg"), c.fov_y_deg, 0.1, 179.0)?;
     let view: Vec<f32> = (0..3).map(|i| c.target[i] - c.position[i]).collect();
     let len2: f32 = view.iter().map(|v| v * v).sum();
     if len2 < 1e-12 {
@@ -593,8 +593,13 @@ fn image(image: &Image, prefix: &str) -> Result<(), ParamError> {
 /// The medium's optical constants (paper Appendix B).
 fn medium(m: &Medium, prefix: &str) -> Result<(), ParamError> {
     let p = |s: &str| format!("{prefix}medium.{s}");
-    for (i, k) in m.extinction.rgb().iter().enumerate() {
-        check::range(&format!("{}[{i}]", p("extinction")), *k as f64, 0.0, 1e6)?;
+    match m.extinction {
+        Extinction::Grey(k) => check::range(&p("extinction"), k, 0.0, 1e6)?,
+        Extinction::Rgb(rgb) => {
+            for (i, k) in rgb.into_iter().enumerate() {
+                check::range(&format!("{}[{i}]", p("extinction")), k, 0.0, 1e6)?;
+            }
+        }
     }
     check::colour(&p("albedo"), m.albedo, 1.0)?;
     if let Phase::HenyeyGreenstein { g } = m.phase {
@@ -603,7 +608,7 @@ fn medium(m: &Medium, prefix: &str) -> Result<(), ParamError> {
                 p("phase.g"),
                 format!(
                     "must be strictly between -1 and 1 (got {})",
-                    crate::error::number(g as f64)
+                    crate::check::Number::echo(g)
                 ),
             ));
         }
@@ -635,7 +640,7 @@ fn object(path: &str, object: &Object) -> Result<(), ParamError> {
             ..
         } => {
             check::vector(&p("center"), *center, MAX_COORD)?;
-            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
+            check::positive(&p("radius"), *radius, MAX_COORD)?;
             check::colour(&p("color"), *color, 1.0)
         }
         Object::Plane {
@@ -658,8 +663,8 @@ fn object(path: &str, object: &Object) -> Result<(), ParamError> {
         } => {
             check::vector(&p("base"), *base, MAX_COORD)?;
             check::direction(&p("axis"), *axis)?;
-            check::positive(&p("radius"), *radius as f64, MAX_COORD)?;
-            check::positive(&p("height"), *height as f64, MAX_COORD)?;
+            check::positive(&p("radius"), *radius, MAX_COORD)?;
+            check::positive(&p("height"), *height, MAX_COORD)?;
             check::colour(&p("color"), *color, 1.0)
         }
     }

@@ -30,6 +30,8 @@ pub struct SmallScale {
     steps_per_second: f64,
     /// Mean wind that carries the eddies (zero unless `carried_by_wind` without `carried`).
     carry: Vec3,
+    /// The field's spatial period along x, y and z (m).
+    period: Vec3,
 }
 
 impl SmallScale {
@@ -65,13 +67,14 @@ impl SmallScale {
             potential_scale: Vec3::splat(volume * scale / TAU) / l,
             steps_per_second: nt as f64 / fs.time_period,
             carry,
+            period: l,
             field,
         }
     }
 
     /// Reference sample: quadrilinear in the 4-D lattice, in world units.
     pub fn velocity(&self, x: Vec3, t: f64) -> Vec3 {
-        let q = (x - self.carry * t as f32) * self.cells_per_metre;
+        let q = (x - self.carried_by(t)) * self.cells_per_metre;
         let u = self.field.sample_lattice([
             q.x as f64,
             q.y as f64,
@@ -79,6 +82,23 @@ impl SmallScale {
             t * self.steps_per_second,
         ]);
         Vec3::from_array(u) * self.velocity_scale
+    }
+
+    /// How far the mean wind has carried the field by `t` (s), m: `carry`·t, reduced by the
+    /// field's spatial period where that product is past single precision's range (the field
+    /// repeats there, and `carry`·t in f32 would be infinite, its sample NaN).
+    fn carried_by(&self, t: f64) -> Vec3 {
+        let shift = self.carry * t as f32;
+        if shift.is_finite() {
+            return shift;
+        }
+        let period = self.period;
+        let reduce = |c: f32, l: f32| (f64::from(c) * t).rem_euclid(f64::from(l)) as f32;
+        Vec3::new(
+            reduce(self.carry.x, period.x),
+            reduce(self.carry.y, period.y),
+            reduce(self.carry.z, period.z),
+        )
     }
 
     /// Whether the field has its vector potential.
@@ -148,7 +168,7 @@ impl SmallScale {
         slice.extent = Vec3A::new(nx as f32, ny as f32, nz as f32);
         slice.inv_extent = slice.extent.recip();
         slice.cells_per_metre = self.cells_per_metre.into();
-        slice.offset = (self.carry * t as f32).into();
+        slice.offset = self.carried_by(t).into();
         slice.time_slices = (i0 as u32, i1 as u32, f);
         slice.velocity_scale = scale.into();
     }

@@ -196,12 +196,15 @@ impl Manifest {
             format!("frames {}", ranges.join(", "))
         };
         let pattern = Names::parse(&self.pattern).map_or(self.pattern.clone(), |n| n.display());
+        // A volume run is sized by its voxels, an image run by its pixels.
+        let size = match self.voxel {
+            Some(v) => format!("voxels of {v} m"),
+            None => format!("{}×{}", self.width, self.height),
+        };
         format!(
-            "{} ({} fps, {}×{}), {ranges} of {}",
+            "{} ({} fps, {size}), {ranges} of {}",
             self.input,
             self.fps,
-            self.width,
-            self.height,
             in_folder(folder, &pattern)
         )
     }

@@ -72,9 +72,9 @@ pub fn description_alias(sheet: &Path) -> PathBuf {
 pub fn run(args: FlipbookArgs) -> Result<(), Failure> {
     let start = Instant::now();
     let range = FrameRange::parse(&args.frames).map_err(Failure::Input)?;
-    let (columns, rows) = parse_pair(&args.grid, "--grid", u32::MAX).map_err(input)?;
+    let (columns, rows) = parse_pair(&args.grid, "--grid", "C×R", u32::MAX).map_err(input)?;
     let (tile_width, tile_height) =
-        parse_pair(&args.tile, "--tile", MAX_IMAGE_SIDE).map_err(input)?;
+        parse_pair(&args.tile, "--tile", "W×H", MAX_IMAGE_SIDE).map_err(input)?;
     let frames = range.end - range.start;
     let fade = match (args.looped, args.fade) {
         (false, _) => 0,

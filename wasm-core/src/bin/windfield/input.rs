@@ -30,8 +30,14 @@ pub fn open_input(path: &Path) -> Result<(fs::File, u64), Failure> {
 pub fn read_text(path: &Path) -> Result<String, Failure> {
     let (mut file, len) = open_input(path)?;
     let mut text = String::with_capacity(len as usize);
-    std::io::Read::read_to_string(&mut file, &mut text)
-        .map_err(|e| Failure::Io(format!("{}: {e}", path.display())))?;
+    std::io::Read::read_to_string(&mut file, &mut text).map_err(|e| {
+        let message = format!("{}: {e}", path.display());
+        // Bytes that are not UTF-8 are the input's fault (status 2), not a failed read.
+        match e.kind() {
+            std::io::ErrorKind::InvalidData => Failure::Input(message),
+            _ => Failure::Io(message),
+        }
+    })?;
     Ok(text)
 }
 

@@ -191,7 +191,7 @@ impl Sequence {
         let done = frames.len() - todo.len();
         if todo.is_empty() {
             eprintln!(
-                "nothing to write: all {} frames of {what} are complete (--force renders them again), {}",
+                "nothing to write: all {} frames of {what} are complete (--force writes them again), {}",
                 frames.len(),
                 wall(start)
             );

@@ -416,6 +416,9 @@ pub fn run(args: WindArgs) -> Result<(), Failure> {
         None => format!("{} points", grouped(points.len())),
     };
     let when = match moments {
+        // Any time is a moment of the wind: past a million seconds it is written as a number is
+        // in a message (1e300), not in 300 digits.
+        Moments::Once(t) if t.abs() >= 1e6 => format!("at t = {} s", windfield::error::number(t)),
         Moments::Once(t) => format!("at t = {t:.2} s"),
         Moments::Frames(range, fps) => format!(
             "in frames {}..{} at {fps} fps (t = {:.2} to {:.2} s)",
