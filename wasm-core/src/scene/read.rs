@@ -33,7 +33,7 @@ fn at_path(
     };
     // A key left out is named below, by its element's path and its own; so is an unknown key
     // of an element chosen by its `type` (serde reads such an element whole, and names it).
-    let error = e.inner().to_string();
+    let (error, category) = (e.inner().to_string(), e.inner().classify());
     let left_out = error.starts_with("missing field `");
     let unknown = error
         .strip_prefix("unknown field `")
@@ -41,9 +41,7 @@ fn at_path(
         .map(|(key, _)| key.to_string());
     if let (Some(key), Some(_)) = (&unknown, tagged(&path)) {
         path = format!("{path}.{key}");
-    } else if e.inner().classify() == serde_json::error::Category::Data
-        && !left_out
-        && tagged(&path).is_some()
+    } else if category == serde_json::error::Category::Data && !left_out && tagged(&path).is_some()
     {
         let parsed: Option<Value> = match tree {
             Some(_) => None,
@@ -67,10 +65,9 @@ fn at_path(
     }
     // A key of named choices given another JSON type: serde_json's text reader refuses it as
     // though the document were not JSON, its value reader as `expected string or map`.
-    let category = e.inner().classify();
     let other_type = category == serde_json::error::Category::Syntax
         || (category == serde_json::error::Category::Data
-            && e.inner().to_string().contains(", expected string or map"));
+            && error.contains(", expected string or map"));
     if other_type {
         if let Some(choices) = choices_of(root, &path, text, tree) {
             message = choices;
@@ -88,7 +85,7 @@ fn at_path(
             message = length;
         }
     }
-    if e.inner().classify() == serde_json::error::Category::Data {
+    if category == serde_json::error::Category::Data {
         if let Some(range) = range_of(root, &path, text, tree) {
             if let Some((_, got)) = message.split_once(" (got ") {
                 message = format!("{range} (got {got}");
@@ -98,8 +95,29 @@ fn at_path(
     ParamError::new(path, message)
 }
 
-/// The largest document (bytes of JSON) read again to find a key's range ([`range_of`]).
+/// The largest document (bytes of JSON) read again to word a refusal ([`range_of`],
+/// [`choices_of`], [`length_of`]).
 const RANGE_PROBE_BYTES: usize = 1 << 20;
+
+/// The document a refusal came from, as a value to change and read again: `tree`, the value
+/// read, or `text` parsed; None for a document that is not JSON or is longer than
+/// [`RANGE_PROBE_BYTES`], which is not read twice.
+fn document(text: Option<&str>, tree: Option<&Value>) -> Option<Value> {
+    match (tree, text) {
+        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => Some(t.clone()),
+        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok(),
+        _ => None,
+    }
+}
+
+/// Why serde refuses `probe` as the format `root` names (`scene` or `blob_list`), at its path;
+/// None where it reads.
+fn refusal_of(root: &str, probe: &Value) -> Option<serde_path_to_error::Error<serde_json::Error>> {
+    match root {
+        "scene" => serde_path_to_error::deserialize::<_, Scene>(probe).err(),
+        _ => serde_path_to_error::deserialize::<_, BlobList>(probe).err(),
+    }
+}
 
 /// The range the one validation walk states for the key at `path` (`must be an even number
 /// between 4 and 256`), so that a value of the wrong type is told the key's range as one of the
@@ -109,15 +127,7 @@ const RANGE_PROBE_BYTES: usize = 1 << 20;
 /// at another key first, or where its message states no range; and for documents longer than
 /// [`RANGE_PROBE_BYTES`], which are not read twice.
 fn range_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
-    let parsed: Value;
-    let tree = match (tree, text) {
-        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t,
-        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => {
-            parsed = serde_json::from_str(t).ok()?;
-            &parsed
-        }
-        _ => return None,
-    };
+    let tree = document(text, tree)?;
     let far = [u64::MAX, u32::MAX as u64, u16::MAX as u64, u8::MAX as u64];
     far.into_iter().find_map(|n| {
         let mut probe = tree.clone();
@@ -139,19 +149,11 @@ fn range_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) ->
 /// read, when it was a value. None where the document is not JSON, is longer than
 /// [`RANGE_PROBE_BYTES`], or the second reading stops elsewhere.
 fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
-    let mut probe: Value = match (tree, text) {
-        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t.clone(),
-        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok()?,
-        _ => return None,
-    };
+    let mut probe = document(text, tree)?;
     let got = got_of(lookup(&probe, path)?);
     const NONE_OF_THEM: &str = "\u{1}";
     *lookup_mut(&mut probe, path)? = Value::from(NONE_OF_THEM);
-    let refusal = match root {
-        "scene" => Scene::deserialize(&probe).err()?,
-        _ => BlobList::deserialize(&probe).err()?,
-    }
-    .to_string();
+    let refusal = refusal_of(root, &probe)?.inner().to_string();
     let expected = refusal.strip_prefix(&format!("unknown variant `{NONE_OF_THEM}`, expected "))?;
     Some(format!(
         "must be {} (got {got})",
@@ -165,17 +167,10 @@ fn choices_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) 
 /// None where the document is not JSON, is longer than [`RANGE_PROBE_BYTES`], the value there
 /// is not a list, or the second reading stops elsewhere.
 fn length_of(root: &str, path: &str, text: Option<&str>, tree: Option<&Value>) -> Option<String> {
-    let mut probe: Value = match (tree, text) {
-        (Some(t), _) if compact_length_within(t, RANGE_PROBE_BYTES) => t.clone(),
-        (None, Some(t)) if t.len() <= RANGE_PROBE_BYTES => serde_json::from_str(t).ok()?,
-        _ => return None,
-    };
+    let mut probe = document(text, tree)?;
     let items = lookup(&probe, path)?.as_array()?.len();
     *lookup_mut(&mut probe, path)? = Value::Array(Vec::new());
-    let refusal = match root {
-        "scene" => serde_path_to_error::deserialize::<_, Scene>(&probe).err()?,
-        _ => serde_path_to_error::deserialize::<_, BlobList>(&probe).err()?,
-    };
+    let refusal = refusal_of(root, &probe)?;
     // Within an element chosen by its `type`, serde names the element.
     let at = refusal.path().to_string();
     if at != path && !(tagged(&at).is_some() && path.starts_with(&format!("{at}."))) {
