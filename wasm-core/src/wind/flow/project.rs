@@ -23,8 +23,9 @@
 //! (branch-free: the links are stored as 1s and 0s; two lanes wide) and its dot product, the vector updates
 //! fused with the preconditioner's forward sweep, and its backward sweep with the next dot
 //! product, about 40 flops; MIC(0) keeps the iterations near O(n^(1/2)) of a side of n cells
-//! (tens to a hundred or so at 32³–80³ from rest; the last step's φ as the first guess takes a
-//! steady flow's to 15 at 32³ and 26 at 64³).
+//! (tens to a hundred or so at 32³–80³ from rest; a first guess extrapolated from the last two
+//! steps' φ, as the flow's step gives it, takes a wind past a sphere's to about 10
+//! at 32³ and 12 at 64³, where the last step's φ alone took 13 and 24).
 
 use super::boundary::{fixed_normal, Faces, Solids};
 use super::grid::Grid;
@@ -428,7 +429,7 @@ impl Projector {
         }
         let mut report = Projection::default();
         if scale > 0.0 {
-            // The last projection's φ is the first guess: r = b − A·φ.
+            // φ on entry is the first guess: r = b − A·φ.
             for (p, &d) in phi.iter_mut().zip(&system.diag) {
                 if d == 0.0 {
                     *p = 0.0;
@@ -476,7 +477,7 @@ fn max_abs(a: &[f64]) -> f64 {
 /// Makes `u_g` (m/s) divergence-free on the fluid cells, its fixed faces as they are (set them
 /// first, [`super::boundary::impose`]), to `tolerance` in at most `max_iterations` CG
 /// iterations. Returns how it went; the potential φ (m²/s) is left in `phi`, and a `phi` of
-/// the grid's cells on entry (the last step's) is the first guess. A [`Projector`] keeps the
+/// the grid's cells on entry (the last step's, or a guess from it) is the first guess. A [`Projector`] keeps the
 /// system and its vectors from one call to the next.
 pub fn project(
     grid: &Grid,

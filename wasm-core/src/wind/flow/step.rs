@@ -68,6 +68,9 @@ struct Scratch {
     advected: Option<MacField>,
     advection: Advection,
     projector: Projector,
+    /// The potential φ of the projection before the last (m²/s per cell; empty before the
+    /// second step), for the first guess's extrapolation.
+    phi_before: Vec<f64>,
 }
 
 impl Flow {
@@ -128,6 +131,7 @@ impl Flow {
             add_splat(g, u, s, dt);
         }
         kinds.impose(u_p, u);
+        first_guess(&mut self.phi, &mut scratch.phi_before);
         let report = scratch.projector.project(
             g,
             &self.solids,
@@ -137,6 +141,10 @@ impl Flow {
             self.max_iterations,
             &mut self.phi,
         );
+        if report.iterations == 0 && report.residual == 0.0 {
+            // Nothing was projected and φ was reset to 0: start the extrapolation again.
+            scratch.phi_before.clear();
+        }
         std::mem::swap(&mut self.u_g, u);
         report
     }
@@ -146,5 +154,77 @@ impl Flow {
         let p = u_p.at(&self.grid, x);
         let q = self.u_g.at(&self.grid, x);
         std::array::from_fn(|a| p[a] + q[a])
+    }
+}
+
+/// The projection's first guess: φ extrapolated linearly from the last two projections,
+/// 2φ_n − φ_{n−1} (φ_n alone while there is no φ_{n−1}, or when φ was reset); `before` is left
+/// holding φ_n. A flow that changes smoothly from step to step changes its pressure smoothly
+/// too, and the guess starts CG nearer the answer than φ_n does: about a quarter fewer
+/// iterations at 32³ and half at 64³ for a wind past a sphere (docs/BENCHMARKS.md). The answer
+/// is the same to the projection's tolerance, which CG reaches from any guess.
+fn first_guess(phi: &mut [f64], before: &mut Vec<f64>) {
+    if before.len() == phi.len() {
+        for (p, b) in phi.iter_mut().zip(before.iter_mut()) {
+            let now = *p;
+            *p = 2.0 * now - *b;
+            *b = now;
+        }
+    } else {
+        before.clear();
+        before.extend_from_slice(phi);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_guess_extrapolates_the_last_two_potentials() {
+        let mut before = Vec::new();
+        let mut phi = vec![1.0, 2.0];
+        first_guess(&mut phi, &mut before);
+        assert_eq!(
+            (phi.as_slice(), before.as_slice()),
+            ([1.0, 2.0].as_slice(), [1.0, 2.0].as_slice())
+        );
+        phi = vec![2.0, 1.5];
+        first_guess(&mut phi, &mut before);
+        assert_eq!(
+            (phi.as_slice(), before.as_slice()),
+            ([3.0, 1.0].as_slice(), [2.0, 1.5].as_slice())
+        );
+    }
+
+    /// A wind past a sphere: steps with the extrapolated guess take fewer CG iterations than
+    /// steps that start from the last φ (the history cleared before each), and end as close to
+    /// divergence-free.
+    #[test]
+    fn a_steady_wind_projects_in_fewer_iterations_from_the_extrapolated_guess() {
+        let run = |extrapolate: bool| {
+            let n = 16;
+            let grid = Grid::new([0.0; 3], [n; 3], 1.6 / n as f32);
+            let mut flow = Flow::new(grid.clone(), Faces::OPEN);
+            flow.solids.add_sphere(&grid, [0.8; 3], 0.3, [0.0; 3]);
+            let u_p = MacField::from_fn(&grid, |_| [1.0, 0.0, 0.0]);
+            let mut iterations = 0;
+            for step in 0..60 {
+                if !extrapolate {
+                    flow.scratch.phi_before.clear();
+                }
+                let report = flow.step(0.02, &u_p, None, &[]);
+                assert!(report.residual <= flow.tolerance, "step {step}: {report:?}");
+                if step >= 30 {
+                    iterations += report.iterations;
+                }
+            }
+            iterations
+        };
+        let (last, extrapolated) = (run(false), run(true));
+        assert!(
+            extrapolated * 10 < last * 9,
+            "{extrapolated} iterations extrapolated, {last} from the last φ"
+        );
     }
 }
