@@ -225,6 +225,18 @@ fullTest('four scene switches leave no notice that contradicts the status line',
   expect(errors).toEqual([]);
 });
 
+test('a view and a quality the link asks for are neither given up nor told as given up', async ({ page }) => {
+  await open(page, './?view=exact&quality=high');
+  const notice = page.locator('#message');
+  await expect(notice).toContainText('showing a lighter version');
+  const { lighter } = await page.evaluate(() => window.windfield.stats());
+  expect(lighter.gaveUp.length).toBeGreaterThan(0);
+  const told = await notice.textContent();
+  for (const g of lighter.gaveUp) expect(told).toContain(`Given up: ${g}.`);
+  expect(told).not.toContain('points view');
+  expect(told).not.toContain('draft quality');
+});
+
 test('a choice made in the panel holds for the rest of the visit; the full version is one click away', async ({ page }) => {
   await open(page);
   expect(await page.evaluate(() => window.windfield.stats().lighter?.gaveUp.some((g) => g.includes('points')))).toBe(true);

@@ -40,9 +40,13 @@ test('two embedded players on the docs page both run', async ({ page }) => {
 test('a lazy player 5,000 px below the fold fetches only the loader until scrolled to, then runs', async ({ page }) => {
   const errors = collectErrors(page);
   const fetched = recordCode(page);
+  const posters = [];
+  page.on('request', (r) => { if (r.url().includes('?poster')) posters.push(r.url()); });
   await bare(page, 'lazy', `<p style="height: 5000px">Text above the player.</p>
-    <wind-field id="far" preset="default" autoplay style="width: 320px"></wind-field>`);
+    <wind-field id="far" preset="default" autoplay poster="./favicon.svg?poster" style="width: 320px"></wind-field>`);
   await page.waitForLoadState('networkidle');
+  // Nor its poster image: that too waits until the element nears the viewport.
+  expect(posters).toEqual([]);
   const before = fetched.map((f) => ({ ...f }));
   const kib = before.reduce((sum, f) => sum + f.gzip, 0) / 1024;
   test.info().annotations.push({ type: 'code before scrolling', description: `${kib.toFixed(1)} KiB gzipped: ${before.map((f) => f.url.split('/').pop()).join(', ')}` });
@@ -119,8 +123,15 @@ test('a poster image shows until the scene is ready', async ({ page }) => {
     <wind-field id="p" preset="default" poster="./favicon.svg" style="width: 320px"></wind-field>`);
   const poster = page.locator('#p').locator('img.poster');
   await expect(poster).toHaveAttribute('src', /favicon\.svg$/);
+  // Scrolled to 800 px short of it: the image is fetched as it nears (the browser's lazy
+  // images start farther out than that) and shown, before the player starts (400 px out).
+  await page.evaluate(() => {
+    const top = document.querySelector('#p').getBoundingClientRect().top + scrollY;
+    scrollTo(0, top - innerHeight - 800);
+  });
   await expect.poll(() => poster.evaluate((img) => img.complete && img.naturalWidth > 0)).toBe(true);
   expect(await poster.evaluate((img) => !img.hidden)).toBe(true);
+  expect(await page.evaluate(() => document.querySelector('#p').loaded)).toBe(false);
   await page.evaluate(() => document.querySelector('#p').scrollIntoView());
   await page.evaluate(() => document.querySelector('#p').ready);
   await expect(poster).toBeHidden();

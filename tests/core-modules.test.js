@@ -48,6 +48,13 @@ test('the first module has the player\'s bindings and not the full module\'s', (
   assert.equal(typeof full.WindField.prototype.stats, 'function');
 });
 
+test('both modules refuse a lattice of 2^32 points by its count, which 32 bits would wrap to 0', () => {
+  for (const core of [first, full]) {
+    const big = JSON.stringify({ version: 1, field: { size: [256, 256, 256, 256] } });
+    assert.throws(() => core.validateScene(big), /^Error: field\.size: nx\*ny\*nz\*nt must be at most 16777216 .*\(got 4294967296\)$/);
+  }
+});
+
 test('the first module gives the full module\'s bytes for a load, its field, steps and frames', () => {
   const a = run(first, 200);
   const b = run(full, 200);

@@ -31,6 +31,8 @@ test('each bad parameter is named', () => {
     [withSize(DEFAULT_FIELD, [32, 32, 32, 258]), 'field.size[3]'],
     [withSize(DEFAULT_FIELD, [32, 32, 5, 32]), 'field.size[2]'],
     [withSize(DEFAULT_FIELD, 128), 'field.size: nx*ny*nz*nt'],
+    // 2^32 points, which a count in WebAssembly's 32-bit usize would wrap to 0.
+    [withSize(DEFAULT_FIELD, 256), 'field.size: nx*ny*nz*nt'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, law: 'x' } }, 'field.spectrum.law'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, epsilon: 0 } }, 'field.spectrum.epsilon'],
     [{ ...DEFAULT_FIELD, spectrum: { ...DEFAULT_FIELD.spectrum, k_inertial: 0 } }, 'field.spectrum.k_inertial'],

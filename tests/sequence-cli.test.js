@@ -60,12 +60,18 @@ test('complete frames are skipped unless --force', () => {
   // A damaged frame (cut short) is not complete: only it is rendered again.
   const cut = join(out, 'f005.png');
   writeFileSync(cut, readFileSync(cut).subarray(0, 100));
+  // Nor is one of full length whose closing IEND chunk is lost (its last 12 bytes zeroed).
+  const tail = join(out, 'f007.png');
+  const lost = readFileSync(tail);
+  lost.fill(0, lost.length - 12);
+  writeFileSync(tail, lost);
   const second = execFileSync(cliPath, frames(`${out}/f%03d.png`), { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
   assert.equal(second, '');
   for (const [name, mtime] of Object.entries(before)) {
-    if (name !== 'f005.png') assert.equal(statSync(join(out, name)).mtimeMs, mtime, `${name} was rendered again`);
+    if (name !== 'f005.png' && name !== 'f007.png') assert.equal(statSync(join(out, name)).mtimeMs, mtime, `${name} was rendered again`);
   }
   assert.equal(decodePng(readFileSync(cut)).width, 80);
+  assert.equal(readFileSync(tail).subarray(-8, -4).toString('latin1'), 'IEND', 'the frame without its IEND was rendered again');
   const forced = join(dir, 'forced-log');
   execFileSync(cliPath, [...frames(`${out}/f%03d.png`), '--force'], { stdio: ['ignore', 'ignore', openSync(forced, 'w')] });
   assert.match(readFileSync(forced, 'utf8'), /frame 11 /);

@@ -1285,7 +1285,9 @@ fn an_out_naming_a_format_its_command_does_not_write_is_refused_before_any_work(
                 "--out",
                 &wind,
             ],
-            "--out: must end in .json, .npy or .vdb".into(),
+            "--out: windfield writes the wind as JSON, NumPy or OpenVDB, not .txt \
+             (name the file .json, .npy or .vdb)"
+                .into(),
         ),
     ];
     for (args, want) in &cases {
@@ -1397,4 +1399,47 @@ fn input_that_is_not_a_scene_is_told_so_and_the_wind_at_any_time_is_finite() {
         w.iter().flatten().all(|v| v.is_finite()) && w.iter().flatten().any(|&v| v != 0.0),
         "{w:?}"
     );
+}
+
+/// A points file for `wind --points` that is not an array of [x, y, z] is refused naming the
+/// point at fault, as a scene names its path.
+#[test]
+fn a_bad_point_is_named() {
+    let dir = scratch("bad-points");
+    let out = dir.join("wind.json");
+    for (points, want) in [
+        (
+            serde_json::json!([[0, 0]]),
+            "[0]: must be a point [x, y, z] of 3 numbers (got 2 items)",
+        ),
+        (
+            serde_json::json!([[0, 0, 0], [1, 2, 3, 4]]),
+            "[1]: must be a point [x, y, z] of 3 numbers (got 4 items)",
+        ),
+        (
+            serde_json::json!([[0, 0, 0], [1, "a", 3]]),
+            "[1][1]: invalid type: string \"a\"",
+        ),
+        (
+            serde_json::json!([[0, 0, 0], [1, 2, 2e6]]),
+            "[1][2]: must be a finite number within ±1000000 m (got 2000000)",
+        ),
+    ] {
+        let file = write(&dir, "points.json", &points);
+        let e = refused(&[
+            "wind",
+            &scene("default.json"),
+            "--seconds",
+            "0",
+            "--points",
+            &file,
+            "--out",
+            s(&out),
+        ]);
+        assert!(
+            e.starts_with(&format!("windfield: error: {file}: {want}")),
+            "{points}: {e}"
+        );
+    }
+    assert!(!out.exists());
 }

@@ -40,8 +40,9 @@ impl Lattice {
                 ));
             }
         }
-        let points: usize = size.iter().product();
-        if points > MAX_POINTS {
+        // In u64: in WebAssembly usize has 32 bits, and 256^4 = 2^32 would wrap to 0.
+        let points: u64 = size.iter().map(|&n| n as u64).product();
+        if points > MAX_POINTS as u64 {
             return Err(ParamError::new(
                 path,
                 format!(
@@ -125,6 +126,10 @@ mod tests {
         let e = Lattice::new([128, 128, 128, 128], "field.size").unwrap_err();
         assert_eq!(e.path, "field.size");
         assert!(e.message.contains("at most"));
+        // 2^32 points: counted in u64, so a 32-bit usize (WebAssembly) cannot wrap it to 0.
+        let e = Lattice::new([256; 4], "field.size").unwrap_err();
+        assert_eq!(e.path, "field.size");
+        assert!(e.message.ends_with("(got 4294967296)"), "{}", e.message);
         assert!(Lattice::new([64, 64, 64, 64], "s").is_ok());
         assert!(Lattice::new([256, 256, 4, 4], "s").is_ok());
         assert!(Lattice::new([6, 10, 4, 8], "s").is_ok());

@@ -401,7 +401,7 @@ impl Gas {
         )
     }
 
-    /// Births in (t1 − dt, t1]: each blob is advanced from its birth time to `t1` by one
+    /// Births in [t1 − dt, t1): each blob is advanced from its birth time to `t1` by one
     /// Euler step in `frame`, put back outside a solid it was born in or carried into, and
     /// given carried offsets as the large-scale wind at its birth place makes them (with
     /// [`Self::newborns_elsewhere`] it stays at its birth place: the GPU advances it).

@@ -124,6 +124,7 @@ export const LoadingMixin = (Base) => class extends Base {
     } else if (name === 'poster') {
       this.#updatePoster();
     } else if (name === 'loading') {
+      this.#updatePoster();
       if (after === 'eager' && this.isConnected) this.load();
     } else if (name === 'stir') {
       player?.setStirring(this.stir);
@@ -275,7 +276,11 @@ export const LoadingMixin = (Base) => class extends Base {
     this.dispatchEvent(new CustomEvent('error', { detail: { message } }));
   }
 
-  /** The poster (the `poster` attribute's image) until the scene is loaded. */
+  /**
+   * The poster (the `poster` attribute's image) until the scene is loaded. A lazy element's
+   * poster is fetched as the element nears the viewport (the image's own lazy loading), so a
+   * player far down a page costs nothing but the loader until it is scrolled to.
+   */
   #updatePoster() {
     const img = this[$parts].poster;
     const url = this.getAttribute('poster');
@@ -283,6 +288,7 @@ export const LoadingMixin = (Base) => class extends Base {
       img.hidden = true;
       return;
     }
+    img.loading = this.loading === 'eager' ? 'eager' : 'lazy';
     img.src = new URL(url, document.baseURI).href;
     img.hidden = false;
   }

@@ -113,9 +113,12 @@ export class LighterVersion {
 
   /** The page hears why the lighter version is shown and what it gives up now. */
   #tell() {
-    // After the constructor (the page's handle on the player is set by then).
-    const lighter = { reason: this.#reason, gaveUp: this.#gaveUp(), renderer: this.#machine.renderer };
-    queueMicrotask(() => this.#onLighter?.(lighter));
+    // After the constructor and what the page sets in the same task (the page's handle on the
+    // player, a link's `view` or `quality`): what it gave up is read then, so a setting the
+    // link chose is not told as given up.
+    queueMicrotask(() => {
+      if (this.#reason) this.#onLighter?.({ reason: this.#reason, gaveUp: this.#gaveUp(), renderer: this.#machine.renderer });
+    });
   }
 
   /**

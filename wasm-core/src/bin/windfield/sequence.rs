@@ -334,7 +334,8 @@ impl Sequence {
     }
 }
 
-/// Whether `path` holds a whole PNG of `width × height` (what a completed frame is).
+/// Whether `path` holds a whole PNG of `width × height` (what a completed frame is): its image
+/// data and every chunk after it, to the closing IEND, read without an error.
 pub fn is_complete(path: &Path, width: u32, height: u32) -> bool {
     let Ok(file) = std::fs::File::open(path) else {
         return false;
@@ -348,5 +349,5 @@ pub fn is_complete(path: &Path, width: u32, height: u32) -> bool {
         return false;
     }
     let mut buf = vec![0; reader.output_buffer_size().unwrap_or(0)];
-    reader.next_frame(&mut buf).is_ok()
+    reader.next_frame(&mut buf).is_ok() && reader.finish().is_ok()
 }

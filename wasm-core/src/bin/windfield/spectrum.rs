@@ -8,10 +8,11 @@ use windfield::field::spectrum::{SpectrumLaw, SpectrumParams};
 
 #[derive(Args, Clone)]
 pub struct SpectrumArgs {
-    /// Energy-cascade rate ε (> 0). Default 1, or the value stored beside the file.
+    /// Energy-cascade rate ε (> 0). Default 1 (`stats`: the value stored beside the file first).
     #[arg(long, allow_hyphen_values = true)]
     epsilon: Option<f64>,
-    /// Inertial wave number: no energy below it. Default 4, or the value stored beside the file.
+    /// Inertial wave number: no energy below it. Default 4 (`stats`: the value stored beside the
+    /// file first).
     #[arg(long = "k-inertial", allow_hyphen_values = true)]
     k_inertial: Option<f64>,
     /// Temporal spread σ, 0 to 100: G_k(ω) has standard deviation kσ (0 freezes time; any

@@ -104,11 +104,17 @@ fn format_of(path: &Path, points: bool, series: bool) -> Result<Format, Failure>
         "vdb" => Err(Failure::Input(
             "--out: the wind at --points is written as .json (an array of [u, v, w])".into(),
         )),
-        _ => Err(Failure::Input(format!(
-            "--out: must end in .json{} (got {:?})",
-            if points { "" } else { ", .npy or .vdb" },
+        "" => Err(Failure::Input(format!(
+            "--out: name the file {}, the format of the wind (got {:?})",
+            if points { ".json" } else { ".json, .npy or .vdb" },
             path.display().to_string()
         ))),
+        // In the words of every command's refusal of a format it does not write.
+        e => Err(Failure::Input(if points {
+            format!("--out: windfield writes the wind at --points as JSON, not .{e} (name the file .json)")
+        } else {
+            format!("--out: windfield writes the wind as JSON, NumPy or OpenVDB, not .{e} (name the file .json, .npy or .vdb)")
+        })),
     }
 }
 
@@ -195,8 +201,10 @@ fn read_points(path: &Path) -> Result<Vec<Vec3>, Failure> {
     let text = read_text(path)?;
     let list: Vec<[f64; 3]> = serde_json::from_str(&text).map_err(|e| {
         Failure::Input(format!(
-            "{}: expected a JSON array of points [x, y, z]: {e}",
-            path.display()
+            "{}: {}",
+            path.display(),
+            points_refusal(&text)
+                .unwrap_or_else(|| format!("expected a JSON array of points [x, y, z]: {e}"))
         ))
     })?;
     if list.len() > MAX_POINTS {
@@ -220,6 +228,29 @@ fn read_points(path: &Path) -> Result<Vec<Vec3>, Failure> {
             Ok(Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32))
         })
         .collect()
+}
+
+/// Why a points file that does not read as an array of [x, y, z] is refused, naming the point:
+/// read again as lists of numbers of any length, the first that is not three, or the path of
+/// what is not a number (None where the text is not such lists at all: the JSON error tells).
+fn points_refusal(text: &str) -> Option<String> {
+    let read: Result<Vec<Vec<f64>>, _> =
+        serde_path_to_error::deserialize(&mut serde_json::Deserializer::from_str(text));
+    match read {
+        Ok(lists) => lists
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.len() != 3)
+            .map(|(i, p)| {
+                format!(
+                    "[{i}]: must be a point [x, y, z] of 3 numbers (got {} item{})",
+                    p.len(),
+                    if p.len() == 1 { "" } else { "s" }
+                )
+            }),
+        Err(e) if e.path().iter().next().is_some() => Some(format!("{}: {}", e.path(), e.inner())),
+        Err(_) => None,
+    }
 }
 
 /// The wind of `scene` (its field synthesised, with the vector potential when it has solids).
