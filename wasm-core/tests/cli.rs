@@ -1443,3 +1443,33 @@ fn a_bad_point_is_named() {
     }
     assert!(!out.exists());
 }
+
+/// A flipbook whose range ends near 2^64 with a loop's fade is refused by the step budget
+/// (its last frame saturates rather than wrapping round to a small one and running forever).
+#[test]
+fn a_flipbook_ending_near_two_to_the_64_meets_the_step_budget() {
+    let dir = scratch("far-flipbook");
+    let sheet = dir.join("sheet.png");
+    let e = refused(&[
+        "flipbook",
+        &scene("default.json"),
+        "--frames",
+        "18446744073709551610..18446744073709551615",
+        "--fps",
+        "10",
+        "--grid",
+        "8x1",
+        "--tile",
+        "8x8",
+        "--loop",
+        "--fade",
+        "4",
+        "--out",
+        s(&sheet),
+    ]);
+    assert!(
+        e.contains("simulation.dt: ") && e.contains("over the limit of 1000000"),
+        "{e}"
+    );
+    assert!(!sheet.exists());
+}

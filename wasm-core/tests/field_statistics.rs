@@ -606,3 +606,24 @@ fn every_bad_parameter_is_rejected_with_its_name() {
         assert!(e.message.contains(text), "{e}");
     }
 }
+
+/// A slice of the field (the explorer's and the classroom's plane) samples the lattice
+/// quadrilinearly, exactly at the lattice's points, and a side over the bound is refused by
+/// its name before any buffer is made (a 32-bit build could not hold 65536 × 32768 of them).
+#[test]
+fn a_slice_is_the_field_at_its_points_and_its_size_is_bounded() {
+    let p = params([8, 8, 4, 4], SpectrumParams::default(), 5);
+    let f = TurbulentField::generate(&p).unwrap();
+    let s = f.slice_xy(1.0, 2.0, 8, 4).unwrap();
+    assert_eq!(s.len(), 3 * 8 * 4);
+    for j in 0..4 {
+        for i in 0..8 {
+            let at = f.sample_lattice([i as f64, 2.0 * j as f64, 1.0, 2.0]);
+            assert_eq!(&s[3 * (8 * j + i)..3 * (8 * j + i) + 3], &at[..]);
+        }
+    }
+    let e = f.slice_xy(0.0, 0.0, 65536, 32768).unwrap_err();
+    assert_eq!(e.path, "width");
+    assert_eq!(e.message, "must be at most 4096 samples (got 65536)");
+    assert_eq!(f.slice_xy(0.0, 0.0, 16, 4097).unwrap_err().path, "height");
+}

@@ -53,8 +53,8 @@ impl WindField {
 
     /// The plane z = `z` at time `t` (lattice units) on a `width × height` grid over one
     /// period in x and y (`TurbulentField::slice_xy`).
-    pub fn slice_xy(&self, z: f64, t: f64, width: u32, height: u32) -> Vec<f32> {
-        self.inner.slice_xy(z, t, width, height)
+    pub fn slice_xy(&self, z: f64, t: f64, width: u32, height: u32) -> Result<Vec<f32>, JsError> {
+        self.inner.slice_xy(z, t, width, height).map_err(js_error)
     }
 }
 

@@ -275,11 +275,26 @@ impl FlipbookJob {
             Some(f) => Simulation::with_field(scene, f)?,
             None => Simulation::new(scene)?,
         };
-        let last = (spec.end + u64::from(spec.fade) - 1) as f64 / spec.fps;
+        // Saturating: a range ending near u64::MAX with a fade must meet the budget, not wrap.
+        let last = (spec.end.saturating_add(u64::from(spec.fade)) - 1) as f64 / spec.fps;
         sim.budgeted_steps(last)?;
         let camera = camera.unwrap_or_else(|| sim.scene.render.camera.clone());
         let encoding = sim.scene.render.image.encoding;
         let (w, h) = spec.sheet_size();
+        let bytes = 4 * w * h * format.bytes_per_channel();
+        if bytes > isize::MAX as u64 {
+            // 32-bit builds (WebAssembly) hold at most isize::MAX bytes in one buffer: an
+            // OpenEXR sheet of 16384 × 16384 is one byte more.
+            return Err(ParamError::new(
+                format!("{}, {}", names.grid, names.tile),
+                format!(
+                    "the sheet of {w}×{h} pixels would take {bytes} bytes, more than this build holds in one buffer ({}): lower the {} or the {}",
+                    isize::MAX,
+                    names.tile,
+                    names.grid
+                ),
+            ));
+        }
         let pixels = (w * h) as usize;
         let sheet = match format {
             StillFormat::Png => Sheet::Png(vec![0; 4 * pixels]),

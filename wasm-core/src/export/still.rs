@@ -13,6 +13,14 @@ pub enum StillFormat {
 }
 
 impl StillFormat {
+    /// Bytes a channel of a pixel takes while the image is made: 8-bit PNG, half-float EXR.
+    pub fn bytes_per_channel(self) -> u64 {
+        match self {
+            Self::Png => 1,
+            Self::Exr => 2,
+        }
+    }
+
     /// The format a file name asks for: `.exr` (any case) is OpenEXR, everything else PNG.
     pub fn of_name(name: &str) -> Self {
         if name.to_ascii_lowercase().ends_with(".exr") {

@@ -435,11 +435,12 @@ fn grid_metadata<T: VoxelValue>(grid: &Grid<T>) -> MetaMap {
         Meta::String("active values".into()),
     );
     let tree = hierarchy(grid.leaves);
-    let lowers: usize = tree.values().map(BTreeMap::len).sum();
-    let value = std::mem::size_of::<T>();
-    let bytes = grid.leaves.len() * (512 * value + 64 + 16)
+    // In u64: in WebAssembly usize has 32 bits, and a sparse grid of many nodes passes 2^32.
+    let lowers: u64 = tree.values().map(|l| l.len() as u64).sum();
+    let value = std::mem::size_of::<T>() as u64;
+    let bytes = grid.leaves.len() as u64 * (512 * value + 64 + 16)
         + lowers * (4096 * (value.max(8)) + 2 * 512 + 16)
-        + tree.len() * (32768 * (value.max(8)) + 2 * 4096 + 16);
+        + tree.len() as u64 * (32768 * (value.max(8)) + 2 * 4096 + 16);
     meta.insert("file_mem_bytes".into(), Meta::Int64(bytes as i64));
     meta
 }

@@ -13,6 +13,10 @@ use crate::field::spectrum::SpectrumParams;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
+/// Most samples along either side of a [`TurbulentField::slice_xy`] (a plane of 4096² samples
+/// is 192 MiB of f32).
+pub const MAX_SLICE_SIDE: u32 = 4096;
+
 /// Largest seed accepted: integers up to 2^53 survive a round trip through JSON and JavaScript.
 pub const MAX_SEED: u64 = 1 << 53;
 /// The seed where none is named.
@@ -208,8 +212,23 @@ impl TurbulentField {
 
     /// Samples the plane z = `z` (lattice units) at time `t` (lattice units) on a `width ×
     /// height` grid spanning one period in x and y: `3·width·height` velocity components
-    /// (lattice units), row-major from y = 0, x fastest. A side of 0 counts as 1.
-    pub fn slice_xy(&self, z: f64, t: f64, width: u32, height: u32) -> Vec<f32> {
+    /// (lattice units), row-major from y = 0, x fastest. A side of 0 counts as 1; a side over
+    /// [`MAX_SLICE_SIDE`] is refused, naming `width` or `height`.
+    pub fn slice_xy(
+        &self,
+        z: f64,
+        t: f64,
+        width: u32,
+        height: u32,
+    ) -> Result<Vec<f32>, ParamError> {
+        for (name, side) in [("width", width), ("height", height)] {
+            if side > MAX_SLICE_SIDE {
+                return Err(ParamError::new(
+                    name,
+                    format!("must be at most {MAX_SLICE_SIDE} samples (got {side})"),
+                ));
+            }
+        }
         let [nx, ny, _, _] = self.lattice.size;
         let (w, h) = (width.max(1) as usize, height.max(1) as usize);
         let mut out = Vec::with_capacity(w * h * 3);
@@ -220,6 +239,6 @@ impl TurbulentField {
                 out.extend_from_slice(&self.sample_lattice([x, y, z, t]));
             }
         }
-        out
+        Ok(out)
     }
 }
