@@ -29,3 +29,13 @@ test('a slice of the field is refused past 4096 samples a side, by name', () => 
   assert.throws(() => field.slice_xy(0, 0, 65536, 32768), /^Error: width: must be at most 4096 samples \(got 65536\)$/);
   field.free();
 });
+
+test('blobs added by hand are held to a scene\'s bounds, by count, place, σ0 and m0', () => {
+  const sim = new core.SceneSimulation(scene);
+  assert.throws(() => sim.addBlobs(new Float32Array(3 * 1_000_001), 0.03, 1), /^Error: add blobs: 1000001 blobs beside the 0 there would be more than 1000000$/);
+  assert.throws(() => sim.addBlobs(new Float32Array([0, Infinity, 0]), 0.03, 1), /^Error: add blobs: positions must be finite numbers within ±1000000 m \(got inf\)$/);
+  assert.throws(() => sim.addBlobs(new Float32Array([0, 0, 0]), 2e4, 1), /^Error: add blobs: sigma0 must be at most 10000 m/);
+  sim.addBlobs(new Float32Array([0, 1, 0, 0.5, 1, 0]), 0.03, 1);
+  assert.equal(sim.count(), 2);
+  sim.free();
+});

@@ -15,7 +15,7 @@ fn mass_is_conserved_without_dissipation() {
         ..Default::default()
     });
     let m0 = d.grid_mass();
-    d.step(2.0);
+    d.step(2.0).unwrap();
     assert!(
         ((d.grid_mass() - m0) / m0).abs() < 1e-12,
         "{} vs {m0}",
@@ -28,7 +28,7 @@ fn mass_is_conserved_without_dissipation() {
         dissipation: 0.3,
         ..Default::default()
     });
-    d.step(1.5);
+    d.step(1.5).unwrap();
     let want = m0 * (-0.45f64).exp();
     assert!(((d.grid_mass() - want) / want).abs() < 1e-9);
     assert!(((d.blob_mass() - want) / want).abs() < 1e-12);
@@ -72,7 +72,7 @@ fn a_drifting_diffusing_square_matches_the_closed_form_and_the_blobs() {
     };
     let mut d = demo(p.clone());
     let t = 10.0;
-    d.step(t);
+    d.step(t).unwrap();
     let n = p.n;
     let dx = p.length / n as f64;
     let var = p.diffusion * t;
@@ -118,7 +118,7 @@ fn in_turbulence_the_grid_and_the_blobs_agree() {
             n,
             ..Default::default()
         });
-        d.step(3.0);
+        d.step(3.0).unwrap();
         let blobs = d.blob_density();
         let (g, b) = (centroid(&d.rho, n), centroid(&blobs, n));
         let gap = (0..2)
@@ -180,4 +180,26 @@ fn bad_setups_are_rejected() {
         let err = Figure1::new(p).err().unwrap().to_string();
         assert!(err.starts_with(path), "{err}");
     }
+}
+
+/// A step of no finite length (∞ would sub-step for ever), a negative one or one past the
+/// bound is refused by name and leaves the demo as it was.
+#[test]
+fn a_step_of_no_finite_length_is_refused() {
+    let mut d = demo(Figure1Params {
+        n: 32,
+        ..Default::default()
+    });
+    for bad in [f64::INFINITY, f64::NAN, -1.0, 61.0] {
+        let e = d.step(bad).unwrap_err();
+        assert_eq!(e.path, "seconds");
+        assert!(
+            e.message.starts_with("must be a number from 0 to 60"),
+            "{}",
+            e.message
+        );
+    }
+    assert_eq!(d.time, 0.0);
+    d.step(0.1).unwrap();
+    assert!(d.time > 0.0);
 }

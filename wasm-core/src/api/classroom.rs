@@ -23,8 +23,8 @@ impl Figure1Demo {
     }
 
     /// Advances both models by `seconds`.
-    pub fn step(&mut self, seconds: f64) {
-        self.inner.step(seconds);
+    pub fn step(&mut self, seconds: f64) -> Result<(), JsError> {
+        self.inner.step(seconds).map_err(js_error)
     }
 
     pub fn time(&self) -> f64 {

@@ -22,6 +22,9 @@ use crate::error::ParamError;
 use crate::field::{FieldParams, TurbulentField};
 use serde::Deserialize;
 
+/// The longest time one call of [`Figure1::step`] advances, s (the page steps a frame at a time).
+pub const MAX_STEP_SECONDS: f64 = 60.0;
+
 /// Setup of the demo.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -297,8 +300,15 @@ impl Figure1 {
         (sample(&self.u, 0.0, 0.5), sample(&self.v, 0.5, 0.0))
     }
 
-    /// Advances both models by `seconds`: the grid in stable sub-steps, the blobs by RK2.
-    pub fn step(&mut self, seconds: f64) {
+    /// Advances both models by `seconds` (0 to [`MAX_STEP_SECONDS`]): the grid in stable
+    /// sub-steps, the blobs by RK2. Any other time is refused, naming `seconds`.
+    pub fn step(&mut self, seconds: f64) -> Result<(), ParamError> {
+        if !(0.0..=MAX_STEP_SECONDS).contains(&seconds) {
+            return Err(ParamError::new(
+                "seconds",
+                format!("must be a number from 0 to {MAX_STEP_SECONDS} (got {seconds})"),
+            ));
+        }
         let mut left = seconds;
         while left > 1e-12 {
             let dt = left.min(self.stable_dt());
@@ -323,6 +333,7 @@ impl Figure1 {
                 self.update_wind();
             }
         }
+        Ok(())
     }
 
     /// σ (m) and mass of every blob now (Eqs. 15–16).

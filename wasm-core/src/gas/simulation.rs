@@ -7,7 +7,7 @@ use crate::gas::blob_gas::Gas;
 use crate::gas::blobs::{Blob, Blobs};
 use crate::gas::slots::SlotTable;
 use crate::scene::blob_list::{BlobList, BlobRecord, Object, RenderSettings};
-use crate::scene::limits::MAX_COORD;
+use crate::scene::limits::{MAX_BLOBS_LIMIT, MAX_COORD, MAX_MASS0, MAX_SIGMA0};
 use crate::scene::scene_format::{Primitive, Scene};
 use crate::scene::shapes::Shape;
 use crate::wind::flow::{FlowGrid, Projection, SceneFlow, Stir};
@@ -289,6 +289,33 @@ impl Simulation {
             return Err(ParamError::new(
                 "add blobs",
                 "positions must be xyz triples, sigma0 and mass0 positive",
+            ));
+        }
+        // The scene's own bounds: σ0 and m0 as an emitter's, the places as the world's, and
+        // no more blobs in all than any scene may hold.
+        if f64::from(sigma0) > MAX_SIGMA0 || f64::from(mass0) > MAX_MASS0 {
+            return Err(ParamError::new(
+                "add blobs",
+                format!("sigma0 must be at most {MAX_SIGMA0} m and mass0 at most {MAX_MASS0} (got {sigma0} and {mass0})"),
+            ));
+        }
+        if let Some(p) = positions
+            .iter()
+            .find(|p| !(p.is_finite() && f64::from(p.abs()) <= MAX_COORD))
+        {
+            return Err(ParamError::new(
+                "add blobs",
+                format!("positions must be finite numbers within ±{MAX_COORD} m (got {p})"),
+            ));
+        }
+        let n = positions.len() / 3;
+        if self.gas.blobs.len() + n > MAX_BLOBS_LIMIT {
+            return Err(ParamError::new(
+                "add blobs",
+                format!(
+                    "{n} blobs beside the {} there would be more than {MAX_BLOBS_LIMIT}",
+                    self.gas.blobs.len()
+                ),
             ));
         }
         let birth = self.time();

@@ -197,7 +197,8 @@ async function figure1Lesson() {
   /** Steps to the next snapshot time, at most one frame's step. */
   const advance = () => {
     const target = next < FIGURE1_TIMES.length ? FIGURE1_TIMES[next] : Infinity;
-    demo.step(Math.min(FIGURE1_STEP, target - demo.time()));
+    // Nothing to step where the demo is at or past the target already (a step from elsewhere).
+    demo.step(Math.max(0, Math.min(FIGURE1_STEP, target - demo.time())));
   };
   let ticking = false;
   const schedule = () => {
