@@ -39,6 +39,10 @@ use std::collections::BTreeMap;
 /// Most voxels along any axis of a grid the core is asked to fill ([`VoxelGrid::new`]).
 pub const MAX_GRID_SIDE: u32 = 512;
 
+/// Most voxels of such a grid in all (256³): its eight channels of f32 are then 512 MiB, one
+/// buffer a 32-bit build (WebAssembly, at most 2³¹ − 1 bytes in one) can hold.
+pub const MAX_GRID_VOXELS: u64 = 1 << 24;
+
 /// Cubic voxels of side `h` (m) from the corner `lo`, `dims` per axis (x fastest in storage).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VoxelGrid {
@@ -49,13 +53,16 @@ pub struct VoxelGrid {
 
 impl VoxelGrid {
     /// The grid of `dims` voxels of side `h` (m) from the corner `lo` (m), checked: `lo` finite,
-    /// `h` positive and finite, each of `dims` from 1 to [`MAX_GRID_SIDE`].
+    /// `h` positive and finite, each of `dims` from 1 to [`MAX_GRID_SIDE`], at most
+    /// [`MAX_GRID_VOXELS`] in all.
     pub fn new(lo: [f32; 3], h: f32, dims: [u32; 3]) -> Result<Self, ParamError> {
         let sides = 1..=MAX_GRID_SIDE;
+        let voxels: u64 = dims.iter().map(|&n| u64::from(n)).product();
         if lo.iter().all(|v| v.is_finite())
             && h.is_finite()
             && h > 0.0
             && dims.iter().all(|n| sides.contains(n))
+            && voxels <= MAX_GRID_VOXELS
         {
             return Ok(Self {
                 lo: Vec3::from_array(lo),
@@ -66,7 +73,7 @@ impl VoxelGrid {
         Err(ParamError::new(
             "voxel grid",
             format!(
-                "lo must be 3 finite numbers, h positive, dims 3 counts from 1 to {MAX_GRID_SIDE}"
+                "lo must be 3 finite numbers, h positive, dims 3 counts from 1 to {MAX_GRID_SIDE} of at most {MAX_GRID_VOXELS} voxels in all"
             ),
         ))
     }
@@ -364,6 +371,20 @@ mod tests {
 
     fn uniform(rng: &mut Xoshiro256PlusPlus) -> f32 {
         (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32
+    }
+
+    #[test]
+    fn a_grid_is_bounded_by_its_sides_and_by_its_voxels_in_all() {
+        assert!(VoxelGrid::new([0.0; 3], 0.1, [512, 512, 64]).is_ok());
+        assert!(VoxelGrid::new([0.0; 3], 0.1, [256, 256, 256]).is_ok());
+        for dims in [[512, 512, 65], [512, 512, 512], [513, 1, 1], [0, 4, 4]] {
+            let e = VoxelGrid::new([0.0; 3], 0.1, dims).unwrap_err();
+            assert!(
+                e.message.contains("at most 16777216 voxels"),
+                "{dims:?}: {}",
+                e.message
+            );
+        }
     }
 
     fn grid() -> VoxelGrid {
