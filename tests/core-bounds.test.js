@@ -26,15 +26,15 @@ test('a flipbook range ending near 2^64 with a fade meets the step budget, not a
 test('a slice of the field is refused past 4096 samples a side, by name', () => {
   const field = core.WindField.generate(JSON.stringify({ size: [8, 8, 4, 4], seed: 1, spectrum: { law: 'kolmogorov', epsilon: 1, k_inertial: 4, sigma: 1 } }));
   assert.equal(field.slice_xy(0, 0, 16, 8).length, 3 * 16 * 8);
-  assert.throws(() => field.slice_xy(0, 0, 65536, 32768), /^Error: width: must be at most 4096 samples \(got 65536\)$/);
+  assert.throws(() => field.slice_xy(0, 0, 65536, 32768), /^Error: width: must be an integer between 0 and 4096 \(got 65536\)$/);
   field.free();
 });
 
 test('blobs added by hand are held to a scene\'s bounds, by count, place, σ0 and m0', () => {
   const sim = new core.SceneSimulation(scene);
-  assert.throws(() => sim.addBlobs(new Float32Array(3 * 1_000_001), 0.03, 1), /^Error: add blobs: 1000001 blobs beside the 0 there would be more than 1000000$/);
-  assert.throws(() => sim.addBlobs(new Float32Array([0, Infinity, 0]), 0.03, 1), /^Error: add blobs: positions must be finite numbers within ±1000000 m \(got inf\)$/);
-  assert.throws(() => sim.addBlobs(new Float32Array([0, 0, 0]), 2e4, 1), /^Error: add blobs: sigma0 must be at most 10000 m/);
+  assert.throws(() => sim.addBlobs(new Float32Array(3 * 1_000_001), 0.03, 1), /^Error: add blobs: must hold at most 1000000 blobs in all \(got 1000001\)$/);
+  assert.throws(() => sim.addBlobs(new Float32Array([0, Infinity, 0]), 0.03, 1), /^Error: add blobs: positions\[0\]\[1\]: must be a finite number between -1000000 and 1000000 \(got infinity\)$/);
+  assert.throws(() => sim.addBlobs(new Float32Array([0, 0, 0]), 2e4, 1), /^Error: add blobs: sigma0: must be a finite number greater than 0 and at most 10000 \(got 20000\)$/);
   sim.addBlobs(new Float32Array([0, 1, 0, 0.5, 1, 0]), 0.03, 1);
   assert.equal(sim.count(), 2);
   sim.free();

@@ -624,6 +624,9 @@ fn a_slice_is_the_field_at_its_points_and_its_size_is_bounded() {
     }
     let e = f.slice_xy(0.0, 0.0, 65536, 32768).unwrap_err();
     assert_eq!(e.path, "width");
-    assert_eq!(e.message, "must be at most 4096 samples (got 65536)");
+    assert_eq!(
+        e.message,
+        "must be an integer between 0 and 4096 (got 65536)"
+    );
     assert_eq!(f.slice_xy(0.0, 0.0, 16, 4097).unwrap_err().path, "height");
 }

@@ -194,7 +194,8 @@ fn a_step_of_no_finite_length_is_refused() {
         let e = d.step(bad).unwrap_err();
         assert_eq!(e.path, "seconds");
         assert!(
-            e.message.starts_with("must be a number from 0 to 60"),
+            e.message
+                .starts_with("must be a finite number between 0 and 60 (got "),
             "{}",
             e.message
         );

@@ -18,6 +18,7 @@
 //! velocities (bilinearly interpolated), σ² = σ0² + κt, m = m0 e^(−αt); their density is
 //! splatted onto the grid for display.
 
+use crate::check;
 use crate::error::ParamError;
 use crate::field::{FieldParams, TurbulentField};
 use serde::Deserialize;
@@ -303,12 +304,7 @@ impl Figure1 {
     /// Advances both models by `seconds` (0 to [`MAX_STEP_SECONDS`]): the grid in stable
     /// sub-steps, the blobs by RK2. Any other time is refused, naming `seconds`.
     pub fn step(&mut self, seconds: f64) -> Result<(), ParamError> {
-        if !(0.0..=MAX_STEP_SECONDS).contains(&seconds) {
-            return Err(ParamError::new(
-                "seconds",
-                format!("must be a number from 0 to {MAX_STEP_SECONDS} (got {seconds})"),
-            ));
-        }
+        check::range("seconds", seconds, 0.0, MAX_STEP_SECONDS)?;
         let mut left = seconds;
         while left > 1e-12 {
             let dt = left.min(self.stable_dt());

@@ -260,8 +260,8 @@ pub struct FlipbookJob {
 impl FlipbookJob {
     /// A flipbook of `scene` (simulated from t = 0 on `field`, the scene's own; `None`
     /// synthesises it) as `spec` asks, in `format`, seen through `camera` (default the
-    /// scene's). Refused before any work: bad settings (named by `names`), or a last frame over
-    /// the step budget.
+    /// scene's). Refused before any work: bad settings (named by `names`), a sheet larger than
+    /// one buffer of this build, or a last frame over the step budget.
     pub fn new(
         scene: Scene,
         field: Option<Option<Arc<TurbulentField>>>,
@@ -271,15 +271,6 @@ impl FlipbookJob {
         names: &SettingNames,
     ) -> Result<Self, ParamError> {
         spec.check(names)?;
-        let sim = match field {
-            Some(f) => Simulation::with_field(scene, f)?,
-            None => Simulation::new(scene)?,
-        };
-        // Saturating: a range ending near u64::MAX with a fade must meet the budget, not wrap.
-        let last = (spec.end.saturating_add(u64::from(spec.fade)) - 1) as f64 / spec.fps;
-        sim.budgeted_steps(last)?;
-        let camera = camera.unwrap_or_else(|| sim.scene.render.camera.clone());
-        let encoding = sim.scene.render.image.encoding;
         let (w, h) = spec.sheet_size();
         let bytes = 4 * w * h * format.bytes_per_channel();
         if bytes > isize::MAX as u64 {
@@ -295,6 +286,15 @@ impl FlipbookJob {
                 ),
             ));
         }
+        let sim = match field {
+            Some(f) => Simulation::with_field(scene, f)?,
+            None => Simulation::new(scene)?,
+        };
+        // Saturating: a range ending near u64::MAX with a fade must meet the budget, not wrap.
+        let last = (spec.end.saturating_add(u64::from(spec.fade)) - 1) as f64 / spec.fps;
+        sim.budgeted_steps(last)?;
+        let camera = camera.unwrap_or_else(|| sim.scene.render.camera.clone());
+        let encoding = sim.scene.render.image.encoding;
         let pixels = (w * h) as usize;
         let sheet = match format {
             StillFormat::Png => Sheet::Png(vec![0; 4 * pixels]),

@@ -221,14 +221,8 @@ impl TurbulentField {
         width: u32,
         height: u32,
     ) -> Result<Vec<f32>, ParamError> {
-        for (name, side) in [("width", width), ("height", height)] {
-            if side > MAX_SLICE_SIDE {
-                return Err(ParamError::new(
-                    name,
-                    format!("must be at most {MAX_SLICE_SIDE} samples (got {side})"),
-                ));
-            }
-        }
+        check::integer("width", width.into(), 0, MAX_SLICE_SIDE.into())?;
+        check::integer("height", height.into(), 0, MAX_SLICE_SIDE.into())?;
         let [nx, ny, _, _] = self.lattice.size;
         let (w, h) = (width.max(1) as usize, height.max(1) as usize);
         let mut out = Vec::with_capacity(w * h * 3);

@@ -1,6 +1,7 @@
 //! The animation system of paper §6: a scene's field, wind and gas advanced in fixed steps,
 //! and the blob list (docs/FORMATS.md) a renderer takes.
 
+use crate::check;
 use crate::error::ParamError;
 use crate::field::TurbulentField;
 use crate::gas::blob_gas::Gas;
@@ -277,47 +278,37 @@ impl Simulation {
     }
 
     /// Adds blobs born now at `positions` (m, xyz interleaved) with σ0 (m) and m0, the medium's
-    /// albedo and no emission; refused unless the positions come in triples and σ0 and m0 are
-    /// positive.
+    /// albedo and no emission; refused unless the positions come in triples within the world
+    /// (±[`MAX_COORD`] m), σ0 and m0 are an emitter's (in (0, [`MAX_SIGMA0`]] m and (0,
+    /// [`MAX_MASS0`]]), and the blobs then number at most [`MAX_BLOBS_LIMIT`].
     pub fn add_blobs(
         &mut self,
         positions: &[f32],
         sigma0: f32,
         mass0: f32,
     ) -> Result<(), ParamError> {
-        if positions.len() % 3 != 0 || !(sigma0 > 0.0 && mass0 > 0.0) {
+        if positions.len() % 3 != 0 {
             return Err(ParamError::new(
                 "add blobs",
-                "positions must be xyz triples, sigma0 and mass0 positive",
+                "positions must be xyz triples",
             ));
         }
-        // The scene's own bounds: σ0 and m0 as an emitter's, the places as the world's, and
-        // no more blobs in all than any scene may hold.
-        if f64::from(sigma0) > MAX_SIGMA0 || f64::from(mass0) > MAX_MASS0 {
-            return Err(ParamError::new(
-                "add blobs",
-                format!("sigma0 must be at most {MAX_SIGMA0} m and mass0 at most {MAX_MASS0} (got {sigma0} and {mass0})"),
-            ));
-        }
-        if let Some(p) = positions
-            .iter()
-            .find(|p| !(p.is_finite() && f64::from(p.abs()) <= MAX_COORD))
-        {
-            return Err(ParamError::new(
-                "add blobs",
-                format!("positions must be finite numbers within ±{MAX_COORD} m (got {p})"),
-            ));
+        check::positive("add blobs: sigma0", sigma0, MAX_SIGMA0)?;
+        check::positive("add blobs: mass0", mass0, MAX_MASS0)?;
+        for (i, p) in positions.chunks_exact(3).enumerate() {
+            check::vector(
+                &format!("add blobs: positions[{i}]"),
+                [p[0], p[1], p[2]],
+                MAX_COORD,
+            )?;
         }
         let n = positions.len() / 3;
-        if self.gas.blobs.len() + n > MAX_BLOBS_LIMIT {
-            return Err(ParamError::new(
-                "add blobs",
-                format!(
-                    "{n} blobs beside the {} there would be more than {MAX_BLOBS_LIMIT}",
-                    self.gas.blobs.len()
-                ),
-            ));
-        }
+        check::length(
+            "add blobs",
+            self.gas.blobs.len() + n,
+            MAX_BLOBS_LIMIT,
+            "blobs in all",
+        )?;
         let birth = self.time();
         for p in positions.chunks_exact(3) {
             let blob = Blob::new(Vec3::from_slice(p), sigma0, mass0, birth);
